@@ -1,0 +1,25 @@
+# The two commands a user needs: `make study` (the main job) and `make test`.
+# Each runs the whole idempotent set-up first (Debian packages, venv, editable install).
+PY := .venv/bin/python
+export OMP_NUM_THREADS ?= 1
+export OPENBLAS_NUM_THREADS ?= 1
+
+.PHONY: setup test test-slow study bench clean-venv
+
+setup:
+	@bash tools/setup.sh
+
+test: setup
+	$(PY) -m pytest -q -m "not slow" tests
+
+test-slow: setup
+	$(PY) -m pytest -q -m slow tests
+
+study: setup
+	$(PY) -m studies run all
+
+bench: setup
+	$(PY) -m studies.bench
+
+clean-venv:
+	rm -rf .venv

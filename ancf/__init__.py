@@ -1,0 +1,7 @@
+"""2D ANCF beam elements with incompressible hyperelastic laws.
+
+Elements are data (:mod:`ancf.elements`), laws are energies (:mod:`ancf.laws`), a
+formulation says which invariants a law sees (:mod:`ancf.formulations`); a scene file
+(:mod:`ancf.scene`) names them and :mod:`ancf.build` turns the names into objects.
+"""
+__version__ = "0.1.0"

@@ -1,0 +1,72 @@
+"""Banded symmetric matrices: assembly from element blocks, solve, stability check.
+
+Global dofs are numbered along the beam, so every tangent and mass matrix here is
+banded with half-bandwidth b (the largest dof distance inside one element). Storage is
+LAPACK's general band form ``ab[b + i - j, j] = K[i, j]``; its upper b + 1 rows are the
+upper form that the banded Cholesky factorisation takes.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.linalg import cholesky_banded, solve_banded
+from scipy.sparse import dia_matrix
+
+
+@dataclass(frozen=True)
+class BandedPattern:
+    """Where each entry of each element block lands in the band storage."""
+
+    n: int
+    b: int
+    index: np.ndarray  # (n_elements, nd, nd) flat indices into ab
+
+    @staticmethod
+    def of(element_dofs: np.ndarray, n: int, b: int) -> "BandedPattern":
+        d = element_dofs.reshape(element_dofs.shape[0], -1)
+        r, c = d[:, :, None], d[:, None, :]
+        return BandedPattern(n, b, (b + r - c) * n + c)
+
+    def assemble(self, blocks: np.ndarray) -> "Banded":
+        ab = np.bincount(self.index.ravel(), weights=blocks.ravel(),
+                         minlength=(2 * self.b + 1) * self.n)
+        return Banded(ab.reshape(2 * self.b + 1, self.n), self.b)
+
+
+@dataclass
+class Banded:
+    ab: np.ndarray  # (2 b + 1, n)
+    b: int
+
+    @property
+    def n(self) -> int:
+        return self.ab.shape[1]
+
+    def constrain(self, fixed: np.ndarray) -> "Banded":
+        """Rows and columns of fixed dofs replaced by those of the identity (in place)."""
+        b, n = self.b, self.n
+        for off in range(-b, b + 1):
+            row = self.ab[b + off]     # entries (i, j) with i - j = off, stored at column j
+            row[fixed] = 0.0           # column j fixed
+            j = fixed - off            # row i fixed
+            row[j[(j >= 0) & (j < n)]] = 0.0
+        self.ab[b, fixed] = 1.0
+        return self
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        return solve_banded((self.b, self.b), self.ab, rhs, check_finite=False)
+
+    def is_positive_definite(self) -> bool:
+        try:
+            cholesky_banded(self.ab[: self.b + 1], lower=False, check_finite=False)
+            return True
+        except np.linalg.LinAlgError:
+            return False
+
+    def to_sparse(self):
+        offsets = np.arange(self.b, -self.b - 1, -1)
+        return dia_matrix((self.ab, offsets), shape=(self.n, self.n)).tocsc()
+
+    def matvec(self, x: np.ndarray) -> np.ndarray:
+        return self.to_sparse() @ x

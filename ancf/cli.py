@@ -1,0 +1,67 @@
+"""``ancf`` command line: ``ancf run SCENE.toml [--json OUT.json]``, ``ancf elements``,
+``ancf laws``."""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+T_IMPORT = time.perf_counter()
+
+
+def _run(args) -> int:
+    from .record import sanitize, write_record
+    from .run import run_scene
+    from .scene import load_scene
+
+    scene = load_scene(args.scene)
+    rec, _ = run_scene(scene)
+    rec["setup_s"] = (rec["setup_s"] or 0.0) + (time.perf_counter() - T_IMPORT) - (rec["wall_s"] or 0.0) * 0
+    rec = sanitize(rec)
+    if args.json:
+        write_record(rec, args.json)
+    print(f"scene       {scene.name}  ({scene.ancf.element} x {scene.ancf.elements}, "
+          f"{scene.material.law}, {scene.material.formulation}, ndof {rec['ndof']})")
+    print(f"status      {rec['status']}" + (f"  ({rec['reason']})" if rec["reason"] else ""))
+    if rec["tip"]:
+        print(f"tip         ux = {rec['tip']['ux'] * 1e3:.4f} mm   uy = {rec['tip']['uy'] * 1e3:.4f} mm")
+    print(f"newton      {rec['newton_iterations']} iterations, {rec['load_steps']} load steps "
+          f"({rec['relax_steps']} relaxation), {rec['rejected_steps']} rejected")
+    print(f"stable      {rec['stable']}" + (f"  ({rec['stability']})" if rec.get("stability") else ""))
+    print(f"time        solve {rec['wall_s']:.3f} s wall, {rec['cpu_s']:.3f} s cpu; set-up {rec['setup_s']:.3f} s")
+    print(f"effects     {', '.join(rec['effects'])}")
+    return 0 if rec["status"] == "converged" else 1
+
+
+def _list(registry: dict) -> int:
+    for name, item in registry.items():
+        print(f"{name:16s} {getattr(item, 'reference', '') or getattr(item, 'doc', '')}")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    from .errors import SceneError
+
+    p = argparse.ArgumentParser(prog="ancf", description="2D ANCF beams with hyperelastic laws")
+    sub = p.add_subparsers(dest="command", required=True)
+    r = sub.add_parser("run", help="solve one scene file")
+    r.add_argument("scene", help="scene file (TOML)")
+    r.add_argument("--json", metavar="OUT", help="write the result record here")
+    sub.add_parser("elements", help="list the registered elements")
+    sub.add_parser("laws", help="list the registered laws")
+    sub.add_parser("formulations", help="list the 2D formulations")
+    args = p.parse_args(argv)
+    try:
+        if args.command == "run":
+            return _run(args)
+        from .elements import ELEMENTS
+        from .formulations import FORMULATIONS
+        from .laws import LAWS
+        return _list({"elements": ELEMENTS, "laws": LAWS, "formulations": FORMULATIONS}[args.command])
+    except SceneError as e:
+        print(f"ancf: error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

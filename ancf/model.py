@@ -1,0 +1,167 @@
+"""The beam model: strain energy, internal force and tangent, gravity, tip load, mass.
+
+Vectorised over elements x quadrature points. With B (nq, 4, nd) the map from element
+displacements to vec(F - I) at each quadrature point (B[q, 2 i + j, 2 a + i] = dN_a/dX_j),
+and w the quadrature weights times the element volume l_e h w_b:
+
+    U   = sum_e sum_q w_q W(F_eq)
+    f_e = sum_q w_q B_q^T vec P_eq
+    K_e = sum_q w_q B_q^T A_eq B_q
+
+Only what a scene calls for is built (see :attr:`BeamModel.effects`): the mass matrix
+only for dynamics, gravity only when the scene has it, the penalty only in the
+penalised formulations.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from .banded import Banded, BandedPattern
+from .material import Material
+from .mesh import Mesh
+from .quadrature import Rule, exact_for
+
+
+class InadmissibleState(ArithmeticError):
+    """A deformation gradient with det F <= 0 (or a non-finite one) somewhere."""
+
+
+@dataclass
+class BeamModel:
+    mesh: Mesh
+    material: Material
+    rule: Rule                 # quadrature of the elastic terms
+    fixed: np.ndarray          # fixed global dofs (homogeneous)
+    effects: set = field(default_factory=set)  # filled as terms are built
+
+    def __post_init__(self):
+        self.effects.add("elastic")
+        if self.material.formulation.penalised:
+            self.effects.add("penalty")
+
+    # -- tabulation ------------------------------------------------------------------
+    @cached_property
+    def _B(self) -> np.ndarray:
+        m = self.mesh
+        _, dN = m.element.tabulate(self.rule.xi, self.rule.eta, m.element_length, m.height)
+        nq, ns = dN.shape[:2]
+        B = np.zeros((nq, 2, 2, ns, 2))  # q, i, j, a, i'
+        for i in range(2):
+            B[:, i, :, :, i] = np.swapaxes(dN, 1, 2)
+        return B.reshape(nq, 4, 2 * ns)
+
+    @cached_property
+    def _w(self) -> np.ndarray:
+        m = self.mesh
+        return self.rule.weight * m.element_length * m.height * m.width
+
+    @cached_property
+    def _Bw_flat(self) -> np.ndarray:
+        """(nq * 4, nd): rows of B, each scaled by its quadrature weight."""
+        return (self._B * self._w[:, None, None]).reshape(-1, self._B.shape[-1])
+
+    @cached_property
+    def _B_flat(self) -> np.ndarray:
+        return self._B.reshape(-1, self._B.shape[-1])
+
+    @cached_property
+    def _dofs(self) -> np.ndarray:
+        return self.mesh.element_dofs.reshape(self.mesh.n_elements, -1)
+
+    @cached_property
+    def pattern(self) -> BandedPattern:
+        return BandedPattern.of(self._dofs, self.mesh.n_dof, self.mesh.bandwidth)
+
+    @property
+    def n_free(self) -> int:
+        return self.mesh.n_dof - len(self.fixed)
+
+    # -- kinematics ------------------------------------------------------------------
+    def gradients(self, u: np.ndarray) -> np.ndarray:
+        """F at every element and quadrature point, (ne, nq, 2, 2)."""
+        ue = u[self._dofs]                                  # (ne, nd)
+        gradu = ue @ self._B_flat.T                         # (ne, nq * 4)
+        F = gradu.reshape(len(ue), -1, 2, 2) + np.eye(2)
+        return F
+
+    def _checked(self, F: np.ndarray) -> np.ndarray:
+        J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
+        if not np.all(np.isfinite(F)) or J.min() <= 0.0:
+            raise InadmissibleState(f"det F = {J.min():.3g} <= 0 at a quadrature point")
+        return F
+
+    # -- elastic terms -----------------------------------------------------------------
+    def strain_energy(self, u: np.ndarray) -> float:
+        W, _, _ = self.material.evaluate(self._checked(self.gradients(u)), tangent=False)
+        return float(np.sum(W * self._w))
+
+    def internal_force(self, u: np.ndarray) -> np.ndarray:
+        _, P, _ = self.material.evaluate(self._checked(self.gradients(u)), tangent=False)
+        fe = P.reshape(P.shape[0], -1) @ self._Bw_flat      # (ne, nd)
+        return np.bincount(self._dofs.ravel(), fe.ravel(), minlength=self.mesh.n_dof)
+
+    def internal_force_and_tangent(self, u: np.ndarray) -> tuple[np.ndarray, Banded]:
+        _, P, A = self.material.evaluate(self._checked(self.gradients(u)), tangent=True)
+        ne, nq = P.shape[:2]
+        fe = P.reshape(ne, -1) @ self._Bw_flat
+        f = np.bincount(self._dofs.ravel(), fe.ravel(), minlength=self.mesh.n_dof)
+        AB = A @ self._B[None]                              # (ne, nq, 4, nd)
+        Ke = self._Bw_flat.T @ AB.reshape(ne, nq * 4, -1)   # (ne, nd, nd)
+        return f, self.pattern.assemble(Ke)
+
+    # -- loads and inertia (integrated exactly, whatever the elastic rule) ------------
+    @cached_property
+    def _exact(self):
+        m = self.mesh
+        dx, dy = m.element.degree()
+        return exact_for(2 * dx, 2 * dy)
+
+    def gravity_force(self, g) -> np.ndarray:
+        """Q_g = int rho N^T g dV (N), exact."""
+        self.effects.add("gravity")
+        m, rule = self.mesh, self._exact
+        N, _ = m.element.tabulate(rule.xi, rule.eta, m.element_length, m.height)
+        vol = m.element_length * m.height * m.width
+        intN = self.material.density * vol * (rule.weight @ N)           # (ns,)
+        fe = intN[None, :, None] * np.asarray(g, float)[None, None, :]   # (1, ns, 2)
+        fe = np.broadcast_to(fe, self.mesh.element_dofs.shape)
+        return np.bincount(self.mesh.element_dofs.ravel(), fe.ravel(), minlength=m.n_dof)
+
+    def tip_force(self, force) -> np.ndarray:
+        """A dead load (N) at the free-end centre line r(L, 0)."""
+        self.effects.add("tip_force")
+        m = self.mesh
+        N, _ = m.element.tabulate([1.0], [0.0], m.element_length, m.height)
+        f = np.zeros(m.n_dof)
+        dofs = m.element_dofs[-1]                                        # (ns, 2)
+        np.add.at(f, dofs, N[0][:, None] * np.asarray(force, float)[None, :])
+        return f
+
+    def mass_matrix(self) -> Banded:
+        """M = int rho S^T S dV (kg), exact."""
+        self.effects.add("inertia")
+        m, rule = self.mesh, self._exact
+        N, _ = m.element.tabulate(rule.xi, rule.eta, m.element_length, m.height)
+        vol = m.element_length * m.height * m.width
+        Ms = self.material.density * vol * np.einsum("q,qa,qb->ab", rule.weight, N, N)
+        Me = np.kron(Ms, np.eye(2))                                       # local order (a, i)
+        return self.pattern.assemble(np.broadcast_to(Me, (m.n_elements,) + Me.shape))
+
+    # -- outputs -------------------------------------------------------------------------
+    def tip_displacement(self, u: np.ndarray) -> np.ndarray:
+        """r(L, 0) - (L, 0) in m."""
+        m = self.mesh
+        N, _ = m.element.tabulate([1.0], [0.0], m.element_length, m.height)
+        return N[0] @ u[m.element_dofs[-1]]
+
+    def centre_line(self, u: np.ndarray, per_element: int = 8) -> np.ndarray:
+        """Deformed centre-line points (n, 2) in m."""
+        m = self.mesh
+        xi = np.linspace(0.0, 1.0, per_element + 1)
+        N, _ = m.element.tabulate(xi, np.zeros_like(xi), m.element_length, m.height)
+        q = m.reference + u
+        pts = np.einsum("pa,eai->epi", N, q[m.element_dofs])
+        return np.concatenate([pts[:, :-1].reshape(-1, 2), pts[-1, -1:]])

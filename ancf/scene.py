@@ -1,0 +1,255 @@
+"""Scene files (TOML, SI units): load, validate, and describe one simulation.
+
+The one place where a scene's text is checked: unknown keys, unknown names, missing or
+misplaced constants and non-positive sizes stop with a :class:`SceneError` naming the
+field and the allowed values. Names are *checked* here against the registries; they
+become objects in :mod:`ancf.build`. Both solvers read scenes through this module; each
+ignores the other's table (``[ancf]``, ``[fem]``). Every key is documented in README.md.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import tomllib
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any, Mapping
+
+from .elements import ELEMENTS
+from .errors import SceneError, UnknownName
+from .formulations import FORMULATIONS
+from .laws import LAWS
+
+SUPPORTS = ("clamp", "pin")
+CLAMPS = ("face", "all")
+ANALYSES = ("static", "dynamic")
+INTEGRATORS = ("generalized-alpha", "newmark")
+
+
+@dataclass(frozen=True)
+class Beam:
+    length: float  # m, along x
+    height: float  # m, in plane (bending direction)
+    width: float   # m, out of plane
+
+
+@dataclass(frozen=True)
+class MaterialSpec:
+    law: str
+    formulation: str
+    density: float                       # kg/m^3
+    constants: dict = field(hash=False)  # Pa, by name (C10, C01, C20, C30)
+    penalty: float | None = None         # Pa
+
+
+@dataclass(frozen=True)
+class AncfSettings:
+    element: str
+    elements: int
+    quadrature: tuple[int, int] = (5, 3)  # Gauss points along x, across the thickness
+
+
+@dataclass(frozen=True)
+class Supports:
+    left: str
+    clamp: str | None = None  # "face" | "all" when left = "clamp"
+
+
+@dataclass(frozen=True)
+class Loads:
+    gravity: tuple[float, float] | None = None    # m/s^2
+    tip_force: tuple[float, float] | None = None  # N
+
+
+@dataclass(frozen=True)
+class Analysis:
+    kind: str
+    # static
+    load_steps: int = 10
+    newton_rtol: float = 1e-8
+    max_iterations: int = 25
+    # dynamic
+    t_end: float | None = None
+    dt: float | None = None
+    dt_min: float | None = None
+    tolerance: float | None = None
+    output_times: tuple[float, ...] | None = None
+    integrator: str = "generalized-alpha"
+    rho_inf: float = 0.8
+
+
+@dataclass(frozen=True)
+class Scene:
+    name: str
+    beam: Beam
+    material: MaterialSpec
+    ancf: AncfSettings | None
+    supports: Supports
+    loads: Loads
+    analysis: Analysis
+    fem: dict | None = field(default=None, hash=False)  # validated by reference_fem
+
+    def to_dict(self) -> dict:
+        d = asdict(self)
+        return json.loads(json.dumps(d))  # tuples -> lists, plain JSON types
+
+    def digest(self) -> str:
+        """A stable hash of the scene's content (sha256 of its canonical JSON)."""
+        return hashlib.sha256(json.dumps(self.to_dict(), sort_keys=True).encode()).hexdigest()
+
+
+# ---------------------------------------------------------------------------------------
+def load_scene(path: str | Path) -> Scene:
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text())
+    except FileNotFoundError:
+        raise SceneError(f"scene file not found: {path}") from None
+    except tomllib.TOMLDecodeError as e:
+        raise SceneError(f"{path}: not valid TOML: {e}") from None
+    return scene_from_dict(data)
+
+
+def scene_from_dict(data: Mapping[str, Any]) -> Scene:
+    _keys("scene", data, required={"name", "beam", "material", "supports", "analysis"},
+          optional={"ancf", "loads", "fem", "description"})
+    name = data["name"]
+    if not isinstance(name, str) or not name:
+        raise SceneError("name: must be a non-empty string")
+    analysis = _analysis(_table(data, "analysis"))
+    return Scene(
+        name=name,
+        beam=_beam(_table(data, "beam")),
+        material=_material(_table(data, "material")),
+        ancf=_ancf(_table(data, "ancf")) if "ancf" in data else None,
+        supports=_supports(_table(data, "supports")),
+        loads=_loads(_table(data, "loads")) if "loads" in data else Loads(),
+        analysis=analysis,
+        fem=dict(_table(data, "fem")) if "fem" in data else None,
+    )
+
+
+def _table(data, key) -> Mapping:
+    t = data[key]
+    if not isinstance(t, Mapping):
+        raise SceneError(f"{key}: must be a table ([{key}])")
+    return t
+
+
+def _keys(where, table, required=frozenset(), optional=frozenset()):
+    missing = sorted(set(required) - set(table))
+    if missing:
+        raise SceneError(f"{where}: missing key(s) {missing}")
+    unknown = sorted(set(table) - set(required) - set(optional))
+    if unknown:
+        allowed = ", ".join(sorted(set(required) | set(optional)))
+        raise SceneError(f"{where}: unknown key(s) {unknown}; allowed: {allowed}")
+
+
+def _positive(field_, value, kind=float):
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or (kind is int and not isinstance(value, int)):
+        raise SceneError(f"{field_}: must be a positive {'integer' if kind is int else 'number'}, got {value!r}")
+    if not value > 0 or value != value or value == float("inf"):
+        raise SceneError(f"{field_}: must be positive and finite, got {value!r}")
+    return kind(value)
+
+
+def _number(field_, value):
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or value != value or abs(value) == float("inf"):
+        raise SceneError(f"{field_}: must be a finite number, got {value!r}")
+    return float(value)
+
+
+def _choice(field_, value, allowed):
+    if value not in allowed:
+        raise UnknownName(field_, value, allowed)
+    return value
+
+
+def _vector(field_, value):
+    if not isinstance(value, list) or len(value) != 2:
+        raise SceneError(f"{field_}: must be a list of two numbers [x, y], got {value!r}")
+    return tuple(_number(f"{field_}[{i}]", v) for i, v in enumerate(value))
+
+
+def _beam(t) -> Beam:
+    _keys("beam", t, required={"length", "height", "width"})
+    return Beam(*(_positive(f"beam.{k}", t[k]) for k in ("length", "height", "width")))
+
+
+def _material(t) -> MaterialSpec:
+    law = _choice("material.law", t.get("law"), LAWS)
+    form = _choice("material.formulation", t.get("formulation"), FORMULATIONS)
+    names = LAWS[law].constants
+    penalised = FORMULATIONS[form].penalised
+    _keys("material", t, required={"law", "formulation", "density", *names}
+          | ({"penalty"} if penalised else set()))
+    constants = {k: _number(f"material.{k}", t[k]) for k in names}
+    if constants.get("C10", 1.0) <= 0:
+        raise SceneError(f"material.C10: must be positive, got {constants['C10']!r}")
+    return MaterialSpec(law, form, _positive("material.density", t["density"]), constants,
+                        _positive("material.penalty", t["penalty"]) if penalised else None)
+
+
+def _ancf(t) -> AncfSettings:
+    _keys("ancf", t, required={"element", "elements"}, optional={"quadrature"})
+    element = _choice("ancf.element", t["element"], ELEMENTS)
+    n = _positive("ancf.elements", t["elements"], int)
+    q = t.get("quadrature", list(AncfSettings.quadrature))
+    if not isinstance(q, list) or len(q) != 2:
+        raise SceneError(f"ancf.quadrature: must be [points along x, points across the thickness], got {q!r}")
+    q = tuple(_positive(f"ancf.quadrature[{i}]", v, int) for i, v in enumerate(q))
+    return AncfSettings(element, n, q)
+
+
+def _supports(t) -> Supports:
+    _keys("supports", t, required={"left"}, optional={"clamp"})
+    left = _choice("supports.left", t["left"], SUPPORTS)
+    if left == "pin":
+        if "clamp" in t:
+            raise SceneError("supports.clamp: only with left = \"clamp\"")
+        return Supports("pin")
+    return Supports("clamp", _choice("supports.clamp", t.get("clamp", "face"), CLAMPS))
+
+
+def _loads(t) -> Loads:
+    _keys("loads", t, optional={"gravity", "tip_force"})
+    return Loads(gravity=_vector("loads.gravity", t["gravity"]) if "gravity" in t else None,
+                 tip_force=_vector("loads.tip_force", t["tip_force"]) if "tip_force" in t else None)
+
+
+def _analysis(t) -> Analysis:
+    kind = _choice("analysis.kind", t.get("kind"), ANALYSES)
+    if kind == "static":
+        _keys("analysis", t, required={"kind"}, optional={"load_steps", "newton_rtol", "max_iterations"})
+        d = Analysis.__dataclass_fields__
+        return Analysis(
+            kind,
+            load_steps=_positive("analysis.load_steps", t.get("load_steps", d["load_steps"].default), int),
+            newton_rtol=_positive("analysis.newton_rtol", t.get("newton_rtol", d["newton_rtol"].default)),
+            max_iterations=_positive("analysis.max_iterations", t.get("max_iterations", d["max_iterations"].default), int),
+        )
+    _keys("analysis", t, required={"kind", "t_end", "dt"},
+          optional={"dt_min", "tolerance", "output_times", "integrator", "rho_inf", "newton_rtol", "max_iterations"})
+    t_end = _positive("analysis.t_end", t["t_end"])
+    dt = _positive("analysis.dt", t["dt"])
+    rho_inf = _number("analysis.rho_inf", t.get("rho_inf", Analysis.rho_inf))
+    if not 0.0 <= rho_inf <= 1.0:
+        raise SceneError(f"analysis.rho_inf: must lie in [0, 1], got {rho_inf!r}")
+    out = t.get("output_times")
+    if out is not None:
+        if not isinstance(out, list) or not out:
+            raise SceneError("analysis.output_times: must be a non-empty list of times in s")
+        out = tuple(_number(f"analysis.output_times[{i}]", v) for i, v in enumerate(out))
+        if any(v < 0 or v > t_end for v in out) or list(out) != sorted(out):
+            raise SceneError(f"analysis.output_times: must rise within [0, t_end = {t_end}]")
+    return Analysis(
+        kind, t_end=t_end, dt=dt,
+        dt_min=_positive("analysis.dt_min", t["dt_min"]) if "dt_min" in t else None,
+        tolerance=_positive("analysis.tolerance", t["tolerance"]) if "tolerance" in t else None,
+        output_times=out,
+        integrator=_choice("analysis.integrator", t.get("integrator", Analysis.integrator), INTEGRATORS),
+        rho_inf=rho_inf,
+        newton_rtol=_positive("analysis.newton_rtol", t.get("newton_rtol", Analysis.newton_rtol)),
+        max_iterations=_positive("analysis.max_iterations", t.get("max_iterations", Analysis.max_iterations), int),
+    )

@@ -1,0 +1,1 @@
+"""Studies: cases -> runs -> JSON-line records -> tables and figures in reports/."""

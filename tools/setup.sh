@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Idempotent set-up on a Debian (bookworm) machine, as root or with sudo:
+#   1. Debian's FEniCSx / scientific stack for /usr/bin/python3 (only what is missing),
+#   2. a venv that sees those packages (--system-site-packages),
+#   3. this project installed editable into it, with no dependencies from PyPI
+#      (pip must never shadow Debian's numpy/scipy, or dolfinx breaks).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages="python3-dolfinx python3-gmsh python3-numba python3-mpi4py python3-pandas
+python3-matplotlib python3-pytest python3-tqdm python3-venv python3-scipy openmpi-bin"
+
+missing=""
+for p in $packages; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+  echo "setup: installing Debian packages:$missing"
+  sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q $missing
+fi
+
+if [ ! -x .venv/bin/python ] || ! .venv/bin/python -c "import numpy, scipy" 2>/dev/null; then
+  echo "setup: creating .venv (system site packages)"
+  rm -rf .venv
+  /usr/bin/python3 -m venv --system-site-packages .venv
+fi
+
+# (Re)install editable when the package is not importable from the venv or the
+# project metadata changed since the last install.
+stamp=.venv/.ancf-installed
+if ! .venv/bin/python -c "import ancf" 2>/dev/null || [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
+  echo "setup: installing the project (editable, --no-deps)"
+  .venv/bin/python -m pip install -q --no-deps --no-build-isolation -e .
+  touch "$stamp"
+fi
