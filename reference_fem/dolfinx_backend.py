@@ -1,0 +1,240 @@
+"""Every DOLFINx call of reference_fem, written against DOLFINx 0.5.2.
+
+A newer DOLFINx changes this module only (gmsh import, element constructors, point
+evaluation, assembly and PETSc glue). Everything is built on ``MPI.COMM_SELF``, so
+cases can run side by side in separate processes or threads of a study.
+
+Interface:
+
+- :func:`rectangle_mesh`: a structured gmsh mesh of [0, L] x [-h/2, h/2];
+- :class:`Discretisation`: displacement (and optionally scaled pressure) space on a
+  mesh, the unknown, test functions, measures, constants, Dirichlet conditions,
+  point evaluation and output;
+- :class:`NonlinearSystem`: residual, Newton increment (LU), state save/restore;
+- :class:`PointwiseEvaluator`: a UFL expression of a constant F (and phat) evaluated
+  as numbers, for checking the UFL laws against :mod:`ancf`.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Callable, Sequence
+
+import numpy as np
+import ufl
+from mpi4py import MPI
+from petsc4py import PETSc
+
+import dolfinx
+import dolfinx.fem
+import dolfinx.fem.petsc
+import dolfinx.geometry
+import dolfinx.io
+import dolfinx.io.gmshio
+import dolfinx.mesh
+
+from .geometry import structured_rectangle
+
+VERSION = dolfinx.__version__
+COMM = MPI.COMM_SELF
+Locator = Callable[[np.ndarray], np.ndarray]  # x (3, n) -> bool (n,)
+
+
+def rectangle_mesh(length: float, height: float, nx: int, ny: int, cell: str):
+    """Structured mesh of [0, L] x [-h/2, h/2]: nx x ny quadrilaterals, or each split
+    into two triangles with alternating diagonals."""
+    with structured_rectangle(length, height, nx, ny, cell) as model:
+        mesh, _, _ = dolfinx.io.gmshio.model_to_mesh(model, COMM, 0, gdim=2)
+    return mesh
+
+
+class Discretisation:
+    """Lagrange displacement of ``degree`` (vector), plus a continuous scaled pressure
+    of ``degree - 1`` when ``pressure`` (Taylor-Hood), on ``mesh``."""
+
+    def __init__(self, mesh, degree: int, pressure: bool, quadrature_degree: int):
+        self.mesh = mesh
+        cell = mesh.ufl_cell()
+        Ve = ufl.VectorElement("Lagrange", cell, degree)
+        self.pressure = pressure
+        if pressure:
+            Qe = ufl.FiniteElement("Lagrange", cell, degree - 1)
+            self.W = dolfinx.fem.FunctionSpace(mesh, ufl.MixedElement([Ve, Qe]))
+            self.Wu = self.W.sub(0)
+        else:
+            self.W = dolfinx.fem.FunctionSpace(mesh, Ve)
+            self.Wu = self.W
+        self.w = dolfinx.fem.Function(self.W)
+        self.test = ufl.TestFunction(self.W)
+        self.trial = ufl.TrialFunction(self.W)
+        if pressure:
+            self.u, self.phat = ufl.split(self.w)
+            self.v, _ = ufl.split(self.test)
+        else:
+            self.u, self.phat, self.v = self.w, None, self.test
+        self.metadata = {"quadrature_degree": quadrature_degree}
+        self.dx = ufl.Measure("dx", domain=mesh, metadata=self.metadata)
+        self._zeros: list = []  # keep the bc value functions alive
+
+    # -- data ----------------------------------------------------------------------
+    @property
+    def ndof(self) -> int:
+        imap = self.W.dofmap.index_map
+        return imap.size_local * self.W.dofmap.index_map_bs
+
+    def constant(self, value):
+        return dolfinx.fem.Constant(self.mesh, PETSc.ScalarType(value))
+
+    def boundary_measure(self, where: Locator):
+        """ds restricted to the boundary facets where ``where`` holds."""
+        fdim = self.mesh.topology.dim - 1
+        facets = dolfinx.mesh.locate_entities_boundary(self.mesh, fdim, where)
+        order = np.argsort(facets)
+        tags = dolfinx.mesh.meshtags(self.mesh, fdim, facets[order],
+                                     np.ones(len(facets), dtype=np.int32))
+        return ufl.Measure("ds", domain=self.mesh, subdomain_data=tags,
+                           metadata=self.metadata)(1)
+
+    # -- Dirichlet conditions (homogeneous) ----------------------------------------------
+    def fix(self, where: Locator, components: Sequence[int] = (0, 1), on: str = "facets"):
+        """Zero displacement components on boundary facets (``on="facets"``) or at the
+        nodes (``on="points"``) where ``where`` holds; returns a list of conditions."""
+        bcs = []
+        for i in components:
+            sub = self.Wu.sub(i)
+            V, _ = sub.collapse()
+            if on == "facets":
+                fdim = self.mesh.topology.dim - 1
+                facets = dolfinx.mesh.locate_entities_boundary(self.mesh, fdim, where)
+                dofs = dolfinx.fem.locate_dofs_topological((sub, V), fdim, facets)
+            elif on == "points":
+                dofs = dolfinx.fem.locate_dofs_geometrical((sub, V), where)
+            else:
+                raise ValueError(f"on: {on!r}; allowed: 'facets', 'points'")
+            if len(dofs[0]) == 0:
+                raise ValueError(f"no degrees of freedom found for the condition on {on}")
+            zero = dolfinx.fem.Function(V)
+            self._zeros.append(zero)
+            bcs.append(dolfinx.fem.dirichletbc(zero, dofs, sub))
+        return bcs
+
+    # -- results ---------------------------------------------------------------------
+    def displacement(self):
+        return self.w.sub(0).collapse() if self.pressure else self.w
+
+    def point_displacement(self, points: np.ndarray) -> np.ndarray:
+        """u at points (n, 2) in the reference configuration -> (n, 2)."""
+        pts = np.zeros((len(points), 3))
+        pts[:, :2] = points
+        tree = dolfinx.geometry.BoundingBoxTree(self.mesh, self.mesh.topology.dim)
+        candidates = dolfinx.geometry.compute_collisions(tree, pts)
+        cells = dolfinx.geometry.compute_colliding_cells(self.mesh, candidates, pts)
+        first = [cells.links(i)[0] for i in range(len(pts))]
+        values = self.displacement().eval(pts, np.array(first, dtype=np.int32))
+        return np.asarray(values).reshape(len(pts), -1)[:, :2]
+
+    def write(self, path: Path, fmt: str, scale: float = 1.0, t: float = 0.0) -> Path:
+        """Write the mesh with the displacement (and pressure p = scale * phat)
+        interpolated to degree 1, for ParaView ("Warp By Vector")."""
+        V1 = dolfinx.fem.VectorFunctionSpace(self.mesh, ("Lagrange", 1))
+        u1 = dolfinx.fem.Function(V1, name="displacement")
+        u1.interpolate(self.displacement())
+        fields = [u1]
+        if self.pressure:
+            Q1 = dolfinx.fem.FunctionSpace(self.mesh, ("Lagrange", 1))
+            p1 = dolfinx.fem.Function(Q1, name="pressure")
+            p1.interpolate(self.w.sub(1).collapse())
+            p1.x.array[:] *= scale
+            fields.append(p1)
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        if fmt == "xdmf":
+            with dolfinx.io.XDMFFile(COMM, str(path.with_suffix(".xdmf")), "w") as f:
+                f.write_mesh(self.mesh)
+                for field in fields:
+                    f.write_function(field, t)
+            return path.with_suffix(".xdmf")
+        if fmt == "vtk":
+            with dolfinx.io.VTKFile(COMM, str(path.with_suffix(".pvd")), "w") as f:
+                f.write_function(fields, t)
+            return path.with_suffix(".pvd")
+        raise ValueError(f"format {fmt!r}; allowed: 'vtk', 'xdmf'")
+
+
+class NonlinearSystem:
+    """R(w) = 0 with homogeneous Dirichlet conditions; Newton increments by LU (MUMPS)."""
+
+    def __init__(self, disc: Discretisation, residual, bcs):
+        self.disc = disc
+        self.bcs = list(bcs)
+        jacobian = ufl.derivative(residual, disc.w, disc.trial)
+        self.R = dolfinx.fem.form(residual)
+        self.K = dolfinx.fem.form(jacobian)
+        self.b = dolfinx.fem.petsc.create_vector(self.R)
+        self.A = dolfinx.fem.petsc.create_matrix(self.K)
+        self.dx = self.b.duplicate()
+        self.ksp = PETSc.KSP().create(COMM)
+        self.ksp.setType("preonly")
+        pc = self.ksp.getPC()
+        pc.setType("lu")
+        pc.setFactorSolverType("mumps")
+
+    @property
+    def x(self):
+        return self.disc.w.vector
+
+    def residual_norm(self) -> float:
+        """Assemble R at the current state (zero rows at fixed dofs); its 2-norm."""
+        with self.b.localForm() as loc:
+            loc.set(0.0)
+        dolfinx.fem.petsc.assemble_vector(self.b, self.R)
+        dolfinx.fem.petsc.apply_lifting(self.b, [self.K], bcs=[self.bcs], x0=[self.x], scale=-1.0)
+        self.b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+        dolfinx.fem.petsc.set_bc(self.b, self.bcs, self.x, -1.0)
+        return float(self.b.norm())
+
+    def newton_update(self) -> float:
+        """Solve K dw = R (R from the last :meth:`residual_norm`), w -= dw; ||dw||."""
+        self.A.zeroEntries()
+        dolfinx.fem.petsc.assemble_matrix(self.A, self.K, bcs=self.bcs)
+        self.A.assemble()
+        self.ksp.setOperators(self.A)
+        self.ksp.solve(self.b, self.dx)
+        if self.ksp.getConvergedReason() < 0:
+            raise ArithmeticError(f"linear solve failed (PETSc reason {self.ksp.getConvergedReason()})")
+        self.x.axpy(-1.0, self.dx)
+        self.x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
+        return float(self.dx.norm())
+
+    def state_norm(self) -> float:
+        return float(self.x.norm())
+
+    def save(self) -> np.ndarray:
+        return self.disc.w.x.array.copy()
+
+    def restore(self, saved: np.ndarray) -> None:
+        self.disc.w.x.array[:] = saved
+
+    def reset(self) -> None:
+        self.disc.w.x.array[:] = 0.0
+
+
+class PointwiseEvaluator:
+    """Numbers from UFL expressions of a constant 2 x 2 gradient F and scalar phat.
+
+    ``build(F, phat)`` returns a list of UFL scalars; ``F`` is a ``ufl.variable`` so
+    that ``ufl.diff(W, F)`` works. Compiled once; :meth:`__call__` evaluates at
+    numeric F (2, 2) and phat.
+    """
+
+    def __init__(self, build: Callable):
+        mesh = dolfinx.mesh.create_unit_square(COMM, 1, 1)
+        self._F = dolfinx.fem.Constant(mesh, PETSc.ScalarType(np.eye(2)))
+        self._p = dolfinx.fem.Constant(mesh, PETSc.ScalarType(0.0))
+        self.mesh = mesh
+        exprs = build(ufl.variable(self._F), self._p, mesh)
+        self._expr = dolfinx.fem.Expression(ufl.as_vector(exprs), np.array([[1.0 / 3, 1.0 / 3]]))
+
+    def __call__(self, F: np.ndarray, phat: float = 0.0) -> np.ndarray:
+        self._F.value = np.asarray(F, float)
+        self._p.value = float(phat)
+        return np.asarray(self._expr.eval(np.array([0], dtype=np.int32))).reshape(-1)

@@ -1,0 +1,119 @@
+"""The hyperelastic laws and 2D continuum models in UFL (written once, no dolfinx).
+
+Laws carry the names and constants of :mod:`ancf.laws` (checked by a test) and are
+energies psi(I1, I2) of the 3D invariants. The invariants are built here from the 3D
+right Cauchy-Green tensor, independently of the 2D shortcuts in
+:mod:`ancf.formulations`, so that the pointwise test compares two derivations:
+
+- plane strain: F3 = diag(F, 1); I1 = tr C3, I2 = (I1^2 - tr C3^2) / 2, made
+  isochoric with J = det F: I1bar = J^(-2/3) I1, I2bar = J^(-4/3) I2;
+- plane stress (incompressible): F3 = diag(F, 1/J), so I1 = tr C + J^-2,
+  I2 = tr C J^-2 + J^2; no volumetric term.
+
+Continuum models (energy per unit reference volume, Pa; the 2D problem is per unit
+width). The pressure unknown is scaled by a modulus ``mu`` (p = mu * phat) so that
+its rows and unknowns have the size of the displacement ones:
+
+- ``mixed`` plane strain: psi(I1bar, I2bar) + mu phat (J - 1)  (exactly incompressible)
+- ``penalty`` plane strain: psi(I1bar, I2bar) + mu phat (J - 1) - (mu phat)^2 / (2 alpha);
+  eliminating phat gives the ANCF ``plane-strain`` energy psi + alpha/2 (J - 1)^2
+  without locking (perturbed Lagrangian);
+- ``exact`` plane stress: psi(I1, I2) with F33 = 1/J; displacement only.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Mapping
+
+import ufl
+
+from ancf.errors import UnknownName
+
+
+@dataclass(frozen=True)
+class LawUFL:
+    name: str
+    constants: tuple[str, ...]
+    energy: Callable  # (I1, I2, c: Mapping[str, UFL scalar]) -> UFL scalar
+
+
+def _neo_hookean(I1, I2, c):
+    return c["C10"] * (I1 - 3)
+
+
+def _mooney_rivlin(I1, I2, c):
+    return c["C10"] * (I1 - 3) + c["C01"] * (I2 - 3)
+
+
+def _yeoh(I1, I2, c):
+    d = I1 - 3
+    return c["C10"] * d + c["C20"] * d ** 2 + c["C30"] * d ** 3
+
+
+LAWS_UFL: dict[str, LawUFL] = {
+    law.name: law for law in (
+        LawUFL("neo-hookean", ("C10",), _neo_hookean),
+        LawUFL("mooney-rivlin", ("C10", "C01"), _mooney_rivlin),
+        LawUFL("yeoh", ("C10", "C20", "C30"), _yeoh),
+    )
+}
+
+
+def get_law_ufl(name: str) -> LawUFL:
+    try:
+        return LAWS_UFL[name]
+    except KeyError:
+        raise UnknownName("material.law", name, LAWS_UFL) from None
+
+
+def _invariants_3d(C3):
+    I1 = ufl.tr(C3)
+    return I1, 0.5 * (I1 ** 2 - ufl.tr(C3 * C3))
+
+
+def plane_strain_invariants(F):
+    """Isochoric (I1bar, I2bar) of F3 = diag(F, 1), and J = det F."""
+    J = ufl.det(F)
+    F3 = ufl.as_matrix([[F[0, 0], F[0, 1], 0], [F[1, 0], F[1, 1], 0], [0, 0, 1]])
+    I1, I2 = _invariants_3d(F3.T * F3)
+    return J ** (-2.0 / 3.0) * I1, J ** (-4.0 / 3.0) * I2, J
+
+
+def plane_stress_invariants(F):
+    """(I1, I2) of F3 = diag(F, 1/J), J = det F."""
+    J = ufl.det(F)
+    F3 = ufl.as_matrix([[F[0, 0], F[0, 1], 0], [F[1, 0], F[1, 1], 0], [0, 0, 1 / J]])
+    I1, I2 = _invariants_3d(F3.T * F3)
+    return I1, I2, J
+
+
+@dataclass(frozen=True)
+class Incompressibility:
+    """How a continuum model enforces J = 1 (or penalises J - 1)."""
+
+    name: str           # "mixed" | "penalty" | "exact"
+    model: str          # "plane-strain" | "plane-stress"
+    has_pressure: bool
+
+    def energy(self, law: LawUFL, c: Mapping, F, phat=None, mu=None, alpha=None):
+        """Energy density (Pa) at gradient F (and scaled pressure phat where used)."""
+        if self.model == "plane-stress":
+            I1, I2, _ = plane_stress_invariants(F)
+            return law.energy(I1, I2, c)
+        I1, I2, J = plane_strain_invariants(F)
+        W = law.energy(I1, I2, c) + mu * phat * (J - 1)
+        if self.name == "penalty":
+            W = W - (mu * phat) ** 2 / (2 * alpha)
+        return W
+
+
+INCOMPRESSIBILITIES = {
+    ("plane-strain", "mixed"): Incompressibility("mixed", "plane-strain", True),
+    ("plane-strain", "penalty"): Incompressibility("penalty", "plane-strain", True),
+    ("plane-stress", "exact"): Incompressibility("exact", "plane-stress", False),
+}
+
+
+def first_piola(W, F):
+    """P = dW/dF for W built on ``F = ufl.variable(...)``."""
+    return ufl.diff(W, F)

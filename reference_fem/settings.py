@@ -1,0 +1,134 @@
+"""The scene's ``[fem]`` table: validated here, resolved against the scene's beam.
+
+``ancf.scene`` hands the table over raw (``scene.fem``, a dict or None); this module is
+the one place that checks it, with the same kind of errors as the scene loader
+(:class:`ancf.errors.SceneError` naming the field and the allowed values; unknown keys
+are rejected). No dolfinx here.
+
+Keys (all optional except ``model`` for ``paper`` scenes):
+
+- ``cells_height`` (int): cells across the height h;
+- ``cells_length`` (int) *or* ``aspect`` (cell length / cell height): cells along L;
+- ``cell``: "quadrilateral" | "triangle";
+- ``degree`` (int): displacement degree; the pressure (mixed, penalty) is one lower
+  (Taylor-Hood Q2/Q1 or P2/P1 by default);
+- ``quadrature_degree`` (int): set explicitly, because UFL's estimate for the
+  J^(-2/3) terms explodes;
+- ``incompressibility``: "mixed" (exact, default) | "penalty" (the scene's
+  alpha/2 (J - 1)^2 as a perturbed Lagrangian); plane strain only;
+- ``model``: "plane-strain" | "plane-stress"; required for ``paper`` scenes (which
+  have no continuum meaning), otherwise it must agree with the scene's formulation.
+"""
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, replace
+from typing import Any, Mapping
+
+from ancf.errors import SceneError, UnknownName
+from ancf.scene import Scene
+
+CELLS = ("quadrilateral", "triangle")
+INCOMPRESSIBILITY = ("mixed", "penalty")
+MODELS = ("plane-strain", "plane-stress")
+KEYS = ("cells_height", "cells_length", "aspect", "cell", "degree", "quadrature_degree",
+        "incompressibility", "model")
+
+# Defaults: chosen by the convergence study in reports/reference_fem.md so that the
+# paper's beam (L = 160 mm, h = 5 mm) is within 0.5 % of the converged tip (it is
+# within about 0.05 %, see tests/test_reference_fem_solve.py).
+DEFAULT_CELLS_HEIGHT = 2
+DEFAULT_ASPECT = 2.0
+DEFAULT_CELL = "quadrilateral"
+DEFAULT_DEGREE = 2
+
+
+@dataclass(frozen=True)
+class FemSettings:
+    """A resolved [fem] table: the mesh counts are numbers, the model is named."""
+
+    model: str                 # "plane-strain" | "plane-stress"
+    incompressibility: str     # "mixed" | "penalty" | "exact" (plane stress: F33 = 1/J)
+    cells_length: int
+    cells_height: int
+    cell: str = DEFAULT_CELL
+    degree: int = DEFAULT_DEGREE
+    quadrature_degree: int = 4
+
+    @property
+    def has_pressure(self) -> bool:
+        return self.model == "plane-strain"
+
+    def refined(self, factor: int) -> "FemSettings":
+        """The same discretisation with every cell split ``factor`` times per direction."""
+        return replace(self, cells_length=self.cells_length * factor,
+                       cells_height=self.cells_height * factor)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def default_quadrature_degree(degree: int) -> int:
+    """2 p: exact for the polynomial part of the integrand of a degree-p displacement
+    (grad u of degree p - 1, energies quadratic in it, times a degree-p test function)."""
+    return 2 * degree
+
+
+def _int(field_, value, minimum=1):
+    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+        raise SceneError(f"fem.{field_}: must be an integer >= {minimum}, got {value!r}")
+    return value
+
+
+def _choice(field_, value, allowed):
+    if value not in allowed:
+        raise UnknownName(f"fem.{field_}", value, allowed)
+    return value
+
+
+def fem_settings(scene: Scene) -> FemSettings:
+    """Validate ``scene.fem`` and resolve it against the scene (beam, formulation)."""
+    t: Mapping[str, Any] = scene.fem if scene.fem is not None else {}
+    if not isinstance(t, Mapping):
+        raise SceneError("fem: must be a table ([fem])")
+    unknown = sorted(set(t) - set(KEYS))
+    if unknown:
+        raise SceneError(f"fem: unknown key(s) {unknown}; allowed: {', '.join(sorted(KEYS))}")
+
+    form = scene.material.formulation
+    if form == "paper":
+        if "model" not in t:
+            raise SceneError("fem.model: required for material.formulation = \"paper\" "
+                             "(no continuum meaning); allowed: 'plane-strain', 'plane-stress'")
+        model = _choice("model", t["model"], MODELS)
+    else:
+        model = form
+        if "model" in t and _choice("model", t["model"], MODELS) != form:
+            raise SceneError(f"fem.model: {t['model']!r} contradicts material.formulation = "
+                             f"{form!r}; give fem.model only for \"paper\" scenes")
+
+    if model == "plane-stress":
+        if "incompressibility" in t:
+            raise SceneError("fem.incompressibility: only for plane strain; plane stress is "
+                             "exactly incompressible through F33 = 1/det F")
+        incompressibility = "exact"
+    else:
+        incompressibility = _choice("incompressibility", t.get("incompressibility", "mixed"),
+                                    INCOMPRESSIBILITY)
+        if incompressibility == "penalty" and scene.material.penalty is None:
+            raise SceneError("fem.incompressibility: \"penalty\" needs material.penalty")
+
+    cell = _choice("cell", t.get("cell", DEFAULT_CELL), CELLS)
+    degree = _int("degree", t.get("degree", DEFAULT_DEGREE), 2 if model == "plane-strain" else 1)
+    ny = _int("cells_height", t.get("cells_height", DEFAULT_CELLS_HEIGHT))
+    if "cells_length" in t and "aspect" in t:
+        raise SceneError("fem.cells_length: give either cells_length or aspect, not both")
+    if "cells_length" in t:
+        nx = _int("cells_length", t["cells_length"])
+    else:
+        aspect = t.get("aspect", DEFAULT_ASPECT)
+        if isinstance(aspect, bool) or not isinstance(aspect, (int, float)) or not 0 < aspect < float("inf"):
+            raise SceneError(f"fem.aspect: must be a positive number (cell length / cell height), got {aspect!r}")
+        b = scene.beam
+        nx = max(1, round(b.length / b.height * ny / aspect))
+    qdeg = _int("quadrature_degree", t.get("quadrature_degree", default_quadrature_degree(degree)))
+    return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg)
