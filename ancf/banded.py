@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import cholesky_banded, solve_banded
+from scipy.linalg import cho_solve_banded, cholesky_banded, solve_banded
 from scipy.sparse import dia_matrix
 
 
@@ -57,12 +57,35 @@ class Banded:
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         return solve_banded((self.b, self.b), self.ab, rhs, check_finite=False)
 
-    def is_positive_definite(self) -> bool:
+    def _scaled_cholesky(self, shift: float = 0.0):
+        """Banded Cholesky factor of D^-1/2 K D^-1/2 + shift I, or None if that is not
+        positive definite. The Jacobi scaling keeps K's inertia and removes the spread
+        between position and gradient dofs that would otherwise make the factorisation
+        fail on round-off alone."""
+        d = self.ab[self.b]
+        if np.any(d <= 0):
+            return None, None
+        s = 1.0 / np.sqrt(d)
+        upper = self.ab[: self.b + 1].copy()
+        for k in range(self.b + 1):          # row k holds entries (j - (b - k), j)
+            off = self.b - k
+            upper[k, off:] *= s[: self.n - off] * s[off:]
+        upper[self.b] += shift
         try:
-            cholesky_banded(self.ab[: self.b + 1], lower=False, check_finite=False)
-            return True
+            return cholesky_banded(upper, lower=False, check_finite=False), s
         except np.linalg.LinAlgError:
-            return False
+            return None, None
+
+    def is_positive_definite(self) -> bool:
+        return self._scaled_cholesky()[0] is not None
+
+    def solve_shifted(self, rhs: np.ndarray, shift: float):
+        """x = (K + shift D)^-1 rhs with D = diag K, if K + shift D is positive definite
+        (else None): the step of a shifted (Levenberg-Marquardt) Newton method."""
+        c, s = self._scaled_cholesky(shift)
+        if c is None:
+            return None
+        return s * cho_solve_banded((c, False), s * rhs, check_finite=False)
 
     def to_sparse(self):
         offsets = np.arange(self.b, -self.b - 1, -1)
