@@ -160,6 +160,11 @@ class Discretisation:
         raise ValueError(f"format {fmt!r}; allowed: 'vtk', 'xdmf'")
 
 
+def fixed_dof_count(bcs) -> int:
+    """How many degrees of freedom a list of Dirichlet conditions fixes."""
+    return int(sum(bc.dof_indices()[1] for bc in bcs))
+
+
 class NonlinearSystem:
     """R(w) = 0 with homogeneous Dirichlet conditions; Newton increments by LU (MUMPS)."""
 

@@ -6,8 +6,11 @@ apply one increment, return its norm), ``save()``/``restore()`` and ``reset()``;
 accepted increments; :func:`solve_static` runs it to t = 1 and counts.
 
 Convergence: ||R|| <= rtol * ||R_ref||, R_ref the residual of the full load at the
-undeformed state (the external load vector), or an increment at round-off level
-(||dw|| <= 1e-12 ||w||) once the residual has dropped below sqrt(rtol) ||R_ref||.
+undeformed state (the external load vector), or a relative increment
+||dw|| <= rtol ||w|| once the residual is below sqrt(rtol) ||R_ref|| (quadratic
+convergence leaves an error of order rtol^2 then). The second test is needed where
+the residual's round-off floor (LU of the saddle-point system) lies above
+rtol ||R_ref||, as for very small loads.
 Failure (no convergence within ``max_iterations``, a diverging or non-finite
 residual, a failed linear solve) restores the last accepted state and halves the
 increment; easy convergence (<= 4 iterations) grows it by 1.5. Below ``min_step``
@@ -67,7 +70,7 @@ def newton(system, r_ref: float, rtol: float, max_iterations: int) -> tuple[int,
             raise StepFailure(str(e), it) from None
         if not math.isfinite(dw):
             raise StepFailure("non-finite increment", it + 1)
-        if dw <= 1e-12 * system.state_norm() and r <= math.sqrt(rtol) * r_ref:
+        if dw <= rtol * system.state_norm() and r <= math.sqrt(rtol) * r_ref:
             residuals.append(system.residual_norm())
             return it + 1, residuals
     raise StepFailure(f"no convergence within {max_iterations} iterations "

@@ -1,0 +1,117 @@
+"""``python -m reference_fem``: the continuum reference's command line.
+
+- ``run SCENE.toml [--json OUT.json] [--vtk DIR | --xdmf DIR]``: solve one scene,
+  write its record (and the deformed mesh for ParaView);
+- ``converge SCENE.toml [--levels N] [--json OUT.json]``: refinement study, table of
+  tip values per level, observed order, Richardson value and error estimate;
+- ``gold [--out DIR] [--levels N]``: regenerate tests/gold/fem_cantilever.json.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+T_IMPORT = time.perf_counter()
+
+
+def _run(args) -> int:
+    from ancf.record import sanitize, write_record
+    from ancf.scene import load_scene
+
+    from .run import run_scene
+
+    scene = load_scene(args.scene)
+    out, fmt = (args.vtk, "vtk") if args.vtk else (args.xdmf, "xdmf") if args.xdmf else (None, None)
+    rec = sanitize(run_scene(scene, output=out, output_format=fmt or "vtk"))
+    if args.json:
+        write_record(rec, args.json)
+    f = rec["fem"]
+    print(f"scene       {scene.name}  ({rec['continuum_model']}, {rec['incompressibility']}, "
+          f"{f['cells_length']} x {f['cells_height']} {f['cell']}, degree {f['degree']}, "
+          f"ndof {rec['ndof']})")
+    print(f"status      {rec['status']}" + (f"  ({rec['reason']})" if rec["reason"] else ""))
+    if rec["tip"]:
+        print(f"tip         ux = {rec['tip']['ux'] * 1e3:.4f} mm   uy = {rec['tip']['uy'] * 1e3:.4f} mm")
+    print(f"newton      {rec['newton_iterations']} iterations, {rec['load_steps']} load steps, "
+          f"{rec['rejected_steps']} rejected")
+    print(f"time        solve {rec['wall_s']:.3f} s wall, {rec['cpu_s']:.3f} s cpu; "
+          f"set-up {rec['setup_s']:.3f} s (meshing + JIT)")
+    print(f"effects     {', '.join(rec['effects'] or [])}")
+    if rec.get("output"):
+        print(f"output      {rec['output']}")
+    return 0 if rec["status"] == "converged" else 1
+
+
+def _level_line(level: dict) -> str:
+    tip = level["tip"]
+    vals = f"{tip['ux'] * 1e3:12.5f} {tip['uy'] * 1e3:12.5f}" if tip else f"{'-':>12s} {'-':>12s}"
+    return (f"{level['cells_length']:6d} x {level['cells_height']:<4d} {level['ndof']:8d} {vals} "
+            f"{level['wall_s']:8.2f} {level['status']}")
+
+
+def _converge(args) -> int:
+    from ancf.record import sanitize
+    from ancf.scene import load_scene
+
+    from .convergence import refinement_study
+    from .run import check_static
+
+    scene = load_scene(args.scene)
+    check_static(scene)
+    print(f"{'cells':>13s} {'ndof':>8s} {'ux (mm)':>12s} {'uy (mm)':>12s} {'solve s':>8s}")
+    study = refinement_study(scene, args.levels, progress=lambda lv: print(_level_line(lv), flush=True))
+    d = study.to_dict()
+    print("observed order (per triple of levels): "
+          + ", ".join("-" if p is None else f"{p:.2f}" for p in d["orders"]))
+    if d["extrapolated"]:
+        e = d["extrapolated"]
+        print(f"Richardson   ux = {e['ux'] * 1e3:.5f} mm   uy = {e['uy'] * 1e3:.5f} mm   "
+              f"error estimate {d['error_estimate'] * 1e3:.2e} mm")
+    else:
+        print("Richardson   not available (fewer than 3 converged levels or no monotone convergence)")
+    if args.json:
+        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+        Path(args.json).write_text(json.dumps(sanitize(d), indent=2) + "\n")
+    return 0 if d["extrapolated"] else 1
+
+
+def _gold(args) -> int:
+    from .gold import write_gold
+
+    path = write_gold(Path(args.out), args.levels, progress=print)
+    print(f"wrote {path}")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    from ancf.errors import SceneError
+
+    p = argparse.ArgumentParser(prog="python -m reference_fem",
+                                description="2D continuum reference (DOLFINx) for the ANCF scenes")
+    sub = p.add_subparsers(dest="command", required=True)
+    r = sub.add_parser("run", help="solve one scene file")
+    r.add_argument("scene")
+    r.add_argument("--json", metavar="OUT", help="write the result record here")
+    g = r.add_mutually_exclusive_group()
+    g.add_argument("--vtk", metavar="DIR", help="write the deformed mesh (VTK .pvd) here")
+    g.add_argument("--xdmf", metavar="DIR", help="write the deformed mesh (XDMF) here")
+    c = sub.add_parser("converge", help="mesh refinement study of one scene")
+    c.add_argument("scene")
+    c.add_argument("--levels", type=int, default=4, help="number of meshes (>= 3, default 4)")
+    c.add_argument("--json", metavar="OUT", help="write the study here")
+    gd = sub.add_parser("gold", help="regenerate the gold file of the paper's cantilever")
+    gd.add_argument("--out", default="tests/gold", help="directory (default tests/gold)")
+    gd.add_argument("--levels", type=int, default=5, help="meshes per case (default 5)")
+    args = p.parse_args(argv)
+    try:
+        return {"run": _run, "converge": _converge, "gold": _gold}[args.command](args)
+    except (SceneError, ValueError) as e:
+        print(f"reference_fem: error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
