@@ -73,6 +73,9 @@ class Jet:
             return self * (1.0 / o)
         return self * o ** -1
 
+    def __rtruediv__(self, o):
+        return self ** -1 * o
+
     def __pow__(self, p: float):
         if p == 1:
             return self

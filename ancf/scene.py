@@ -46,7 +46,7 @@ class MaterialSpec:
 class AncfSettings:
     element: str
     elements: int
-    quadrature: tuple[int, int] = (5, 3)  # Gauss points along x, across the thickness
+    quadrature: tuple[int, int] = (3, 2)  # Gauss points along x, across the thickness
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,134 @@
+"""Contract tests over every law x formulation: Taylor tests, symmetry, objectivity,
+the stress-free reference, closed-form uniaxial tension."""
+import numpy as np
+import pytest
+
+from ancf.errors import SceneError
+from ancf.formulations import FORMULATIONS, get_formulation
+from ancf.jet import Jet
+from ancf.laws import get_law
+
+from .conftest import ALL_FORMULATIONS, ALL_LAWS, material
+
+CASES = [(law, form) for law in ALL_LAWS for form in ALL_FORMULATIONS]
+
+
+def random_F(rng, n=6, spread=0.3):
+    F = np.eye(2) + spread * rng.standard_normal((n, 2, 2))
+    flip = np.linalg.det(F) <= 0.2
+    F[flip] = np.eye(2) + 0.1 * rng.standard_normal((flip.sum(), 2, 2))
+    return F
+
+
+def taylor_slopes(f, df_dir, x, d, hs):
+    """Observed orders of the remainder |f(x + h d) - f(x) - h df(x)[d]|."""
+    r = [np.abs(f(x + h * d) - f(x) - h * df_dir).max() for h in hs]
+    return np.diff(np.log(r)) / np.diff(np.log(hs)), r
+
+
+@pytest.mark.parametrize("law,form", CASES)
+def test_stress_and_tangent_are_the_energy_derivatives_taylor(law, form, rng):
+    """|W(F + h d) - W(F) - h P:d - h^2/2 d:A:d| falls like h^3 (a wrong P leaves an
+    O(h) remainder, a wrong A an O(h^2) one). The first-order remainder alone is not
+    used: where d:A:d is nearly zero (indefinite A) its slope is meaningless."""
+    m = material(law, form, penalty=20e6)   # a moderate penalty keeps the remainder above round-off
+    # asymptotic range: c3 h^3 (~1e-2 Pa at h = 1e-3) >> c4 h^4 and >> eps W (~1e-10 Pa)
+    hs = np.array([2e-3, 1e-3, 5e-4, 2.5e-4])
+    for F in random_F(rng):
+        d = rng.standard_normal((2, 2))
+        _, P, A = m.evaluate(F[None])
+        W = lambda G: m.evaluate(G[None])[0][0]
+        r = [abs(W(F + h * d) - W(F) - h * np.sum(P[0] * d) - 0.5 * h * h * d.ravel() @ A[0] @ d.ravel())
+             for h in hs]
+        slopes = np.diff(np.log(r)) / np.diff(np.log(hs))
+        # wrong P: slope 1, wrong A: slope 2; pre-asymptotic coarse pairs rise towards 3
+        assert np.all(slopes > 2.5) and slopes[-1] > 2.8, slopes
+
+
+@pytest.mark.parametrize("law,form", CASES)
+def test_tangent_is_the_stress_gradient_taylor_and_symmetric(law, form, rng):
+    m = material(law, form, penalty=20e6)
+    hs = np.array([1e-2, 5e-3, 2.5e-3, 1.25e-3])
+    for F in random_F(rng):
+        d = rng.standard_normal((2, 2))
+        _, _, A = m.evaluate(F[None])
+        np.testing.assert_allclose(A[0], A[0].T, rtol=1e-12, atol=1e-12 * np.abs(A).max())
+        AdP = (A[0] @ d.ravel()).reshape(2, 2)
+        slopes, _ = taylor_slopes(lambda G: m.evaluate(G[None])[1][0], AdP, F, d, hs)
+        assert np.all(slopes > 1.9), slopes
+
+
+@pytest.mark.parametrize("law,form", CASES)
+def test_objectivity(law, form, rng):
+    m = material(law, form)
+    F = random_F(rng)
+    t = rng.uniform(0, 2 * np.pi)
+    Q = np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])
+    W, P, _ = m.evaluate(F)
+    WQ, PQ, _ = m.evaluate(Q @ F)
+    np.testing.assert_allclose(WQ, W, rtol=1e-10, atol=1e-6)
+    np.testing.assert_allclose(PQ, Q @ P, rtol=1e-8, atol=1e-8 * np.abs(P).max())
+
+
+@pytest.mark.parametrize("law,form", CASES)
+def test_reference_state(law, form):
+    """Stress-free formulations: W = 0 and P = 0 at F = I. The paper's form is not
+    stress-free: it relaxes to a uniform contraction with alpha (det F - 1) ~ -(2 W_a + W_J)
+    (W_J of the law alone; PAPER.md's 1 - 2 W_a / alpha omits W_J, which is 2 C01 for
+    Mooney-Rivlin, whose C01 term is J^2 in 2D)."""
+    m = material(law, form)
+    W, P, _ = m.evaluate(np.eye(2)[None])
+    if FORMULATIONS[form].stress_free:
+        assert abs(W[0]) < 1e-9 and np.abs(P).max() < 1e-9 * m.constants["C10"]
+        return
+    Wa = m.reference_stress_derivative()
+    WJ = float(m.energy_jet(2.0, 1.0).J)   # the penalty's part vanishes at J = 1
+    assert np.abs(P).max() > 0.1 * Wa
+    # relaxed uniform state s I: P(s I) = 0, solved by Newton on s
+    s = 1.0
+    for _ in range(30):
+        _, P, A = m.evaluate(np.array([[[s, 0.0], [0.0, s]]]))
+        r = P[0, 0, 0]
+        s -= r / (A[0, 0, 0] + A[0, 0, 3])
+    assert s ** 2 == pytest.approx(1 - (2 * Wa + WJ) / m.penalty, abs=10 * (Wa / m.penalty) ** 2)
+
+
+@pytest.mark.parametrize("law", ALL_LAWS)
+def test_plane_stress_uniaxial_tension_closed_form(law):
+    """Incompressible uniaxial tension: lambda_2 = lambda_3 = lambda^-1/2,
+    P11 = 2 (lambda - lambda^-2) (psi_1 + psi_2 / lambda), P22 = 0."""
+    m = material(law, "plane-stress")
+    for lam in (0.7, 1.0 + 1e-3, 1.5, 2.5):
+        F = np.diag([lam, lam ** -0.5])[None]
+        _, P, _ = m.evaluate(F)
+        I1, I2 = lam ** 2 + 2 / lam, 2 * lam + lam ** -2
+        j1, j2 = Jet.variables(np.array(I1), np.array(I2))   # (I1, I2) as the variables
+        psi = m.law.energy(j1, j2, m.constants)
+        expected = 2 * (lam - lam ** -2) * (psi.a + psi.J / lam)
+        assert P[0, 0, 0] == pytest.approx(float(expected), rel=1e-10)
+        assert abs(P[0, 1, 1]) < 1e-9 * abs(P[0, 0, 0]) + 1e-6
+
+
+def test_jet_against_finite_differences(rng):
+    a0, J0 = 2.3, 0.9
+
+    def g(a, J):
+        ja, jJ = Jet.variables(np.array(a), np.array(J))
+        return (ja * jJ ** -2 + jJ ** (-2 / 3) * (ja + 1.0)) ** 3 - 2.0 / ja
+
+    v = g(a0, J0)
+    h = 1e-4
+    fd_a = (g(a0 + h, J0).v - g(a0 - h, J0).v) / (2 * h)
+    fd_J = (g(a0, J0 + h).v - g(a0, J0 - h).v) / (2 * h)
+    fd_aa = (g(a0 + h, J0).a - g(a0 - h, J0).a) / (2 * h)
+    fd_aJ = (g(a0, J0 + h).a - g(a0, J0 - h).a) / (2 * h)
+    fd_JJ = (g(a0, J0 + h).J - g(a0, J0 - h).J) / (2 * h)
+    for got, fd in [(v.a, fd_a), (v.J, fd_J), (v.aa, fd_aa), (v.aJ, fd_aJ), (v.JJ, fd_JJ)]:
+        assert float(got) == pytest.approx(float(fd), rel=1e-6)
+
+
+def test_unknown_names_list_the_allowed_ones():
+    with pytest.raises(SceneError, match="material.law.*mooney-rivlin"):
+        get_law("ogden")
+    with pytest.raises(SceneError, match="material.formulation.*plane-stress"):
+        get_formulation("axisymmetric")
