@@ -4,7 +4,8 @@
   write its record (and the deformed mesh for ParaView);
 - ``converge SCENE.toml [--levels N] [--json OUT.json]``: refinement study, table of
   tip values per level, observed order, Richardson value and error estimate;
-- ``gold [--out DIR] [--levels N]``: regenerate tests/gold/fem_cantilever.json.
+- ``gold [--out DIR] [--levels N]``: regenerate tests/gold/fem_cantilever.json;
+- ``report [GOLD.json]``: markdown tables for reports/reference_fem.md from the gold file.
 """
 from __future__ import annotations
 
@@ -86,6 +87,13 @@ def _gold(args) -> int:
     return 0
 
 
+def _report(args) -> int:
+    from .report import render
+
+    print(render(Path(args.gold)), end="")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     from ancf.errors import SceneError
 
@@ -105,9 +113,11 @@ def main(argv: list[str] | None = None) -> int:
     gd = sub.add_parser("gold", help="regenerate the gold file of the paper's cantilever")
     gd.add_argument("--out", default="tests/gold", help="directory (default tests/gold)")
     gd.add_argument("--levels", type=int, default=5, help="meshes per case (default 5)")
+    rp = sub.add_parser("report", help="markdown tables from the gold file")
+    rp.add_argument("gold", nargs="?", default="tests/gold/fem_cantilever.json")
     args = p.parse_args(argv)
     try:
-        return {"run": _run, "converge": _converge, "gold": _gold}[args.command](args)
+        return {"run": _run, "converge": _converge, "gold": _gold, "report": _report}[args.command](args)
     except (SceneError, ValueError) as e:
         print(f"reference_fem: error: {e}", file=sys.stderr)
         return 2

@@ -37,6 +37,12 @@ class Problem:
     load: object                 # the load parameter t (a dolfinx Constant)
     pressure_scale: float        # p = pressure_scale * phat (Pa)
     effects: list = field(default_factory=list)
+    n_fixed: int = 0             # degrees of freedom fixed by the supports
+
+    @property
+    def n_free(self) -> int:
+        """Unknowns of the solve (displacement + pressure, supports removed), as ancf's n_free."""
+        return self.disc.ndof - self.n_fixed
 
     def set_load(self, t: float) -> None:
         self.load.value = t
@@ -70,7 +76,7 @@ def build_problem(disc: backend.Discretisation, law_name: str, constants: dict,
         effects.append("tip_force")
     residual = ufl.derivative(Pi, disc.w, disc.test)
     system = backend.NonlinearSystem(disc, residual, bcs)
-    return Problem(disc, system, t, mu_value, effects)
+    return Problem(disc, system, t, mu_value, effects, backend.fixed_dof_count(bcs))
 
 
 def beam_supports(disc: backend.Discretisation, scene: Scene, settings: FemSettings):

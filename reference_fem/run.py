@@ -4,12 +4,13 @@ The record is :func:`ancf.record.new_record` ("fenicsx") with the same keys as a
 ANCF run, plus ``continuum_model`` ("plane-strain" | "plane-stress"),
 ``incompressibility`` ("mixed" | "penalty" | "exact") and ``fem`` (the resolved
 discretisation: cells, cell type, degree, quadrature degree) and ``dolfinx``
-(version). ``setup_s`` is meshing and JIT compilation, apart from the solve.
+(version). ``ndof`` counts the unknowns of the solve (displacement and pressure
+degrees of freedom minus those the supports fix), like ancf's free dofs. ``setup_s``
+is meshing and JIT compilation, apart from the solve.
 """
 from __future__ import annotations
 
 import time
-from dataclasses import replace
 from pathlib import Path
 
 from ancf.errors import SceneError
@@ -44,7 +45,7 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
     a = scene.analysis
     res = solve_static(problem.system, problem.set_load, a.load_steps, a.newton_rtol,
                        a.max_iterations)
-    rec.update(status=res.status, reason=res.reason, ndof=problem.disc.ndof,
+    rec.update(status=res.status, reason=res.reason, ndof=problem.n_free,
                newton_iterations=res.newton_iterations, load_steps=res.load_steps,
                rejected_steps=res.rejected_steps, cpu_s=res.cpu_s, wall_s=res.wall_s,
                effects=sorted(problem.effects), load_reached=res.t_reached)
@@ -56,6 +57,3 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
                                                    scale=problem.pressure_scale))
     return rec
 
-
-def with_settings(settings: FemSettings, **changes) -> FemSettings:
-    return replace(settings, **changes)
