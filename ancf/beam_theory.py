@@ -72,21 +72,24 @@ def elastica_self_weight(q: float, L: float, EI: float) -> tuple[float, float]:
     return _tip(sol, L)
 
 
-def elastica_tip_load(P: float, L: float, EI: float, guess_angle: float) -> tuple[float, float]:
+def elastica_tip_load(P: float, L: float, EI: float, side: float = 1.0) -> tuple[float, float]:
     """Tip displacement of a clamped inextensible elastica under a dead axial
-    compressive tip load P (N, along -x) on its buckled branch: EI theta'' = -P sin theta,
-    theta(0) = 0, theta'(L) = 0; ``guess_angle`` (rad) picks the branch's side."""
-    s = np.linspace(0.0, L, 401)
+    compressive tip load P (N, along -x), on its first buckled branch (P > P_cr):
+    EI theta'' = -P sin theta, theta(0) = 0, theta'(L) = 0, solved by shooting on the
+    root curvature (the first sign change of theta'(L), then Brent's method); ``side``
+    (+1 / -1) picks the direction it bends to."""
+    from scipy.integrate import solve_ivp
+    from scipy.optimize import brentq
 
-    def f(s, y):
-        return np.vstack([y[1], -P * np.sin(y[0]) / EI])
+    def shoot(k, dense=False):
+        return solve_ivp(lambda s, y: [y[1], -P * np.sin(y[0]) / EI], [0.0, L], [0.0, k],
+                         rtol=1e-12, atol=1e-14, dense_output=dense)
 
-    def bc(ya, yb):
-        return np.array([ya[0], yb[1]])
-
-    guess = np.vstack([guess_angle * np.sin(np.pi * s / (2 * L)),
-                       guess_angle * np.pi / (2 * L) * np.cos(np.pi * s / (2 * L))])
-    sol = solve_bvp(f, bc, s, guess, tol=1e-10, max_nodes=100000)
-    if not sol.success:
-        raise RuntimeError(f"elastica BVP: {sol.message}")
-    return _tip(sol, L)
+    ks = np.linspace(1e-6, 60.0, 121) / L
+    ends = [shoot(k).y[1, -1] for k in ks]
+    i = next(i for i in range(len(ks) - 1) if ends[i] < 0 <= ends[i + 1])
+    k = brentq(lambda k: shoot(k).y[1, -1], ks[i], ks[i + 1], xtol=1e-14)
+    sol = shoot(k, dense=True)
+    s = np.linspace(0.0, L, 4001)
+    th = np.sign(side) * sol.sol(s)[0]
+    return np.trapz(np.cos(th), s) - L, np.trapz(np.sin(th), s)

@@ -197,20 +197,47 @@ def potential(model: BeamModel, u: np.ndarray, f_ext: np.ndarray) -> float:
 
 
 def _escape(model, u, mode, f_ext, atol, max_iterations, stats) -> np.ndarray | None:
-    """From u +- a small step along the unstable mode, descend the potential energy to a
+    """From u, move along +- the unstable mode and descend the potential energy to a
     minimum; keep the end state of lower energy (None if neither side converges).
 
-    Plain Newton would return to the saddle it started next to. The descent is a shifted
-    Newton method: (K + sigma diag K) du = -R with sigma raised until the matrix is
-    positive definite, and a backtracking line search on the potential; near a minimum
-    sigma falls to 0 and the convergence is Newton's again.
+    Plain Newton would return to the saddle it started next to. Energy differences near
+    a saddle are below the round-off of the energy itself, so both searches use slopes
+    g = (f_int - Q_K) . d, which are accurate: first along the mode, the step doubles
+    (from 1e-3 h up to the beam's length) while g < 0 and the sign change is bisected;
+    then a shifted Newton method, (K + sigma diag K) du = -R with sigma raised until the
+    matrix is positive definite, with a backtracking line search whose decrease is
+    measured as s/2 (g(0) + g(s)). Near a minimum sigma falls to 0 and the convergence
+    is Newton's again.
     """
-    amp = 1e-2 * model.mesh.height / max(np.abs(mode).max(), 1e-300)
+    mode = mode / max(np.abs(mode).max(), 1e-300)
     free = np.ones(model.mesh.n_dof, bool)
     free[model.fixed] = False
+
+    def slope(v, d):
+        return float(np.where(free, model.internal_force(v) - f_ext, 0.0) @ d)
+
     best = None
     for sign in (1.0, -1.0):
-        v = u + sign * amp * mode
+        d = sign * mode
+        lo, hi, a = 0.0, None, 1e-3 * model.mesh.height
+        while a < model.mesh.length:
+            try:
+                g = slope(u + a * d, d)
+            except InadmissibleState:
+                hi = a
+                break
+            if g > 0 and lo > 0:
+                hi = a
+                break
+            lo, a = a, 2 * a
+        for _ in range(40 if hi is not None else 0):
+            mid = 0.5 * (lo + hi)
+            try:
+                g = slope(u + mid * d, d)
+            except InadmissibleState:
+                g = 1.0
+            lo, hi = (mid, hi) if g < 0 else (lo, mid)
+        v = u + lo * d
         sigma, converged = 0.0, False
         for it in range(20 * max_iterations):
             f, K = model.internal_force_and_tangent(v)
@@ -223,20 +250,19 @@ def _escape(model, u, mode, f_ext, atol, max_iterations, stats) -> np.ndarray | 
             sigma = sigma / 10 if sigma > 1e-12 else 0.0
             du = K.solve_shifted(-R, sigma)
             while du is None:
-                sigma = max(10 * sigma, 1e-8)
+                sigma = max(10 * sigma, 1e-12)
                 du = K.solve_shifted(-R, sigma)
-            e0, step = potential(model, v, f_ext), 1.0
-            while True:
+            g0, step = float(R @ du), 1.0
+            while step > 1e-8:
                 try:
-                    if potential(model, v + step * du, f_ext) <= e0 + 1e-4 * step * float(R @ du):
+                    gs = slope(v + step * du, du)
+                    if 0.5 * step * (g0 + gs) <= 1e-4 * step * g0:
                         break
                 except InadmissibleState:
                     pass
                 step *= 0.5
-                if step < 1e-8:
-                    break
             v = v + step * du
-            if sigma == 0.0 and np.abs(step * du).max() <= 1e-11 * max(np.abs(v).max(), model.mesh.height):
+            if sigma == 0.0 and np.abs(step * du).max() <= 1e-9 * max(np.abs(v).max(), model.mesh.height):
                 converged = True
                 break
         if converged:
@@ -264,8 +290,10 @@ class Stability:
         return f"{what} (lowest scaled eigenvalue {self.lowest:.3g})"
 
 
-# Eigenvalues of the unit-diagonal scaled tangent within this of zero count as zero.
-SINGULAR_TOL = 1e-9
+# Eigenvalues of the unit-diagonal scaled tangent within this of zero count as zero:
+# round-off in them is ~eps ||S|| ~ 1e-15 (a zero-energy mode measured -6e-16), while
+# genuine bending modes of slender beams reach ~1e-9.
+SINGULAR_TOL = 1e-12
 
 
 def check_stability(model: BeamModel, u: np.ndarray) -> Stability:

@@ -56,6 +56,24 @@ def test_reference_configuration_is_reproduced(name):
     np.testing.assert_allclose(F, np.broadcast_to(np.eye(2), F.shape), atol=1e-12)
 
 
+@pytest.mark.parametrize("name", ALL_ELEMENTS)
+def test_conformity_across_element_faces(name):
+    """Whether the field on a face x = const depends only on that face's node: true for
+    LB2n-12 and HB2n-16; false for HB2n-12 and HB3n-12, whose x^2 + y^2 basis function
+    ties the trace's y^2 part to every node (the field jumps across element faces off
+    the centre line). A property of the paper's elements, recorded here so that a change
+    to it is noticed."""
+    spec = ELEMENTS[name]
+    eta = np.linspace(-0.5, 0.5, 5)
+    N, _ = spec.tabulate(np.ones(5), eta, 0.01, 0.005)      # right face
+    others = N[:, : -len(spec.kinds)]                          # every function but the right node's
+    conforming = np.abs(others).max() < 1e-12
+    assert conforming == (name in ("LB2n-12", "HB2n-16"))
+    # on the centre line every element is conforming (nodal positions are shared)
+    N0, _ = spec.tabulate([1.0], [0.0], 0.01, 0.005)
+    assert np.abs(N0[0, : -len(spec.kinds)]).max() < 1e-12
+
+
 def test_basis_in_physical_coordinates_depends_on_aspect_ratio():
     """x^2 + y^2 is a physical-coordinate function: in (xi, eta) it is l^2 xi^2 + h^2 eta^2."""
     p = parse("x^2 + y^2").scaled(2.0, 0.5)
