@@ -24,6 +24,9 @@ SUPPORTS = ("clamp", "pin")
 CLAMPS = ("face", "all")
 ANALYSES = ("static", "dynamic")
 INTEGRATORS = ("generalized-alpha", "newmark")
+STATIC_KEYS = ("kind", "load_steps", "newton_rtol", "max_iterations")
+DYNAMIC_KEYS = ("kind", "t_end", "dt", "dt_min", "tolerance", "output_times", "integrator",
+                "rho_inf", "newton_rtol", "max_iterations")
 
 
 @dataclass(frozen=True)
@@ -90,8 +93,20 @@ class Scene:
     fem: dict | None = field(default=None, hash=False)  # validated by reference_fem
 
     def to_dict(self) -> dict:
+        """The scene in its file's shape (defaults filled in, unset keys left out), so
+        that ``scene_from_dict(scene.to_dict())`` gives the same scene back."""
         d = asdict(self)
-        return json.loads(json.dumps(d))  # tuples -> lists, plain JSON types
+        material = d["material"]
+        material.update(material.pop("constants"))
+        analysis = {k: v for k, v in d["analysis"].items()
+                    if k in (STATIC_KEYS if self.analysis.kind == "static" else DYNAMIC_KEYS)}
+        d["analysis"] = analysis
+        d["supports"] = {k: v for k, v in d["supports"].items() if v is not None}
+        out = {k: v for k, v in d.items() if v is not None}
+        out["material"] = {k: v for k, v in material.items() if v is not None}
+        out["analysis"] = {k: v for k, v in analysis.items() if v is not None}
+        out["loads"] = {k: v for k, v in d["loads"].items() if v is not None}
+        return json.loads(json.dumps(out))  # tuples -> lists, plain JSON types
 
     def digest(self) -> str:
         """A stable hash of the scene's content (sha256 of its canonical JSON)."""
@@ -221,7 +236,7 @@ def _loads(t) -> Loads:
 def _analysis(t) -> Analysis:
     kind = _choice("analysis.kind", t.get("kind"), ANALYSES)
     if kind == "static":
-        _keys("analysis", t, required={"kind"}, optional={"load_steps", "newton_rtol", "max_iterations"})
+        _keys("analysis", t, required={"kind"}, optional=set(STATIC_KEYS))
         d = Analysis.__dataclass_fields__
         return Analysis(
             kind,
@@ -229,8 +244,7 @@ def _analysis(t) -> Analysis:
             newton_rtol=_positive("analysis.newton_rtol", t.get("newton_rtol", d["newton_rtol"].default)),
             max_iterations=_positive("analysis.max_iterations", t.get("max_iterations", d["max_iterations"].default), int),
         )
-    _keys("analysis", t, required={"kind", "t_end", "dt"},
-          optional={"dt_min", "tolerance", "output_times", "integrator", "rho_inf", "newton_rtol", "max_iterations"})
+    _keys("analysis", t, required={"kind", "t_end", "dt"}, optional=set(DYNAMIC_KEYS))
     t_end = _positive("analysis.t_end", t["t_end"])
     dt = _positive("analysis.dt", t["dt"])
     rho_inf = _number("analysis.rho_inf", t.get("rho_inf", Analysis.rho_inf))
