@@ -4,7 +4,7 @@ PY := .venv/bin/python
 export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 
-.PHONY: setup test test-slow study bench clean-venv
+.PHONY: setup test test-slow study bench bench-penalty clean-venv
 
 setup:
 	@bash tools/setup.sh
@@ -19,7 +19,10 @@ study: setup
 	$(PY) -m studies run all
 
 bench: setup
-	$(PY) -m studies.bench
+	$(PY) -m studies.bench table3
+
+bench-penalty: setup
+	$(PY) -m studies.bench penalty
 
 clean-venv:
 	rm -rf .venv
