@@ -81,7 +81,8 @@ def refinement_study(scene: Scene, levels: int = 4, base: FemSettings | None = N
         level = {"level": k, "cells_length": s.cells_length, "cells_height": s.cells_height,
                  "ndof": rec["ndof"], "status": rec["status"], "reason": rec["reason"],
                  "tip": rec["tip"], "setup_s": rec["setup_s"], "wall_s": rec["wall_s"],
-                 "cpu_s": rec["cpu_s"], "newton_iterations": rec["newton_iterations"]}
+                 "cpu_s": rec["cpu_s"], "newton_iterations": rec["newton_iterations"],
+                 "load_steps": rec["load_steps"], "rejected_steps": rec["rejected_steps"]}
         study.levels.append(level)
         if progress:
             progress(level)

@@ -34,7 +34,7 @@ def abaqus_table(cases: dict) -> list[str]:
 
 
 def strain_vs_stress_table(cases: dict) -> list[str]:
-    rows = ["| law | plane stress ux, uy (mm) | plane strain ux, uy (mm) | ||difference|| / ||plane stress|| "
+    rows = ["| law | plane stress ux, uy (mm) | plane strain ux, uy (mm) | distance / size of the plane stress tip "
             "| uy ratio strain/stress |", "|---|---|---|---|---|"]
     for law in sorted({k.split("/")[0] for k in cases}):
         s, e = cases[f"{law}/plane-stress"]["tip"], cases[f"{law}/plane-strain"]["tip"]
