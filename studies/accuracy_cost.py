@@ -1,0 +1,128 @@
+"""Accuracy against cost, static half of study 6: a work-precision diagram.
+
+Error: |u - u_ref| / |u_ref| over (ux, uy), u_ref the converged continuum value of the
+matching model (ANCF plane-stress against continuum plane stress, plane-strain against
+continuum plane strain with the same penalty). Cost: the median wall time of serial warm
+runs of the whole solver call (build + solve + tip), one process, after a warm-up
+(the cases' ``timing`` option; never timed inside a pool). Every element, formulation,
+quadrature and mesh, and the continuum model's own curve: its levels timed the same
+way, their error against the continuum's own Richardson value.
+"""
+from __future__ import annotations
+
+from .case import make_case
+from .continuum import scene as continuum_scene
+from .grid import cantilever_case
+from .reference import LAW_SHORT, MATCHING, continuum_references, describe, variant_of
+from .report import Section, Table, figure, pct, vec_error
+
+STYLE = {(2, 2): ":", (3, 2): "-", (5, 3): "--", (3, 3): "-."}
+MARKERS = {"HB2n-12": "o", "HB3n-12": "s", "HB2n-16": "^", "LB2n-12": "x"}
+
+
+def cases(grid: dict, tiny: bool) -> list:
+    opts = {"timing": dict(grid["timing"])}
+    out = [cantilever_case("accuracy-cost", law, f, el, n, q, grid["clamp"], opts)
+           for law in grid["laws"] for f in grid["formulations"] for el in grid["elements"]
+           for q in grid["quadratures"] for n in grid["counts"]]
+    out += [make_case("accuracy-cost", "fenicsx", continuum_scene(law, MATCHING[f], tuple(lv)), opts)
+            for law in grid["laws"] for f in grid["formulations"] for lv in grid["continuum_levels"]]
+    return out
+
+
+def points(ctx) -> list[dict]:
+    """One point per record: configuration, time (s), error (fraction) or None."""
+    refs = continuum_references(ctx.records("continuum"))
+    out = []
+    for r in ctx.records():
+        d = describe(r)
+        t = (r.get("timing") or {}).get("median_s")
+        if r["solver"] == "ancf":
+            ref = refs.get((d["law"], MATCHING[d["formulation"]]))
+            p = {"law": d["law"], "model": MATCHING[d["formulation"]], "solver": "ancf",
+                 "config": f"{d['element']} q{d['quadrature'][0]}{d['quadrature'][1]}", "element": d["element"],
+                 "quadrature": d["quadrature"], "mesh": d["elements"], "ndof": r.get("ndof")}
+        else:
+            ref = refs.get((d["law"], variant_of(r["scene"])))
+            p = {"law": d["law"], "model": variant_of(r["scene"]), "solver": "fenicsx", "config": "continuum Q2",
+                 "element": "continuum", "quadrature": None, "mesh": f"{d['cells'][0]}x{d['cells'][1]}",
+                 "ndof": r.get("ndof")}
+        ok = d["status"] == "converged"
+        p.update(status=d["status"], time=t if ok else None,
+                 error=vec_error(d["tip"], ref.tip if ref else None) if ok else None)
+        out.append(p)
+    return out
+
+
+def cheapest(pts: list[dict], target: float) -> dict | None:
+    ok = [p for p in pts if p["error"] is not None and p["time"] is not None and p["error"] <= target]
+    return min(ok, key=lambda p: p["time"]) if ok else None
+
+
+def report(ctx) -> Section:
+    g = ctx.study.grid
+    pts = points(ctx)
+    sec = Section(ctx.study.title,
+                  "Error |u - u_ref| / |u_ref| of the static tip against the median wall time of serial warm runs "
+                  "(build + solve), for every element, formulation, quadrature and mesh, and for the continuum "
+                  "model's own refinement levels; u_ref is the converged continuum value of the matching model.")
+    models = [MATCHING[f] for f in g["formulations"]]
+    fig, axes = figure(len(models), len(g["laws"]), figsize=(4.6 * len(g["laws"]), 4.0 * len(models)),
+                       squeeze=False, sharey=True)
+    for i, (f, m) in enumerate(zip(g["formulations"], models)):
+        for j, law in enumerate(g["laws"]):
+            ax = axes[i][j]
+            sel = [p for p in pts if p["law"] == law and p["model"] == m]
+            for cfg in dict.fromkeys(p["config"] for p in sel):
+                ser = sorted([p for p in sel if p["config"] == cfg and p["error"] is not None and p["time"]],
+                             key=lambda p: p["time"])
+                if not ser:
+                    continue
+                if cfg.startswith("continuum"):
+                    ax.plot([p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], "k-D", lw=2, ms=5,
+                            label="continuum Q2 (levels)")
+                    continue
+                el, q = ser[0]["element"], ser[0]["quadrature"]
+                ax.plot([p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], marker=MARKERS.get(el, "."),
+                        ls=STYLE.get(q, "-"), lw=1, ms=3.5, label=cfg)
+            for a in g["accuracies"]:
+                ax.axhline(a, color="grey", lw=0.6, ls=":")
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.grid(True, which="major", alpha=0.3)
+            ax.set_title(f"{law}: ANCF `{f}` vs continuum {m}", fontsize=9)
+            ax.set_xlabel("wall time, serial warm (s)")
+            if j == 0:
+                ax.set_ylabel("|u - u_ref| / |u_ref|")
+    axes[0][-1].legend(fontsize=6, loc="lower left", ncol=2)
+    sec.figure(ctx, fig, "accuracy_cost", "Work-precision diagram of the static cantilever: each line one ANCF element "
+               "and quadrature over its meshes (4 to 640 elements), black the continuum model's own refinement; "
+               "lower left is better. The ANCF curves level off at the beam model's distance from the continuum.")
+    rows = []
+    for f, m in zip(g["formulations"], models):
+        for law in g["laws"]:
+            sel = [p for p in pts if p["law"] == law and p["model"] == m]
+            for a in g["accuracies"]:
+                best_a = cheapest([p for p in sel if p["solver"] == "ancf"], a)
+                best_c = cheapest([p for p in sel if p["solver"] == "fenicsx"], a)
+                rows.append([LAW_SHORT[law], f, f"{100 * a:g} %",
+                             f"{best_a['config']} x {best_a['mesh']}" if best_a else "none",
+                             best_a["time"] if best_a else None, pct(best_a["error"]) if best_a else None,
+                             f"{best_c['mesh']} Q2" if best_c else "none",
+                             best_c["time"] if best_c else None, pct(best_c["error"]) if best_c else None])
+    sec.table(ctx, Table("accuracy_cost", ["law", "formulation", "accuracy", "cheapest ANCF", "time (s)", "error (%)",
+                                           "cheapest continuum", "time (s)", "error (%)"], rows,
+                         {4: ".3f", 5: ".3f", 7: ".3f", 8: ".3f"}),
+              "For 1 % and 0.1 % accuracy, the cheapest configuration (median serial warm wall time) of ANCF and of "
+              "the continuum model that reaches it; 'none' where no configuration of the grid does.")
+    long = [[p["law"], p["model"], p["solver"], p["config"], p["mesh"], p["ndof"], p["status"], p["time"],
+             pct(p["error"])] for p in pts]
+    t = Table("accuracy_cost_points", ["law", "model", "solver", "configuration", "mesh", "ndof", "status",
+                                       "time (s)", "error (%)"], long, {7: ".4f", 8: ".4f"})
+    t.write(ctx.out)
+    sec.items.append(("link", t.name + ".md", "Every point of the diagram."))
+    failed = [p for p in pts if p["status"] != "converged"]
+    if failed:
+        sec.text = f"{len(failed)} of {len(pts)} runs failed: " + "; ".join(
+            f"{LAW_SHORT[p['law']]} {p['model']} {p['config']} x {p['mesh']}" for p in failed[:12])
+    return sec

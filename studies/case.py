@@ -1,0 +1,98 @@
+"""A case: one solver run of one scene, as pure data with an identity.
+
+A :class:`Case` is frozen and hashable: (study, solver, scene, options), the scene and
+the options held as canonical JSON. Its :attr:`Case.id` is a hash of
+
+- the canonical scene JSON and the options (a ``timing`` option changes what is measured),
+- the solver's source hash (:func:`studies.solvers.source_hash`: the .py files of the
+  package that solves it),
+- the numpy / numba / dolfinx versions (:func:`versions`),
+
+so that a record can be reused exactly while none of these changed. The study name is
+not part of the id: the records of each study live in their own file.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+from dataclasses import dataclass
+from functools import lru_cache
+from importlib import metadata
+from typing import Any, Mapping
+
+from .solvers import SOLVERS, get_solver, source_hash
+
+# Distribution names whose versions enter every case id (dolfinx is "fenics-dolfinx").
+VERSIONED = {"numpy": "numpy", "numba": "numba", "dolfinx": "fenics-dolfinx"}
+
+
+@lru_cache(maxsize=None)
+def _versions() -> tuple[tuple[str, str | None], ...]:
+    out = []
+    for name, dist in VERSIONED.items():
+        try:
+            out.append((name, metadata.version(dist)))
+        except metadata.PackageNotFoundError:
+            out.append((name, None))
+    return tuple(out)
+
+
+def versions() -> dict[str, str | None]:
+    """{numpy, numba, dolfinx: version or None}, read from package metadata (no import)."""
+    return dict(_versions())
+
+
+def canonical(obj: Any) -> str:
+    """The canonical JSON of ``obj``: sorted keys, no spaces, tuples as lists."""
+    return json.dumps(obj, sort_keys=True, separators=(",", ":"), allow_nan=False)
+
+
+@dataclass(frozen=True)
+class Case:
+    study: str
+    solver: str         # a key of studies.solvers.SOLVERS
+    scene_json: str     # canonical JSON of the scene dict (ancf.scene format, SI)
+    options_json: str   # canonical JSON of the options dict (e.g. {"timing": {...}})
+
+    @property
+    def scene(self) -> dict:
+        return json.loads(self.scene_json)
+
+    @property
+    def options(self) -> dict:
+        return json.loads(self.options_json)
+
+    @property
+    def timing(self) -> dict | None:
+        """The ``timing`` option ({"repeats": N, "budget_s": s}) or None."""
+        return self.options.get("timing")
+
+    @property
+    def name(self) -> str:
+        return self.scene["name"]
+
+    @property
+    def id(self) -> str:
+        return case_id(self.solver, self.scene_json, self.options_json)
+
+    def to_dict(self) -> dict:
+        return {"id": self.id, "study": self.study, "solver": self.solver,
+                "name": self.name, "options": self.options}
+
+
+@lru_cache(maxsize=None)
+def case_id(solver: str, scene_json: str, options_json: str) -> str:
+    ident = canonical({"solver": solver, "scene": json.loads(scene_json),
+                       "options": json.loads(options_json), "source": source_hash(solver),
+                       "versions": versions()})
+    return hashlib.sha256(ident.encode()).hexdigest()[:20]
+
+
+def make_case(study: str, solver: str, scene: Mapping, options: Mapping | None = None) -> Case:
+    """A case from plain data; the solver name and the scene are checked here (an
+    unknown solver fails with the list of valid ones; a bad scene with a SceneError)."""
+    get_solver(solver).check(dict(scene))
+    return Case(study, solver, canonical(scene), canonical(dict(options or {})))
+
+
+__all__ = ["Case", "make_case", "case_id", "versions", "canonical", "SOLVERS"]

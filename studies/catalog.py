@@ -1,0 +1,81 @@
+"""The study list: ``studies/cases.toml`` read into :class:`Study` objects.
+
+A study is a name, a grid (its table of cases.toml, with the ``[NAME.tiny]`` overrides
+merged in tiny mode), the studies whose records it reads (``needs``), and a module
+(``studies/<module>.py``) with two functions:
+
+- ``cases(grid: dict, tiny: bool) -> list[Case]``: the grid expanded into cases;
+- ``report(ctx: studies.report.Context) -> studies.report.Section``: tables and
+  figures from records only.
+
+Optionally ``gold_values(ctx) -> {name: (value, tolerance)}`` for the tiny-mode
+regression (tests/gold/studies_tiny.json).
+"""
+from __future__ import annotations
+
+import importlib
+import tomllib
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+from types import ModuleType
+
+CASES_TOML = Path(__file__).with_name("cases.toml")
+META_KEYS = ("module", "title", "needs", "tiny")
+
+
+@dataclass(frozen=True)
+class Study:
+    name: str
+    title: str
+    module_name: str
+    grid: dict
+    needs: tuple[str, ...]
+    tiny: bool
+
+    @cached_property
+    def module(self) -> ModuleType:
+        return importlib.import_module(f"studies.{self.module_name}")
+
+    def cases(self) -> list:
+        return self.module.cases(self.grid, self.tiny)
+
+
+def load_catalog(tiny: bool = False, path: Path = CASES_TOML) -> dict[str, Study]:
+    """{name: Study} in the order of the file."""
+    data = tomllib.loads(Path(path).read_text())
+    out = {}
+    for name, t in data.items():
+        grid = {k: v for k, v in t.items() if k not in META_KEYS}
+        if tiny:
+            grid.update(t.get("tiny", {}))
+        needs = tuple(t.get("needs", ()))
+        out[name] = Study(name, t.get("title", name), t["module"], grid, needs, tiny)
+    for s in out.values():
+        unknown = [n for n in s.needs if n not in out]
+        if unknown:
+            raise ValueError(f"{CASES_TOML.name}: study {s.name!r} needs unknown {unknown}; "
+                             f"studies: {', '.join(out)}")
+    return out
+
+
+def get_study(catalog: dict[str, Study], name: str) -> Study:
+    try:
+        return catalog[name]
+    except KeyError:
+        raise ValueError(f"study: unknown {name!r}; allowed: {', '.join(catalog)}, all") from None
+
+
+def with_needs(catalog: dict[str, Study], names: list[str]) -> list[Study]:
+    """The named studies preceded by the ones they need, each once, in file order."""
+    want: set[str] = set()
+
+    def add(n: str) -> None:
+        if n not in want:
+            want.add(n)
+            for m in get_study(catalog, n).needs:
+                add(m)
+
+    for n in names:
+        add(n)
+    return [s for n, s in catalog.items() if n in want]

@@ -1,0 +1,162 @@
+"""``python -m studies``: list, run and report the studies of studies/cases.toml.
+
+- ``list``: the studies, their case counts and what each needs;
+- ``run NAME [NAME ...] | all``: run the studies (and those they need), reusing finished
+  records; ``--force`` recomputes the named ones; ``--tiny`` runs the CI grids into
+  ``--out DIR`` (default: a new temporary directory, never reports/); then rebuilds
+  every table, figure and the README from the records; prints the time per study;
+- ``report``: rebuild tables, figures and README from the records only;
+- ``gold [--refresh]``: run every study in tiny mode and compare its named values with
+  tests/gold/studies_tiny.json (``--refresh`` rewrites that file instead).
+
+Clusters: ``mpiexec -n N python -m mpi4py.futures -m studies run all --executor mpi``.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from .catalog import get_study, load_catalog, with_needs
+
+REPORTS = Path(__file__).resolve().parent.parent / "reports"
+
+
+def resolve_out(out: str | None, tiny: bool) -> Path:
+    if out:
+        return Path(out)
+    if tiny:
+        return Path(tempfile.mkdtemp(prefix="studies-tiny-"))
+    return REPORTS
+
+
+def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = False,
+                executor: str | None = None, workers: int = 2, progress: bool = True,
+                log=print) -> dict[str, float]:
+    """Run the named studies (``["all"]`` for every one) and their needs into ``out``,
+    then rebuild the reports; return {study: seconds}."""
+    from .runner import run_cases
+    from .store import store_for
+
+    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(var, "1")  # one thread per worker process
+    catalog = load_catalog(tiny)
+    explicit = list(catalog) if names == ["all"] else names
+    times = {}
+    for study in with_needs(catalog, explicit):
+        cases = study.cases()
+        s = run_cases(study.name, cases, store_for(out, study.name), executor, workers,
+                      force=force and study.name in explicit, progress=progress)
+        times[study.name] = s.seconds
+        log(f"{study.name}: {s.cases} cases, {s.reused} reused, {s.computed} computed, "
+            f"{s.failed} failed, {s.seconds:.1f} s")
+        for f in s.failures[:20]:
+            log(f"  failed: {f}")
+    t0 = time.perf_counter()
+    build_reports(out, tiny, log)
+    times["(reports)"] = time.perf_counter() - t0
+    return times
+
+
+def build_reports(out: Path, tiny: bool = False, log=print) -> Path:
+    """Tables, figures and README.md from the records in ``out``/data (no solver runs)."""
+    from .report import Context, write_readme
+    from .store import store_for
+
+    catalog = load_catalog(tiny)
+    sections = []
+    out.mkdir(parents=True, exist_ok=True)
+    for study in catalog.values():
+        if not store_for(out, study.name).path.exists():
+            continue
+        try:
+            sections.append(study.module.report(Context(study, out, catalog)))
+        except Exception as e:  # a broken report must not hide the others
+            log(f"{study.name}: report failed: {type(e).__name__}: {e}")
+            raise
+    return write_readme(out, sections, tiny)
+
+
+def _list(args) -> int:
+    catalog = load_catalog(args.tiny)
+    for s in catalog.values():
+        needs = f"  (needs {', '.join(s.needs)})" if s.needs else ""
+        print(f"{s.name:15s} {len(s.cases()):5d} cases  {s.title}{needs}")
+    return 0
+
+
+def _run(args) -> int:
+    out = resolve_out(args.out, args.tiny)
+    catalog = load_catalog(args.tiny)
+    if args.names != ["all"]:
+        for n in args.names:
+            get_study(catalog, n)
+    print(f"output: {out}")
+    t0 = time.perf_counter()
+    times = run_studies(args.names, out, args.tiny, args.force, args.executor, args.workers,
+                        progress=not args.no_progress)
+    print("\ntime per study:")
+    for k, v in times.items():
+        print(f"  {k:15s} {v:8.1f} s")
+    print(f"  {'total':15s} {time.perf_counter() - t0:8.1f} s")
+    print(f"report: {out / 'README.md'}")
+    return 0
+
+
+def _report(args) -> int:
+    out = resolve_out(args.out, False) if not args.tiny or args.out else None
+    if out is None:
+        print("report --tiny needs --out DIR (the directory of a tiny run)", file=sys.stderr)
+        return 2
+    print(build_reports(out, args.tiny))
+    return 0
+
+
+def _gold(args) -> int:
+    from .gold import check_gold, refresh_gold
+
+    out = resolve_out(args.out, True)
+    if args.refresh:
+        path = refresh_gold(out)
+        print(f"wrote {path}")
+        return 0
+    problems = check_gold(out)
+    for p in problems:
+        print(p)
+    print("gold: OK" if not problems else f"gold: {len(problems)} mismatch(es)")
+    return 1 if problems else 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(prog="python -m studies", description=__doc__.split("\n\n")[0])
+    sub = p.add_subparsers(dest="command", required=True)
+    ls = sub.add_parser("list", help="name the studies")
+    ls.add_argument("--tiny", action="store_true")
+    r = sub.add_parser("run", help="run studies (NAME ... or all)")
+    r.add_argument("names", nargs="+", metavar="NAME")
+    r.add_argument("--tiny", action="store_true", help="CI grids (few elements, coarse meshes)")
+    r.add_argument("--out", help="output directory (default reports/, or a temp dir with --tiny)")
+    r.add_argument("--force", action="store_true", help="recompute the named studies' cases")
+    r.add_argument("--executor", choices=("pool", "mpi", "serial"),
+                   help="default: mpi under mpiexec, else a local process pool")
+    r.add_argument("--workers", type=int, default=2, help="pool size (default 2)")
+    r.add_argument("--no-progress", action="store_true")
+    rp = sub.add_parser("report", help="rebuild tables, figures and README from records")
+    rp.add_argument("--tiny", action="store_true")
+    rp.add_argument("--out")
+    g = sub.add_parser("gold", help="tiny-mode golden values: check, or --refresh")
+    g.add_argument("--refresh", action="store_true", help="rewrite tests/gold/studies_tiny.json")
+    g.add_argument("--out", help="directory for the tiny run (default: a temp dir)")
+    args = p.parse_args(argv)
+    try:
+        return {"list": _list, "run": _run, "report": _report, "gold": _gold}[args.command](args)
+    except ValueError as e:
+        print(f"studies: error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

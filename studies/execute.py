@@ -1,0 +1,83 @@
+"""Running one case: the worker function (any process) and the serial timed run.
+
+:func:`execute` runs a case once and returns its record: the solver's record plus
+``case_id``, ``case`` and ``versions``. A case that raises is recorded, not lost:
+status "failed" and the exception as the reason (:func:`ancf.record.sanitize` later
+turns any NaN into null).
+
+:func:`execute_timed` is for cases with a ``timing`` option: one warm-up run (caches,
+JIT, imports), then up to ``repeats`` runs while their total stays within ``budget_s``
+(at least one), each timed around the whole solver call (build + solve + tip) in this
+one process; the record gets ``timing`` with every sample and the median. The runner
+calls it serially, outside any pool.
+"""
+from __future__ import annotations
+
+import os
+import statistics
+import time
+import traceback
+
+from ancf.record import new_record
+
+from .case import Case, versions
+from .solvers import get_solver
+
+DEFAULT_REPEATS = 3
+DEFAULT_BUDGET_S = 5.0
+
+
+def _failed(case: Case, exc: BaseException) -> dict:
+    rec = new_record(case.solver, case.scene)
+    rec["reason"] = f"{type(exc).__name__}: {exc}"[:2000]
+    rec["traceback"] = traceback.format_exc(limit=6)[-4000:]
+    return rec
+
+
+def _annotate(rec: dict, case: Case, started: float) -> dict:
+    rec["case_id"] = case.id
+    rec["case"] = case.to_dict()
+    rec["versions"] = versions()
+    rec["elapsed_s"] = time.perf_counter() - started
+    rec["pid"] = os.getpid()
+    return rec
+
+
+def _run_once(case: Case) -> tuple[dict, float]:
+    run = get_solver(case.solver).run
+    t0 = time.perf_counter()
+    try:
+        rec = run(case.scene)
+    except Exception as e:  # recorded, never lost: the study goes on
+        rec = _failed(case, e)
+    return rec, time.perf_counter() - t0
+
+
+def execute(case: Case) -> dict:
+    """Run ``case`` once; return its record (never raises for a solver error)."""
+    t0 = time.perf_counter()
+    rec, _ = _run_once(case)
+    return _annotate(rec, case, t0)
+
+
+def execute_timed(case: Case) -> dict:
+    """Warm-up, then the median of up to N timed runs (see the module doc)."""
+    t0 = time.perf_counter()
+    opts = case.timing or {}
+    repeats = int(opts.get("repeats", DEFAULT_REPEATS))
+    budget = float(opts.get("budget_s", DEFAULT_BUDGET_S))
+    rec, warm = _run_once(case)
+    samples, solve = [], []
+    if rec.get("status") == "converged":
+        while len(samples) < repeats and (not samples or sum(samples) + samples[-1] <= budget):
+            rec, dt = _run_once(case)
+            samples.append(dt)
+            solve.append(rec.get("wall_s"))
+    rec["timing"] = {
+        "warmup_s": warm, "samples_s": samples, "repeats": len(samples),
+        "median_s": statistics.median(samples) if samples else None,
+        "solve_samples_s": solve,
+        "solve_median_s": statistics.median(solve) if solve and None not in solve else None,
+        "serial": True,
+    }
+    return _annotate(rec, case, t0)

@@ -1,0 +1,109 @@
+"""Figure 2 reproduced: static tip displacement against the number of elements, per
+element and law, with the converged continuum value as a horizontal line.
+
+Configurations (formulation, quadrature, clamp) from cases.toml: the paper setting of
+the `paper` formulation and plane stress with the defaults. One figure per
+configuration: ux and uy (rows) per law (columns). A table names, per element, the
+smallest mesh whose tip lies within 1 % of the finest mesh's tip (|u - u_finest| /
+|u_finest| over (ux, uy)): the paper's "converges with the fewest elements".
+"""
+from __future__ import annotations
+
+from .grid import cantilever_case
+from .reference import LAW_SHORT, VARIANT_LABEL, abaqus, continuum_references, describe
+from .report import Section, Table, figure, mm, vec_error
+
+CONVERGED = 0.01
+MARKERS = {"HB2n-12": "o", "HB3n-12": "s", "HB2n-16": "^", "LB2n-12": "x"}
+
+
+def configurations(grid: dict) -> list[tuple[str, tuple[int, int], str]]:
+    return [(f, tuple(q), c) for f, q, c in grid["configurations"]]
+
+
+def cases(grid: dict, tiny: bool) -> list:
+    return [cantilever_case("figure2", law, f, el, n, q, c)
+            for f, q, c in configurations(grid) for law in grid["laws"]
+            for el in grid["elements"] for n in grid["counts"]]
+
+
+def _series(recs: list[dict], f, q, c, law, el) -> list[tuple[int, dict | None]]:
+    out = []
+    for r in recs:
+        d = describe(r)
+        if (d["formulation"], d["quadrature"], d["clamp"], d["law"], d["element"]) == (f, q, c, law, el):
+            out.append((d["elements"], d["tip"] if d["status"] == "converged" else None))
+    return sorted(out, key=lambda p: p[0])
+
+
+def report(ctx) -> Section:
+    g = ctx.study.grid
+    recs = ctx.records()
+    refs = continuum_references(ctx.records("continuum"))
+    sec = Section(ctx.study.title,
+                  "Convergence of the static tip under mesh refinement (4 to 640 elements), as in the paper's "
+                  "Figure 2; lines: converged continuum values, dots: the paper's ABAQUS column.")
+    rows = []
+    for f, q, c in configurations(g):
+        fig, axes = figure(2, len(g["laws"]), figsize=(4.2 * len(g["laws"]), 6.5), squeeze=False, sharex=True)
+        lines = ["plane-strain-penalty", "plane-stress"] if f == "paper" else [
+            "plane-stress" if f == "plane-stress" else "plane-strain-penalty"]
+        for j, law in enumerate(g["laws"]):
+            for el in g["elements"]:
+                ser = _series(recs, f, q, c, law, el)
+                ns = [n for n, tip in ser if tip]
+                finest = next((tip for n, tip in reversed(ser) if tip), None)
+                for i, comp in enumerate(("ux", "uy")):
+                    axes[i][j].plot(ns, [mm(tip[comp]) for n, tip in ser if tip], marker=MARKERS.get(el, "."),
+                                    ms=4, lw=1, label=el, ls="--" if el == "LB2n-12" else "-")
+                first = next((n for n, tip in ser if tip and finest and vec_error(tip, (finest["ux"], finest["uy"])) <= CONVERGED), None)
+                failed = [n for n, tip in ser if tip is None]
+                rows.append([f"{f} q{q[0]}{q[1]} {c}", LAW_SHORT[law], el, first, max(ns) if ns else None,
+                             mm(finest["ux"]) if finest else None, mm(finest["uy"]) if finest else None,
+                             ", ".join(map(str, failed)) or "-"])
+            for i, comp in enumerate(("ux", "uy")):
+                ax = axes[i][j]
+                for v, ls in zip(lines, (":", "-.")):
+                    r = refs.get((law, v))
+                    if r and r.tip:
+                        ax.axhline(mm(r.tip[i]), color="k", ls=ls, lw=1, label=f"continuum {VARIANT_LABEL[v]}")
+                ab = abaqus(law)
+                if ab:
+                    ax.plot([160], [mm(ab[i])], "k*", ms=8, label="paper ABAQUS [160]")
+                hi = [mm(t[comp]) for el in g["elements"] if el != "LB2n-12"
+                      for n, t in _series(recs, f, q, c, law, el) if t]
+                if hi:  # the locked LB2n-12 (|u| of a few mm) would flatten the others
+                    ref_vals = [mm(r.tip[i]) for v in lines if (r := refs.get((law, v))) and r.tip]
+                    lo_, hi_ = min(hi + ref_vals), max(hi + ref_vals)
+                    pad = 0.08 * (hi_ - lo_ or 1.0)
+                    ax.set_ylim(lo_ - pad, hi_ + pad)
+                ax.set_xscale("log")
+                ax.set_title(f"{law}: {comp}" if i == 0 else "", fontsize=9)
+                ax.set_ylabel(f"{comp} (mm)")
+                ax.grid(True, which="both", alpha=0.3)
+                if i == 1:
+                    ax.set_xlabel("number of elements")
+        axes[0][0].legend(fontsize=7, loc="best")
+        fig.suptitle(f"Tip displacement against elements: `{f}`, quadrature {q}, clamp {c}", fontsize=10)
+        sec.figure(ctx, fig, f"figure2_{f}_q{q[0]}{q[1]}_{c}",
+                   f"Tip ux, uy (mm) against the number of elements, `{f}` formulation, quadrature {q}, clamp {c}; "
+                   f"horizontal lines: converged continuum ({', '.join(lines)}). LB2n-12 (locked, a few mm) lies "
+                   "below the axes where it is off scale; its values are in the table.")
+    sec.table(ctx, Table("figure2_convergence", ["configuration", "law", "element", f"n within {100 * CONVERGED:.0f} %",
+                                                 "finest n", "ux finest (mm)", "uy finest (mm)", "failed at n"],
+                         rows, {5: ".2f", 6: ".2f"}),
+              f"Smallest mesh whose tip lies within {100 * CONVERGED:.0f} % of the finest mesh's tip (the same "
+              "element and setting), and that finest tip: which element converges with the fewest elements.")
+    return sec
+
+
+def gold_values(ctx) -> dict:
+    out = {}
+    for r in ctx.records():
+        d = describe(r)
+        if d["status"] == "converged" and d["element"] != "LB2n-12":
+            for comp in ("ux", "uy"):
+                v = d["tip"][comp]
+                out[f"figure2/{d['formulation']}/{d['element']}/{d['elements']}/{LAW_SHORT[d['law']]}/{comp}"] = (
+                    v, 1e-6 * abs(v) + 1e-9)
+    return out

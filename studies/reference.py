@@ -1,0 +1,97 @@
+"""Reading records: what a record describes, and the continuum reference it is judged by.
+
+:func:`describe` pulls the grid coordinates out of a record's scene (law, formulation,
+element, count, quadrature, clamp; for the continuum its model variant and mesh), so
+that reports need no side tables. :func:`continuum_references` turns the continuum
+study's records into the converged value of each (law, variant): the Richardson value
+of its last three converged levels (:func:`reference_fem.convergence.richardson`,
+pure numpy). :data:`MATCHING` says which continuum variant an ANCF formulation is
+judged by.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+# ANCF formulation -> continuum variant of the same model (``paper`` has no continuum
+# meaning; its energies are plane-strain-like, so plane strain with the penalty is shown).
+MATCHING = {"plane-strain": "plane-strain-penalty", "plane-stress": "plane-stress",
+            "paper": "plane-strain-penalty"}
+VARIANT_LABEL = {"plane-strain": "plane strain, exact (mixed)",
+                 "plane-strain-penalty": "plane strain, penalty 1000 MPa",
+                 "plane-stress": "plane stress (F33 = 1/J)"}
+LAW_SHORT = {"neo-hookean": "NH", "mooney-rivlin": "MR", "yeoh": "Yeoh"}
+
+
+def variant_of(scene: dict) -> str:
+    """The continuum variant of a fenicsx scene (gold-file names)."""
+    fem = scene.get("fem") or {}
+    if scene["material"]["formulation"] == "plane-stress" or fem.get("model") == "plane-stress":
+        return "plane-stress"
+    return "plane-strain-penalty" if fem.get("incompressibility") == "penalty" else "plane-strain"
+
+
+def describe(rec: dict) -> dict:
+    s = rec["scene"]
+    d = {"law": s["material"]["law"], "solver": rec["solver"], "status": rec.get("status"),
+         "tip": rec.get("tip")}
+    if rec["solver"] == "ancf":
+        a = s["ancf"]
+        d.update(formulation=s["material"]["formulation"], element=a["element"],
+                 elements=a["elements"], quadrature=tuple(a["quadrature"]),
+                 clamp=s["supports"].get("clamp"))
+    else:
+        fem = s.get("fem") or {}
+        d.update(variant=variant_of(s), cells=(fem.get("cells_length"), fem.get("cells_height")))
+    return d
+
+
+@dataclass
+class ContinuumReference:
+    law: str
+    variant: str
+    tip: tuple[float, float] | None          # m, Richardson value
+    error_estimate: float | None             # m
+    order: float | None
+    levels: list[dict] = field(default_factory=list)  # {cells, ndof, tip, status, wall_s}
+
+
+def continuum_references(records: list[dict]) -> dict[tuple[str, str], ContinuumReference]:
+    """{(law, variant): reference} from the continuum study's records."""
+    from reference_fem.convergence import richardson
+
+    groups: dict[tuple[str, str], list[dict]] = {}
+    for r in records:
+        d = describe(r)
+        groups.setdefault((d["law"], d["variant"]), []).append(
+            {"cells": d["cells"], "ndof": r.get("ndof"), "tip": r.get("tip"), "status": r.get("status"),
+             "wall_s": r.get("wall_s"), "setup_s": r.get("setup_s")})
+    out = {}
+    for key, levels in groups.items():
+        levels.sort(key=lambda lv: lv["cells"][0] * lv["cells"][1])
+        tips = [(lv["tip"]["ux"], lv["tip"]["uy"]) for lv in levels
+                if lv["status"] == "converged" and lv["tip"]]
+        ref = richardson(*tips[-3:]) if len(tips) >= 3 else None
+        out[key] = ContinuumReference(key[0], key[1], ref.value if ref else None,
+                                      ref.error_estimate if ref else None,
+                                      ref.order if ref else None, levels)
+    return out
+
+
+def gold_references(path) -> dict[tuple[str, str], tuple[float, float]]:
+    """{(law, variant): (ux, uy)} from reference_fem's gold file (for the cross-check)."""
+    import json
+    g = json.loads(open(path).read())
+    return {(c["law"], k.split("/", 1)[1]): (c["tip"]["ux"], c["tip"]["uy"])
+            for k, c in g["cases"].items() if c.get("tip")}
+
+
+def paper_tip(source: str, law: str) -> tuple[float, float] | None:
+    """(ux, uy) in m of the paper's Table 3 (source: an element name or "ABAQUS")."""
+    from .paper import table3
+
+    t = table3().get((source, law))
+    return (t["ux"], t["uy"]) if t else None
+
+
+def abaqus(law: str) -> tuple[float, float] | None:
+    return paper_tip("ABAQUS", law)
