@@ -20,7 +20,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from .catalog import get_study, load_catalog, with_needs
+from .catalog import CASES_TOML, get_study, load_catalog, with_needs
 
 REPORTS = Path(__file__).resolve().parent.parent / "reports"
 
@@ -35,7 +35,7 @@ def resolve_out(out: str | None, tiny: bool) -> Path:
 
 def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = False,
                 executor: str | None = None, workers: int = 2, progress: bool = True,
-                log=print) -> dict[str, float]:
+                log=print, catalog_path: Path = CASES_TOML) -> dict[str, float]:
     """Run the named studies (``["all"]`` for every one) and their needs into ``out``,
     then rebuild the reports; return {study: seconds}."""
     from .runner import run_cases
@@ -43,7 +43,7 @@ def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = F
 
     for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
         os.environ.setdefault(var, "1")  # one thread per worker process
-    catalog = load_catalog(tiny)
+    catalog = load_catalog(tiny, catalog_path)
     explicit = list(catalog) if names == ["all"] else names
     times = {}
     for study in with_needs(catalog, explicit):
@@ -56,17 +56,17 @@ def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = F
         for f in s.failures[:20]:
             log(f"  failed: {f}")
     t0 = time.perf_counter()
-    build_reports(out, tiny, log)
+    build_reports(out, tiny, log, catalog_path)
     times["(reports)"] = time.perf_counter() - t0
     return times
 
 
-def build_reports(out: Path, tiny: bool = False, log=print) -> Path:
+def build_reports(out: Path, tiny: bool = False, log=print, catalog_path: Path = CASES_TOML) -> Path:
     """Tables, figures and README.md from the records in ``out``/data (no solver runs)."""
     from .report import Context, write_readme
     from .store import store_for
 
-    catalog = load_catalog(tiny)
+    catalog = load_catalog(tiny, catalog_path)
     sections = []
     out.mkdir(parents=True, exist_ok=True)
     for study in catalog.values():
@@ -74,14 +74,14 @@ def build_reports(out: Path, tiny: bool = False, log=print) -> Path:
             continue
         try:
             sections.append(study.module.report(Context(study, out, catalog)))
-        except Exception as e:  # a broken report must not hide the others
+        except Exception as e:  # name the study, then fail loudly
             log(f"{study.name}: report failed: {type(e).__name__}: {e}")
             raise
     return write_readme(out, sections, tiny)
 
 
 def _list(args) -> int:
-    catalog = load_catalog(args.tiny)
+    catalog = load_catalog(args.tiny, args.catalog)
     for s in catalog.values():
         needs = f"  (needs {', '.join(s.needs)})" if s.needs else ""
         print(f"{s.name:15s} {len(s.cases()):5d} cases  {s.title}{needs}")
@@ -90,14 +90,14 @@ def _list(args) -> int:
 
 def _run(args) -> int:
     out = resolve_out(args.out, args.tiny)
-    catalog = load_catalog(args.tiny)
+    catalog = load_catalog(args.tiny, args.catalog)
     if args.names != ["all"]:
         for n in args.names:
             get_study(catalog, n)
     print(f"output: {out}")
     t0 = time.perf_counter()
     times = run_studies(args.names, out, args.tiny, args.force, args.executor, args.workers,
-                        progress=not args.no_progress)
+                        progress=not args.no_progress, catalog_path=args.catalog)
     print("\ntime per study:")
     for k, v in times.items():
         print(f"  {k:15s} {v:8.1f} s")
@@ -111,7 +111,7 @@ def _report(args) -> int:
     if out is None:
         print("report --tiny needs --out DIR (the directory of a tiny run)", file=sys.stderr)
         return 2
-    print(build_reports(out, args.tiny))
+    print(build_reports(out, args.tiny, catalog_path=args.catalog))
     return 0
 
 
@@ -150,6 +150,8 @@ def main(argv: list[str] | None = None) -> int:
     g = sub.add_parser("gold", help="tiny-mode golden values: check, or --refresh")
     g.add_argument("--refresh", action="store_true", help="rewrite tests/gold/studies_tiny.json")
     g.add_argument("--out", help="directory for the tiny run (default: a temp dir)")
+    for sp in (ls, r, rp):
+        sp.add_argument("--catalog", type=Path, default=CASES_TOML, help="the case list (default studies/cases.toml)")
     args = p.parse_args(argv)
     try:
         return {"list": _list, "run": _run, "report": _report, "gold": _gold}[args.command](args)

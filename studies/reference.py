@@ -33,7 +33,7 @@ def variant_of(scene: dict) -> str:
 def describe(rec: dict) -> dict:
     s = rec["scene"]
     d = {"law": s["material"]["law"], "solver": rec["solver"], "status": rec.get("status"),
-         "tip": rec.get("tip")}
+         "tip": rec.get("tip"), "stable": rec.get("stable"), "stability": rec.get("stability")}
     if rec["solver"] == "ancf":
         a = s["ancf"]
         d.update(formulation=s["material"]["formulation"], element=a["element"],
@@ -95,3 +95,10 @@ def paper_tip(source: str, law: str) -> tuple[float, float] | None:
 
 def abaqus(law: str) -> tuple[float, float] | None:
     return paper_tip("ABAQUS", law)
+
+
+def stability_mark(d: dict) -> str:
+    """"" for a stable (or unchecked) equilibrium, else " (singular)" / " (unstable)"."""
+    if d.get("stable") is False:
+        return " (singular)" if "singular" in str(d.get("stability")) else " (unstable)"
+    return ""

@@ -78,6 +78,8 @@ class Context:
     def records(self, name: str | None = None) -> list[dict]:
         """The latest record of each current case of ``name`` (default: this study),
         in case order; cases without a record are left out."""
+        if name and name not in self.catalog:
+            return []
         s = self.catalog[name] if name else self.study
         recs = store_for(self.out, s.name).read()
         return [recs[c.id] for c in s.cases() if c.id in recs]

@@ -94,7 +94,8 @@ def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: s
     timed = [c for c in todo if c.timing]
     executor = executor or default_executor()
 
-    def done(rec: dict) -> None:
+    def done(rec: dict, how: str) -> None:
+        rec["run"] = {"executor": how, "workers": workers if how == "pool" else None}
         rec = store.append(rec)
         summary.computed += 1
         if rec.get("status") != "converged":
@@ -105,7 +106,7 @@ def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: s
     with _progress(len(todo), study, progress) as bar:
         if pooled and (executor == "serial" or (executor == "pool" and workers <= 1)):
             for c in pooled:
-                done(execute(c))
+                done(execute(c), "serial")
         elif pooled:
             with _make_executor(executor, workers) as ex:
                 futures = {ex.submit(execute, c): c for c in pooled}
@@ -114,9 +115,9 @@ def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: s
                         rec = fut.result()
                     except Exception as e:  # the worker itself died (e.g. killed, segfault)
                         rec = _mark_worker_death(futures[fut], e)
-                    done(rec)
+                    done(rec, executor)
         for c in timed:
-            done(execute_timed(c))
+            done(execute_timed(c), "serial-timed")
     store.compact(c.id for c in cases)
     summary.seconds = time.perf_counter() - t0
     return summary

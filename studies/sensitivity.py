@@ -9,7 +9,7 @@ from __future__ import annotations
 
 
 from .grid import cantilever_case, count_for
-from .reference import LAW_SHORT, describe, paper_tip
+from .reference import LAW_SHORT, describe, paper_tip, stability_mark
 from .report import Section, Table, mm, pct, vec_error
 
 
@@ -50,17 +50,18 @@ def report(ctx) -> Section:
                     continue
                 ok = d["status"] == "converged" and d["tip"]
                 err = vec_error(d["tip"], ref) if ok else None
-                row.append(pct(err) if ok else d["status"])
-                long.append([el, law, clamp, f"{q[0]}x{q[1]}", count_for(g, el), d["status"],
+                row.append(f"{pct(err):.2f}{stability_mark(d)}" if ok and err is not None else d["status"])
+                long.append([el, law, clamp, f"{q[0]}x{q[1]}", count_for(g, el), d["status"] + stability_mark(d),
                              mm(d["tip"]["ux"]) if ok else None, mm(d["tip"]["uy"]) if ok else None,
                              mm(ref[0]) if ref else None, mm(ref[1]) if ref else None, pct(err),
-                             r.get("reason") or ""])
+                             r.get("reason") or r.get("stability") or ""])
             rows.append(row)
     sec.table(ctx, Table("sensitivity", hdr, rows, {j: ".2f" for j in range(2, len(hdr))}),
               "Distance of each `paper` cell from the paper's own cell, |u - u_paper| / |u_paper| (%), per clamp "
-              "and quadrature (points along x, across the thickness); a word where the run failed.")
+              "and quadrature (points along x, across the thickness); a word where the run failed, (singular) / (unstable) "
+              "where Newton converged to an equilibrium whose tangent is singular or indefinite.")
     t = Table("sensitivity_values", ["element", "law", "clamp", "quadrature", "n", "status", "ux (mm)", "uy (mm)",
-                                     "paper ux (mm)", "paper uy (mm)", "distance (%)", "reason"], long,
+                                     "paper ux (mm)", "paper uy (mm)", "distance (%)", "reason or stability"], long,
               {6: ".2f", 7: ".2f", 8: ".2f", 9: ".2f", 10: ".2f"})
     t.write(ctx.out)
     sec.items.append(("link", t.name + ".md", "Every run's tip, status and failure reason."))
@@ -70,10 +71,14 @@ def report(ctx) -> Section:
 
 def _findings(long: list) -> str:
     lines = []
-    failed = [r for r in long if r[5] != "converged"]
+    failed = [r for r in long if not r[5].startswith("converged")]
     for r in failed:
         lines.append(f"- {r[0]} {LAW_SHORT[r[1]]}, clamp {r[2]}, quadrature {r[3]} at {r[4]} elements: "
                      f"{r[5]} ({r[11]}).")
+    odd = [r for r in long if r[5].startswith("converged (") and r[0] != "LB2n-12"]
+    for r in odd:
+        lines.append(f"- {r[0]} {LAW_SHORT[r[1]]}, clamp {r[2]}, quadrature {r[3]}: converged to an equilibrium that is "
+                     f"not stable ({r[11]}).")
     ho = [r for r in long if r[0] != "LB2n-12" and r[10] is not None]
     best = {}
     for r in ho:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from .grid import cantilever_case, count_for
 from .reference import (LAW_SHORT, MATCHING, VARIANT_LABEL, abaqus, continuum_references,
-                        describe, paper_tip)
+                        describe, paper_tip, stability_mark)
 from .report import Section, Table, mm, pct, rel_dev
 
 
@@ -124,6 +124,14 @@ def _findings(got, refs, els, laws) -> str:
                          f"converged continuum {MATCHING[form]} value ({len(ds)} cells).")
     lb = [got.get(("LB2n-12", f, law)) for f in ("plane-strain", "plane-stress") for law in laws]
     lb = [abs(d["tip"]["uy"]) for d in lb if d and d["status"] == "converged"]
+    odd = [f"{el} `{form}` {LAW_SHORT[law]}{stability_mark(d)}" for (el, form, law), d in got.items()
+           if d["status"] == "converged" and stability_mark(d)]
+    if odd:
+        lines.append("- Converged to an equilibrium whose tangent is not positive definite: " + ", ".join(odd) + ".")
+    bad = [f"{el} `{form}` {LAW_SHORT[law]} ({d['status']})" for (el, form, law), d in got.items()
+           if d["status"] != "converged"]
+    if bad:
+        lines.append("- Failed: " + ", ".join(bad) + ".")
     cont = [abs(r.tip[1]) for r in refs.values() if r.tip]
     if lb and cont:
         lines.append(f"- LB2n-12 locks: |uy| <= {1e3 * max(lb):.2f} mm in the consistent formulations, "

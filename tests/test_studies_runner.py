@@ -1,0 +1,238 @@
+"""The study runner: reuse, --force, failure records, interruption safety, serial timings,
+and a run through mpiexec (mpi4py.futures)."""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from studies import solvers
+from studies.case import make_case
+from studies.grid import cantilever_case
+from studies.runner import run_cases
+from studies.store import RecordStore
+
+ROOT = Path(__file__).resolve().parent.parent
+PY = sys.executable
+
+
+def small_cases(study="t", counts=(2, 3, 4), **kw):
+    return [cantilever_case(study, "yeoh", "plane-stress", "HB3n-12", n, (3, 2), "face", **kw) for n in counts]
+
+
+@pytest.fixture
+def fake_solver(monkeypatch):
+    """Register a solver "fake" whose behaviour a test sets: fake.behaviour(scene) -> record."""
+    class Fake:
+        calls = 0
+
+        def behaviour(self, scene):
+            raise AssertionError("set behaviour")
+
+    fake = Fake()
+
+    def run(scene):
+        fake.calls += 1
+        return fake.behaviour(scene)
+
+    monkeypatch.setitem(solvers.SOLVERS, "fake", solvers.Solver("fake", (), run, lambda scene: None))
+    return fake
+
+
+def test_second_run_reuses_every_record_and_a_changed_case_alone_runs(tmp_path):
+    store = RecordStore(tmp_path / "t.jsonl")
+    cases = small_cases()
+    first = run_cases("t", cases, store, executor="pool", progress=False)
+    assert (first.computed, first.reused, first.failed) == (3, 0, 0)
+    recs = store.read()
+    assert {c.id for c in cases} == set(recs)
+    assert all(r["status"] == "converged" and r["run"]["executor"] == "pool" for r in recs.values())
+    assert all(r["pid"] != os.getpid() for r in recs.values())  # ran in pool workers
+    before = store.path.read_text()
+    second = run_cases("t", cases, store, executor="pool", progress=False)
+    assert (second.computed, second.reused) == (0, 3)
+    assert store.path.read_text() == before
+    changed = small_cases(counts=(2, 3, 5))
+    third = run_cases("t", changed, store, executor="serial", progress=False)
+    assert (third.computed, third.reused) == (1, 2)
+    assert set(store.read()) == {c.id for c in changed}  # compacted to the current list
+
+
+def test_force_recomputes_and_keeps_one_record_per_case(tmp_path):
+    store = RecordStore(tmp_path / "t.jsonl")
+    cases = small_cases(counts=(2, 3))
+    run_cases("t", cases, store, executor="serial", progress=False)
+    old = {k: r["elapsed_s"] for k, r in store.read().items()}
+    s = run_cases("t", cases, store, executor="serial", force=True, progress=False)
+    assert (s.computed, s.reused) == (2, 0)
+    lines = store.path.read_text().splitlines()
+    assert len(lines) == 2
+    new = {json.loads(x)["case_id"]: json.loads(x)["elapsed_s"] for x in lines}
+    assert new.keys() == old.keys() and new != old
+
+
+def test_case_id_changes_with_scene_options_and_solver_source(monkeypatch):
+    a, b = small_cases(counts=(2, 3))
+    assert a.id != b.id and a.id == small_cases(counts=(2,))[0].id
+    timed = small_cases(counts=(2,), options={"timing": {"repeats": 1}})[0]
+    assert timed.id != a.id
+    from studies import case as case_mod
+    before = a.id
+    case_mod.case_id.cache_clear()
+    monkeypatch.setattr(case_mod, "source_hash", lambda name: "other source")
+    assert a.id != before
+    monkeypatch.undo()
+    case_mod.case_id.cache_clear()
+    assert a.id == before
+
+
+def test_unknown_solver_names_the_valid_ones():
+    with pytest.raises(ValueError, match="ancf, fenicsx"):
+        make_case("t", "abaqus", small_cases()[0].scene)
+
+
+def test_a_raising_case_is_recorded_as_failed_and_the_others_finish(tmp_path, fake_solver):
+    scene = small_cases()[0].scene
+    good = small_cases(counts=(2, 3))
+    bad = make_case("t", "fake", scene)
+
+    def boom(scene):
+        raise FloatingPointError("tangent exploded at step 3")
+
+    fake_solver.behaviour = boom
+    store = RecordStore(tmp_path / "t.jsonl")
+    s = run_cases("t", [good[0], bad, good[1]], store, executor="serial", progress=False)
+    assert (s.computed, s.failed) == (3, 1)
+    rec = store.read()[bad.id]
+    assert rec["status"] == "failed" and rec["case_id"] == bad.id
+    assert "FloatingPointError: tangent exploded at step 3" in rec["reason"]
+    assert rec["tip"] is None
+    assert all(store.read()[c.id]["status"] == "converged" for c in good)
+    # a failure is a result: the rerun reuses it
+    assert run_cases("t", [bad], store, executor="serial", progress=False).computed == 0
+
+
+def test_a_non_finite_result_is_stored_as_failed_never_as_nan(tmp_path, fake_solver):
+    from ancf.record import new_record
+
+    def nan_tip(scene):
+        rec = new_record("fake", scene)
+        rec.update(status="converged", reason=None, tip={"ux": float("nan"), "uy": -0.1})
+        return rec
+
+    fake_solver.behaviour = nan_tip
+    case = make_case("t", "fake", small_cases()[0].scene)
+    store = RecordStore(tmp_path / "t.jsonl")
+    run_cases("t", [case], store, executor="serial", progress=False)
+    text = store.path.read_text()
+    assert "NaN" not in text
+    rec = json.loads(text)
+    assert rec["status"] == "failed" and rec["tip"]["ux"] is None and "non-finite" in rec["reason"]
+
+
+def test_an_interrupted_run_keeps_finished_records_and_the_rerun_does_the_rest(tmp_path, fake_solver):
+    from ancf.record import new_record
+
+    cases = [make_case("t", "fake", {**small_cases()[0].scene, "name": f"c{i}"}) for i in range(5)]
+
+    def interrupt_third(scene):
+        if scene["name"] == "c2":
+            raise KeyboardInterrupt
+        rec = new_record("fake", scene)
+        rec.update(status="converged", reason=None, tip={"ux": 0.0, "uy": -1.0})
+        return rec
+
+    fake_solver.behaviour = interrupt_third
+    store = RecordStore(tmp_path / "t.jsonl")
+    with pytest.raises(KeyboardInterrupt):
+        run_cases("t", cases, store, executor="serial", progress=False)
+    assert set(store.read()) == {cases[0].id, cases[1].id}
+    fake_solver.behaviour = lambda scene: interrupt_third({**scene, "name": "ok"})
+    fake_solver.calls = 0
+    s = run_cases("t", cases, store, executor="serial", progress=False)
+    assert (s.reused, s.computed, fake_solver.calls) == (2, 3, 3)
+
+
+def test_a_torn_last_line_is_skipped_and_does_not_swallow_the_next_record(tmp_path):
+    store = RecordStore(tmp_path / "t.jsonl")
+    cases = small_cases(counts=(2, 3))
+    run_cases("t", cases[:1], store, executor="serial", progress=False)
+    with open(store.path, "a") as f:
+        f.write('{"case_id": "x", "status": "conv')  # a writer killed mid-line
+    assert len(store.read()) == 1 and store.skipped_lines == 1
+    run_cases("t", cases, store, executor="serial", progress=False)
+    assert set(store.read()) == {c.id for c in cases}
+
+
+def _catalog(tmp_path: Path, counts=(2, 3, 4, 6, 8, 12)) -> Path:
+    p = tmp_path / "cases.toml"
+    p.write_text(f"""
+[table3]
+module = "table3"
+laws = ["yeoh", "neo-hookean"]
+elements = ["HB3n-12", "HB2n-12"]
+formulations = ["plane-stress", "paper", "plane-strain"]
+counts = {{ HB3n-12 = {counts[0]}, HB2n-12 = {counts[1]} }}
+settings = {{ paper = {{ quadrature = [2, 2], clamp = "all" }}, plane-strain = {{ quadrature = [3, 2], clamp = "face" }}, plane-stress = {{ quadrature = [3, 2], clamp = "face" }} }}
+""")
+    return p
+
+
+def test_a_killed_run_loses_no_finished_record(tmp_path):
+    """SIGKILL the whole run (main process and pool workers) once records exist; every
+    line on disk is whole or skipped, and the rerun computes only what is missing."""
+    cat, out = _catalog(tmp_path, counts=(40, 40)), tmp_path / "out"
+    data = out / "data" / "table3.jsonl"
+    cmd = [PY, "-m", "studies", "run", "table3", "--catalog", str(cat), "--out", str(out), "--no-progress"]
+    p = subprocess.Popen(cmd, cwd=ROOT, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    t0 = time.time()
+    while time.time() - t0 < 60 and (not data.exists() or len(data.read_text().splitlines()) < 2):
+        time.sleep(0.05)
+    os.killpg(p.pid, signal.SIGKILL)
+    p.wait()
+    store = RecordStore(data)
+    have = store.read()
+    assert 2 <= len(have) < 12, "the run was to be killed half way"
+    assert all(r["status"] == "converged" for r in have.values())
+    from studies.catalog import load_catalog
+    from studies.runner import run_cases as rerun
+    cases = load_catalog(path=cat)["table3"].cases()
+    s = rerun("table3", cases, store, executor="serial", progress=False)
+    assert (s.reused, s.computed) == (len(have), 12 - len(have))
+
+
+def test_timed_cases_run_serially_in_this_process_after_a_warm_up(tmp_path):
+    store = RecordStore(tmp_path / "t.jsonl")
+    timed = small_cases(counts=(2,), options={"timing": {"repeats": 3, "budget_s": 10.0}})
+    plain = small_cases(counts=(3,))
+    run_cases("t", timed + plain, store, executor="pool", progress=False)
+    recs = store.read()
+    t, p = recs[timed[0].id], recs[plain[0].id]
+    assert t["pid"] == os.getpid() and t["run"]["executor"] == "serial-timed"
+    assert p["pid"] != os.getpid()
+    tm = t["timing"]
+    assert tm["repeats"] == 3 and len(tm["samples_s"]) == 3 and tm["warmup_s"] > 0
+    assert tm["median_s"] == sorted(tm["samples_s"])[1]
+    assert "timing" not in p
+
+
+@pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
+def test_a_tiny_study_runs_through_mpiexec(tmp_path):
+    cat, out = _catalog(tmp_path), tmp_path / "out"
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMP_NUM_THREADS="1")
+    cmd = ["mpiexec", "-n", "2", "--oversubscribe", PY, "-m", "mpi4py.futures", "-m", "studies", "run", "table3",
+           "--catalog", str(cat), "--out", str(out), "--executor", "mpi", "--no-progress"]
+    r = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stdout + r.stderr
+    recs = RecordStore(out / "data" / "table3.jsonl").read()
+    assert len(recs) == 12
+    assert all(x["status"] == "converged" and x["run"]["executor"] == "mpi" for x in recs.values())
+    assert (out / "table3.md").exists() and (out / "README.md").exists()

@@ -1,0 +1,114 @@
+"""Every study in tiny mode into a temp dir: records, tables, figures, README; reports
+read records only; a warm rerun computes nothing; named values against the gold file."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from studies import solvers
+from studies.catalog import load_catalog
+from studies.cli import REPORTS, build_reports, resolve_out, run_studies
+from studies.gold import FILE as GOLD, collect, compare, load_gold
+from studies.store import store_for
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+@pytest.fixture(scope="module")
+def tiny(tmp_path_factory):
+    out = tmp_path_factory.mktemp("studies-tiny")
+    log = []
+    run_studies(["all"], out, tiny=True, executor="serial", progress=False, log=log.append)
+    return out, log
+
+
+def test_every_study_leaves_a_record_per_case_and_its_report(tiny):
+    out, _ = tiny
+    catalog = load_catalog(tiny=True)
+    readme = (out / "README.md").read_text()
+    for study in catalog.values():
+        cases = study.cases()
+        recs = store_for(out, study.name).read()
+        assert {c.id for c in cases} == set(recs), study.name
+        assert all(r["case_id"] == r["case"]["id"] for r in recs.values())
+        assert study.title in readme
+        assert "NaN" not in store_for(out, study.name).path.read_text()
+    for line in readme.splitlines():  # every table and figure the README names exists
+        for token in line.replace("(", " ").replace(")", " ").split():
+            if token.endswith((".png", ".md", ".csv")) and "/" not in token:
+                assert (out / token).exists(), token
+    assert "Tiny mode" in readme
+    assert not str(out).startswith(str(REPORTS))
+
+
+def test_timed_cases_carry_serial_warm_timings(tiny):
+    out, _ = tiny
+    recs = store_for(out, "accuracy-cost").read().values()
+    assert recs and all(r["run"]["executor"] == "serial-timed" for r in recs)
+    ok = [r for r in recs if r["status"] == "converged"]
+    assert ok and all(r["timing"]["median_s"] > 0 and r["timing"]["warmup_s"] > 0 for r in ok)
+
+
+def test_reports_read_records_only(tiny, monkeypatch):
+    out, _ = tiny
+    before = (out / "README.md").read_text()
+
+    def refuse(scene):
+        raise AssertionError("a report called a solver")
+
+    for name, s in list(solvers.SOLVERS.items()):
+        monkeypatch.setitem(solvers.SOLVERS, name, solvers.Solver(name, s.sources, refuse, s.check))
+    build_reports(out, tiny=True)
+    assert (out / "README.md").read_text() == before
+
+
+def test_a_warm_rerun_computes_nothing(tiny):
+    out, _ = tiny
+    log = []
+    run_studies(["all"], out, tiny=True, executor="serial", progress=False, log=log.append)
+    summaries = [x for x in log if " cases, " in x]
+    assert len(summaries) == len(load_catalog(tiny=True))
+    assert all(", 0 computed," in x for x in summaries), summaries
+
+
+def test_tiny_values_match_the_gold_file(tiny):
+    out, _ = tiny
+    problems = compare(collect(out), load_gold())
+    assert not problems, "\n".join(problems)
+
+
+def test_a_gold_mismatch_names_the_value_and_the_difference():
+    gold = {"table3/HB3n-12/paper/Yeoh/uy": {"value": -0.1194, "tolerance": 1e-7},
+            "continuum/NH/plane-stress/ux": {"value": -0.0394, "tolerance": 1e-8}}
+    values = {"table3/HB3n-12/paper/Yeoh/uy": (-0.1195, 1e-7), "new/value": (1.0, 0.1)}
+    problems = compare(values, gold)
+    assert any("table3/HB3n-12/paper/Yeoh/uy" in p and "-1.000e-04" in p for p in problems)
+    assert any(p.startswith("continuum/NH/plane-stress/ux: missing") for p in problems)
+    assert any(p.startswith("new/value: new value") for p in problems)
+    assert compare({k: (v["value"] + 0.5 * v["tolerance"], 0) for k, v in gold.items()}, gold) == []
+
+
+def test_the_gold_file_has_named_values_with_tolerances():
+    doc = json.loads(GOLD.read_text())
+    assert "--refresh" in doc["description"]
+    vals = doc["values"]
+    assert len(vals) > 50 and any(k.startswith("table3/") for k in vals) and any(k.startswith("continuum/") for k in vals)
+    assert all(0 < v["tolerance"] < 1e-3 * abs(v["value"]) + 1e-8 for v in vals.values())
+
+
+def test_cli_lists_the_studies_and_tiny_output_defaults_to_a_temp_dir():
+    r = subprocess.run([sys.executable, "-m", "studies", "list"], cwd=ROOT, capture_output=True, text=True,
+                       timeout=60)
+    assert r.returncode == 0, r.stderr
+    for name in load_catalog():
+        assert name in r.stdout
+    tmp = resolve_out(None, tiny=True)
+    assert tmp.is_dir() and not str(tmp).startswith(str(REPORTS))
+    tmp.rmdir()
+    r = subprocess.run([sys.executable, "-m", "studies", "run", "no-such-study", "--tiny"], cwd=ROOT,
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2 and "allowed: continuum, table3" in r.stderr
