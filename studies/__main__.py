@@ -1,6 +1,12 @@
+import os
 import sys
 
-from .cli import main
+# One BLAS / OpenMP thread per process (before numpy loads): pool workers share the
+# cores, and serial timings must not depend on a thread pool (the Makefile sets the same).
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+from .cli import main  # noqa: E402
 
 if __name__ == "__main__":
     sys.exit(main())
