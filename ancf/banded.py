@@ -8,9 +8,11 @@ upper form that the banded Cholesky factorisation takes.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
-from scipy.linalg import cho_solve_banded, cholesky_banded, solve_banded
+from scipy.linalg import cho_solve_banded, cholesky_banded
+from scipy.linalg.lapack import dgbsv as _gbsv
 from scipy.sparse import dia_matrix
 
 
@@ -45,17 +47,21 @@ class Banded:
 
     def constrain(self, fixed: np.ndarray) -> "Banded":
         """Rows and columns of fixed dofs replaced by those of the identity (in place)."""
-        b, n = self.b, self.n
-        for off in range(-b, b + 1):
-            row = self.ab[b + off]     # entries (i, j) with i - j = off, stored at column j
-            row[fixed] = 0.0           # column j fixed
-            j = fixed - off            # row i fixed
-            row[j[(j >= 0) & (j < n)]] = 0.0
-        self.ab[b, fixed] = 1.0
+        self.ab.flat[_constrained_entries(self.b, self.n, fixed.tobytes())] = 0.0
+        self.ab[self.b, fixed] = 1.0
         return self
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        return solve_banded((self.b, self.b), self.ab, rhs, check_finite=False)
+        """K^-1 rhs by LAPACK's banded LU (gbsv); LinAlgError if K is singular."""
+        b, n = self.b, self.n
+        lu = np.empty((3 * b + 1, n), order="F")
+        lu[b:] = self.ab
+        _, _, x, info = _gbsv(b, b, lu, rhs, overwrite_ab=True, overwrite_b=False)
+        if info > 0:
+            raise np.linalg.LinAlgError("singular matrix")
+        if info < 0:
+            raise ValueError(f"gbsv: illegal argument {-info}")
+        return x
 
     def _scaled_cholesky(self, shift: float = 0.0):
         """Banded Cholesky factor of D^-1/2 K D^-1/2 + shift I, or None if that is not
@@ -76,8 +82,9 @@ class Banded:
         except np.linalg.LinAlgError:
             return None, None
 
-    def is_positive_definite(self) -> bool:
-        return self._scaled_cholesky()[0] is not None
+    def is_positive_definite(self, shift: float = 0.0) -> bool:
+        """Is D^-1/2 K D^-1/2 + shift I positive definite? (shift < 0 asks for a margin)"""
+        return self._scaled_cholesky(shift)[0] is not None
 
     def solve_shifted(self, rhs: np.ndarray, shift: float):
         """x = (K + shift D)^-1 rhs with D = diag K, if K + shift D is positive definite
@@ -92,4 +99,17 @@ class Banded:
         return dia_matrix((self.ab, offsets), shape=(self.n, self.n)).tocsc()
 
     def matvec(self, x: np.ndarray) -> np.ndarray:
-        return self.to_sparse() @ x
+        from .kernels import band_matvec
+        return band_matvec(self.ab, self.b, np.ascontiguousarray(x, dtype=float))
+
+
+@lru_cache(maxsize=64)
+def _constrained_entries(b: int, n: int, fixed_bytes: bytes) -> np.ndarray:
+    """Flat indices into ab (2 b + 1, n) of the entries in a fixed row or column."""
+    fixed = np.frombuffer(fixed_bytes, dtype=int)
+    idx = []
+    for off in range(-b, b + 1):   # entries (i, j) with i - j = off, stored at column j
+        j = np.concatenate([fixed, fixed - off])
+        j = j[(j >= 0) & (j < n)]
+        idx.append((b + off) * n + j)
+    return np.unique(np.concatenate(idx))

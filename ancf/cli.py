@@ -16,7 +16,6 @@ def _run(args) -> int:
 
     scene = load_scene(args.scene)
     rec, _ = run_scene(scene)
-    rec["setup_s"] = (rec["setup_s"] or 0.0) + (time.perf_counter() - T_IMPORT) - (rec["wall_s"] or 0.0) * 0
     rec = sanitize(rec)
     if args.json:
         write_record(rec, args.json)
@@ -25,10 +24,19 @@ def _run(args) -> int:
     print(f"status      {rec['status']}" + (f"  ({rec['reason']})" if rec["reason"] else ""))
     if rec["tip"]:
         print(f"tip         ux = {rec['tip']['ux'] * 1e3:.4f} mm   uy = {rec['tip']['uy'] * 1e3:.4f} mm")
-    print(f"newton      {rec['newton_iterations']} iterations, {rec['load_steps']} load steps "
-          f"({rec['relax_steps']} relaxation), {rec['rejected_steps']} rejected")
-    print(f"stable      {rec['stable']}" + (f"  ({rec['stability']})" if rec.get("stability") else ""))
-    print(f"time        solve {rec['wall_s']:.3f} s wall, {rec['cpu_s']:.3f} s cpu; set-up {rec['setup_s']:.3f} s")
+    if scene.analysis.kind == "static":
+        print(f"newton      {rec['newton_iterations']} iterations, {rec['load_steps']} load steps "
+              f"({rec['relax_steps']} relaxation), {rec['rejected_steps']} rejected")
+        print(f"stable      {rec['stable']}" + (f"  ({rec['stability']})" if rec.get("stability") else ""))
+    else:
+        print(f"steps       {rec['steps']} accepted, {rec['rejected_steps']} rejected, "
+              f"{rec['newton_iterations']} Newton iterations ({scene.analysis.integrator}, "
+              f"rho_inf {scene.analysis.rho_inf})")
+        for h, e in zip(rec.get("tip_history") or [], rec.get("energy") or []):
+            print(f"  t = {h['t']:.4f} s   tip ({h['x'] * 1e3:9.3f}, {h['y'] * 1e3:9.3f}) mm   "
+                  f"E = {e['total']:+.3e} J (kinetic {e['kinetic']:.3e}, strain {e['strain']:.3e})")
+    print(f"time        solve {rec['wall_s']:.3f} s wall, {rec['cpu_s']:.3f} s cpu; set-up {rec['setup_s']:.3f} s "
+          f"(plus {time.perf_counter() - T_IMPORT - rec['wall_s'] - rec['setup_s']:.2f} s imports and output)")
     print(f"effects     {', '.join(rec['effects'])}")
     return 0 if rec["status"] == "converged" else 1
 

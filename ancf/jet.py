@@ -5,72 +5,73 @@ Every isotropic 2D energy here is a function of a = tr C = F:F and J = det F. A
 elementwise over numpy arrays, so a material law is written once as an energy
 expression and its stress and tangent follow exactly (forward-mode differentiation,
 no finite differences).
+
+The six components are stacked in one array D (6, ...) = (f, f_a, f_J, f_aa, f_aJ, f_JJ),
+so each operation is a few whole-array numpy calls (this sits in the time-stepping hot
+loop).
 """
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 
 
-@dataclass(frozen=True)
 class Jet:
-    """f and its partials: f_a, f_J, f_aa, f_aJ, f_JJ (arrays of one shape or scalars)."""
+    __slots__ = ("D",)
 
-    v: np.ndarray
-    a: np.ndarray
-    J: np.ndarray
-    aa: np.ndarray
-    aJ: np.ndarray
-    JJ: np.ndarray
+    def __init__(self, D: np.ndarray):
+        self.D = D
+
+    # the components, by name
+    v = property(lambda self: self.D[0])
+    a = property(lambda self: self.D[1])
+    J = property(lambda self: self.D[2])
+    aa = property(lambda self: self.D[3])
+    aJ = property(lambda self: self.D[4])
+    JJ = property(lambda self: self.D[5])
 
     @staticmethod
     def variables(a, J) -> tuple["Jet", "Jet"]:
-        z = np.zeros_like(a)
-        one = np.ones_like(a)
-        return Jet(a, one, z, z, z, z), Jet(J, z, one, z, z, z)
-
-    @staticmethod
-    def const(c, like: "Jet") -> "Jet":
-        z = np.zeros_like(like.v)
-        return Jet(z + c, z, z, z, z, z)
-
-    def _lift(self, other) -> "Jet":
-        return other if isinstance(other, Jet) else Jet.const(other, self)
+        a, J = np.broadcast_arrays(np.asarray(a, float), np.asarray(J, float))
+        Da = np.zeros((6,) + a.shape)
+        DJ = np.zeros((6,) + a.shape)
+        Da[0], Da[1] = a, 1.0
+        DJ[0], DJ[2] = J, 1.0
+        return Jet(Da), Jet(DJ)
 
     def __add__(self, o):
-        o = self._lift(o)
-        return Jet(self.v + o.v, self.a + o.a, self.J + o.J,
-                   self.aa + o.aa, self.aJ + o.aJ, self.JJ + o.JJ)
+        if isinstance(o, Jet):
+            return Jet(self.D + o.D)
+        D = self.D.copy()
+        D[0] += o
+        return Jet(D)
 
     __radd__ = __add__
 
     def __neg__(self):
-        return Jet(-self.v, -self.a, -self.J, -self.aa, -self.aJ, -self.JJ)
+        return Jet(-self.D)
 
     def __sub__(self, o):
-        return self + (-self._lift(o))
+        return self + (-o)
 
     def __rsub__(self, o):
-        return self._lift(o) - self
+        return (-self) + o
 
     def __mul__(self, o):
         if not isinstance(o, Jet):
-            return Jet(self.v * o, self.a * o, self.J * o, self.aa * o, self.aJ * o, self.JJ * o)
-        return Jet(
-            self.v * o.v,
-            self.a * o.v + self.v * o.a,
-            self.J * o.v + self.v * o.J,
-            self.aa * o.v + 2 * self.a * o.a + self.v * o.aa,
-            self.aJ * o.v + self.a * o.J + self.J * o.a + self.v * o.aJ,
-            self.JJ * o.v + 2 * self.J * o.J + self.v * o.JJ,
-        )
+            return Jet(self.D * o)
+        x, y = self.D, o.D
+        D = x * y[0] + x[0] * y          # value counted twice, second derivatives lack cross terms
+        D[0] -= x[0] * y[0]
+        D[3] += 2.0 * x[1] * y[1]
+        D[4] += x[1] * y[2] + x[2] * y[1]
+        D[5] += 2.0 * x[2] * y[2]
+        return Jet(D)
 
     __rmul__ = __mul__
 
     def __truediv__(self, o):
         if not isinstance(o, Jet):
-            return self * (1.0 / o)
+            return Jet(self.D / o)
         return self * o ** -1
 
     def __rtruediv__(self, o):
@@ -79,20 +80,18 @@ class Jet:
     def __pow__(self, p: float):
         if p == 1:
             return self
-        if isinstance(p, int) and p >= 0:
-            f = self.v ** p
-            d1 = p * self.v ** (p - 1)
-            d2 = p * (p - 1) * self.v ** (p - 2) if p >= 2 else np.zeros_like(self.v)
-            return self.compose(f, d1, d2)
-        return self.compose(self.v ** p, p * self.v ** (p - 1), p * (p - 1) * self.v ** (p - 2))
+        x = self.D[0]
+        if p == 2:
+            return self.compose(x * x, 2.0 * x, 2.0 + 0.0 * x)
+        xp2 = x ** (p - 2)
+        return self.compose(xp2 * x * x, p * xp2 * x, p * (p - 1) * xp2)
 
     def compose(self, f, df, d2f) -> "Jet":
         """g = phi(self), given phi, phi' and phi'' evaluated at self.v."""
-        return Jet(
-            f,
-            df * self.a,
-            df * self.J,
-            d2f * self.a * self.a + df * self.aa,
-            d2f * self.a * self.J + df * self.aJ,
-            d2f * self.J * self.J + df * self.JJ,
-        )
+        x = self.D
+        D = df * x
+        D[0] = f
+        D[3] += d2f * x[1] * x[1]
+        D[4] += d2f * x[1] * x[2]
+        D[5] += d2f * x[2] * x[2]
+        return Jet(D)

@@ -103,7 +103,29 @@ class BeamModel:
         fe = P.reshape(P.shape[0], -1) @ self._Bw_flat      # (ne, nd)
         return np.bincount(self._dofs.ravel(), fe.ravel(), minlength=self.mesh.n_dof)
 
+    @cached_property
+    def _dN(self) -> np.ndarray:
+        """(nq, n_shape, 2) physical shape-function gradients at the elastic rule's points."""
+        m = self.mesh
+        _, dN = m.element.tabulate(self.rule.xi, self.rule.eta, m.element_length, m.height)
+        return np.ascontiguousarray(dN)
+
     def internal_force_and_tangent(self, u: np.ndarray) -> tuple[np.ndarray, Banded]:
+        """Internal force (N) and tangent (N/m) at u, by the compiled kernel
+        (:mod:`ancf.kernels`); :meth:`internal_force_and_tangent_numpy` is the reference."""
+        from .kernels import assemble_force_tangent
+
+        F = self._checked(self.gradients(u))
+        ne, nq = F.shape[:2]
+        f4 = np.ascontiguousarray(F.reshape(ne, nq, 4))
+        a = np.einsum("eqi,eqi->eq", f4, f4)
+        J = f4[..., 0] * f4[..., 3] - f4[..., 1] * f4[..., 2]
+        W = self.material.energy_jet(a, J)   # W.D: (6, ne, nq) = W and its (a, J) partials
+        m = self.mesh
+        f, ab = assemble_force_tangent(f4, W.D, self._dN, self._w, self._dofs, m.bandwidth, m.n_dof, True)
+        return f, Banded(ab, m.bandwidth)
+
+    def internal_force_and_tangent_numpy(self, u: np.ndarray) -> tuple[np.ndarray, Banded]:
         _, P, A = self.material.evaluate(self._checked(self.gradients(u)), tangent=True)
         ne, nq = P.shape[:2]
         fe = P.reshape(ne, -1) @ self._Bw_flat

@@ -159,3 +159,18 @@ def test_scene_without_gravity_never_evaluates_it(monkeypatch):
 def test_penalty_only_where_the_formulation_has_one(form, expected):
     rec, _ = run_scene(_scene(formulation=form))
     assert rec["effects"] == expected
+
+
+@pytest.mark.parametrize("element,law,form", CASES)
+def test_compiled_kernel_matches_the_numpy_reference(element, law, form, rng):
+    """The numba kernel is generic: every registered element and law goes through it
+    and must agree with the numpy implementation to round-off."""
+    model = make_model(element, law, form)
+    u = bent_state(model, rng)
+    f, K = model.internal_force_and_tangent(u)
+    f_ref, K_ref = model.internal_force_and_tangent_numpy(u)
+    np.testing.assert_allclose(f, f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())
+    np.testing.assert_allclose(K.ab, K_ref.ab, rtol=0, atol=1e-12 * np.abs(K_ref.ab).max())
+    x = rng.standard_normal(u.size)
+    np.testing.assert_allclose(K.matvec(x), K_ref.to_sparse() @ x, rtol=0,
+                               atol=1e-12 * np.abs(K_ref.ab).max() * np.abs(x).sum())

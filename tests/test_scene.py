@@ -134,10 +134,3 @@ def test_records_never_hold_nan(tmp_path):
     text = (tmp_path / "r.json").read_text()
     assert "NaN" not in text and "Infinity" not in text
     json.loads(text)
-
-
-def test_dynamic_scenes_fail_clearly_until_dynamics_exist(tmp_path):
-    d = mutated("analysis", {"kind": "dynamic", "t_end": 0.5, "dt": 1e-3})
-    from ancf.run import run_scene
-    with pytest.raises(SceneError, match="analysis.kind"):
-        run_scene(scene_from_dict(d))
