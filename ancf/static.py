@@ -33,7 +33,7 @@ class NewtonResult:
 
 
 def newton(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol: float,
-           max_iterations: int, utol: float = 1e-9) -> NewtonResult:
+           max_iterations: int, utol: float = 1e-9, line_search: bool = False) -> NewtonResult:
     """Solve f_int(u) = target on the free dofs, starting at u0 (fixed dofs stay as in u0).
 
     Converged when the residual norm is at most ``atol`` (N), or when the last Newton
@@ -43,6 +43,11 @@ def newton(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol: float,
     alpha = 10 C10, 4e-6 N at 1e5 C10, 160 elements) and eps mu A / l_e from the
     cancellation in P = 2 W_a F + W_J cof F at small loads (1e-13 N measured, where the
     correction then stalls at 2e-10 of |u|).
+
+    With ``line_search``, each step du is scaled by s from the slope
+    g(s) = R(u + s du) . du (the potential's derivative along du; slopes, unlike
+    energy differences, carry no cancellation): s = 1 if |g(1)| <= |g(0)| / 2, else a
+    root of g by safeguarded regula falsi (at most 8 force evaluations).
     """
     free = np.ones(model.mesh.n_dof, bool)
     free[model.fixed] = False
@@ -69,6 +74,8 @@ def newton(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol: float,
                 return NewtonResult(u, False, it, residuals, "singular tangent")
             if not np.all(np.isfinite(du)):
                 return NewtonResult(u, False, it, residuals, "singular tangent")
+            if line_search:
+                du = du * _line_search(model, u, du, target, R, free)
             u = u + du
             if it >= 1 and np.abs(du).max() <= utol * max(np.abs(u).max(), scale):
                 residuals.append(float(np.linalg.norm(np.where(free, model.internal_force(u) - target, 0.0))))
@@ -76,6 +83,32 @@ def newton(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol: float,
     except InadmissibleState as e:
         return NewtonResult(u, False, len(residuals), residuals, f"inadmissible state ({e})")
     return NewtonResult(u, False, max_iterations, residuals, "no convergence within max_iterations")
+
+
+def _line_search(model, u, du, target, R0, free) -> float:
+    g0 = float(R0 @ du)
+    if g0 >= 0:                      # not a descent direction (indefinite K): full step
+        return 1.0
+
+    def g(s):
+        try:
+            return float(np.where(free, model.internal_force(u + s * du) - target, 0.0) @ du)
+        except InadmissibleState:
+            return np.inf
+    g1 = g(1.0)
+    if abs(g1) <= 0.5 * abs(g0):
+        return 1.0
+    lo, glo, hi, ghi = 0.0, g0, 1.0, g1
+    if ghi < 0:                      # still descending at s = 1: take the full step
+        return 1.0
+    for _ in range(8):
+        s = hi - ghi * (hi - lo) / (ghi - glo) if np.isfinite(ghi) else 0.5 * (lo + hi)
+        s = min(max(s, lo + 0.1 * (hi - lo)), hi - 0.1 * (hi - lo))
+        gs = g(s)
+        if abs(gs) <= 0.5 * abs(g0):
+            return s
+        lo, glo, hi, ghi = (s, gs, hi, ghi) if gs < 0 else (lo, glo, s, gs)
+    return lo if lo > 0 else 0.5 * hi
 
 
 @dataclass
@@ -105,8 +138,8 @@ def load_path(model: BeamModel, target: Callable[[float], np.ndarray], u0: np.nd
         dt = min(dt, 1.0 - t)
         guess = u if du_prev is None else u + du_prev[1] * (dt / du_prev[0])
         res = newton(model, guess, target(t + dt), atol, max_iterations)
-        if not res.converged and du_prev is not None:  # retry without the predictor
-            retry = newton(model, u, target(t + dt), atol, max_iterations)
+        if not res.converged:        # retry from the last state with a line search
+            retry = newton(model, u, target(t + dt), atol, max_iterations, line_search=True)
             retry.iterations += res.iterations
             res = retry
         stats["newton_iterations"] = stats.get("newton_iterations", 0) + res.iterations
@@ -177,7 +210,7 @@ def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
         return finish("failed", e.reason, None)
 
     verdict = check_stability(model, u)
-    note = first = None if verdict.stable else verdict.describe()
+    note = first = None if verdict.kind == "stable" else verdict.describe()
     tries = 0
     while verdict.kind == "unstable" and tries < 3:
         tries += 1
@@ -293,40 +326,46 @@ def _escape(model, u, mode, f_ext, atol, max_iterations, stats) -> np.ndarray | 
 
 @dataclass
 class Stability:
-    kind: str                 # "stable" | "unstable" | "singular"
+    kind: str                 # "stable" | "unstable" | "singular" | "undetermined"
     lowest: float | None      # lowest eigenvalue of the Jacobi-scaled constrained tangent
     mode: np.ndarray | None   # its eigenvector (global dofs), when not stable
 
     @property
-    def stable(self) -> bool:
-        return self.kind == "stable"
+    def stable(self) -> bool | None:
+        return {"stable": True, "unstable": False, "singular": False}.get(self.kind)
 
     def describe(self) -> str:
         if self.kind == "stable":
             return "stable"
         what = {"unstable": "tangent has a negative eigenvalue",
-                "singular": "tangent singular: a zero-energy mode"}[self.kind]
+                "singular": "tangent singular: a zero-energy mode of the quadrature rule",
+                "undetermined": "undetermined: the lowest eigenvalue is within round-off "
+                                "(the tangent is too ill-conditioned to decide in double precision)",
+                }[self.kind]
         return f"{what} (lowest scaled eigenvalue {self.lowest:.3g})"
 
 
-# Eigenvalues of the unit-diagonal scaled tangent within this of zero count as zero:
-# a structural zero-energy mode measured -6e-16 and 4e-17, while the softest genuine
-# bending mode of the paper's cantilever falls with refinement to 5.7e-13 at 640
-# elements (the Jacobi-scaled spectrum spreads like l_e^-2 ... ); a Cholesky pivot above
-# MIN_PIVOT settles stability without an eigen solve.
+# Eigenvalues of the unit-diagonal scaled tangent within this of zero are not resolved:
+# their absolute error is ~c eps ||S|| (||S|| <= ~5). The softest genuine bending mode
+# of the paper's cantilever falls with refinement to 5.7e-13 at 640 elements (resolved);
+# with alpha = 1e5 C10 it falls to ~2e-16 (not resolved: "undetermined"). A structural
+# zero-energy mode measured -4e-18. A Cholesky pivot above MIN_PIVOT settles stability
+# without an eigen solve.
 SINGULAR_TOL = 1e-14
 MIN_PIVOT = 1e-10
 
 
 def check_stability(model: BeamModel, u: np.ndarray) -> Stability:
-    """Classify the equilibrium u by the lowest eigenvalue lambda of the Jacobi-scaled
-    constrained tangent S: stable (lambda > SINGULAR_TOL), singular (|lambda| within it),
-    unstable (below -SINGULAR_TOL).
+    """Classify the equilibrium u by the lowest eigenpair (lambda, phi) of the
+    Jacobi-scaled constrained tangent S: stable (lambda > SINGULAR_TOL), unstable (below
+    -SINGULAR_TOL); in between, singular if phi is a zero-energy mode of the elastic
+    quadrature rule (its strain variation B phi vanishes at the rule's points but not at
+    a full rule's), else undetermined.
 
     Fast path: a banded Cholesky factorisation of S whose smallest pivot is not tiny
-    (> MIN_PIVOT) proves S positive definite well above round-off. Otherwise, a tiny
-    pivot (round-off can leave one for an exactly singular S, as for HB2n-16's
-    zero-energy mode) or a failed factorisation, the lowest eigenpair decides."""
+    (> MIN_PIVOT) proves S positive definite well above round-off (a plain Cholesky
+    cannot tell singular from positive definite: round-off may leave a tiny positive
+    pivot, as it did for HB2n-16's zero-energy mode)."""
     _, K = model.internal_force_and_tangent(u)
     K = K.constrain(model.fixed)
     c, _ = K._scaled_cholesky()
@@ -335,7 +374,22 @@ def check_stability(model: BeamModel, u: np.ndarray) -> Stability:
     lowest, mode = _lowest_mode(K, model.fixed)
     if lowest > SINGULAR_TOL:
         return Stability("stable", lowest, None)
-    return Stability("singular" if lowest > -SINGULAR_TOL else "unstable", lowest, mode)
+    if lowest < -SINGULAR_TOL:
+        return Stability("unstable", lowest, mode)
+    return Stability("singular" if _is_quadrature_mode(model, mode) else "undetermined", lowest, mode)
+
+
+def _is_quadrature_mode(model: BeamModel, mode: np.ndarray) -> bool:
+    """Does the mode strain nothing at the elastic rule's points, while a rule exact for
+    the element's polynomials sees it strain?"""
+    from .quadrature import exact_for
+
+    def strain(m: BeamModel) -> float:
+        return float(np.abs(mode[m._dofs] @ m._B_flat.T).max())
+
+    dx, dy = model.mesh.element.degree()
+    full = BeamModel(model.mesh, model.material, exact_for(2 * dx, 2 * dy), model.fixed, set())
+    return strain(model) <= 1e-6 * strain(full)
 
 
 def _lowest_mode(K, fixed) -> tuple[float, np.ndarray]:

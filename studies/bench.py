@@ -68,10 +68,13 @@ def penalty(elements=(16, 160, 640), factors=(1e1, 1e2, 1e3, 1e4, 1e5)) -> bool:
                     ok = False
                     cells.append("FAILED")
                 else:
-                    cells.append(f"{rec['load_steps']}(+{rec['rejected_steps']}){'' if rec['stable'] else '!'} {dt:5.1f}s")
+                    mark = {True: "", False: "!", None: "?"}[rec["stable"]]
+                    cells.append(f"{rec['load_steps']}(+{rec['rejected_steps']}){mark} {dt:5.1f}s")
             print(f"{element:8s} {law:14s} " + " ".join(f"{c:>16s}" for c in cells))
             sys.stdout.flush()
-    print("\n'!' marks a converged state whose tangent is not positive definite (see README).")
+    print("\n'!': converged to a state whose tangent is not positive definite (unstable or a "
+          "zero-energy mode); '?': stability undetermined (lowest eigenvalue within round-off); "
+          "see README.")
     return ok
 
 
