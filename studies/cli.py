@@ -21,6 +21,7 @@ import time
 from pathlib import Path
 
 from .catalog import CASES_TOML, get_study, load_catalog, with_needs
+from .execute import DEFAULT_TIMEOUT_S
 
 REPORTS = Path(__file__).resolve().parent.parent / "reports"
 
@@ -35,7 +36,7 @@ def resolve_out(out: str | None, tiny: bool) -> Path:
 
 def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = False,
                 executor: str | None = None, workers: int = 2, progress: bool = True,
-                log=print, catalog_path: Path = CASES_TOML) -> dict[str, float]:
+                log=print, catalog_path: Path = CASES_TOML, timeout_s: float | None = None) -> dict[str, float]:
     """Run the named studies (``["all"]`` for every one) and their needs into ``out``,
     then rebuild the reports; return {study: seconds}."""
     from .runner import run_cases
@@ -49,7 +50,8 @@ def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = F
     for study in with_needs(catalog, explicit):
         cases = study.cases()
         s = run_cases(study.name, cases, store_for(out, study.name), executor, workers,
-                      force=force and study.name in explicit, progress=progress)
+                      force=force and study.name in explicit, progress=progress,
+                      timeout_s=timeout_s or DEFAULT_TIMEOUT_S)
         times[study.name] = s.seconds
         log(f"{study.name}: {s.cases} cases, {s.reused} reused, {s.computed} computed, "
             f"{s.failed} failed, {s.seconds:.1f} s")
@@ -97,7 +99,7 @@ def _run(args) -> int:
     print(f"output: {out}")
     t0 = time.perf_counter()
     times = run_studies(args.names, out, args.tiny, args.force, args.executor, args.workers,
-                        progress=not args.no_progress, catalog_path=args.catalog)
+                        progress=not args.no_progress, catalog_path=args.catalog, timeout_s=args.timeout)
     print("\ntime per study:")
     for k, v in times.items():
         print(f"  {k:15s} {v:8.1f} s")
@@ -144,6 +146,8 @@ def main(argv: list[str] | None = None) -> int:
                    help="default: mpi under mpiexec, else a local process pool")
     r.add_argument("--workers", type=int, default=2, help="pool size (default 2)")
     r.add_argument("--no-progress", action="store_true")
+    r.add_argument("--timeout", type=float, default=DEFAULT_TIMEOUT_S,
+                   help=f"seconds per solver run before it is stopped and recorded as failed (default {DEFAULT_TIMEOUT_S:g})")
     rp = sub.add_parser("report", help="rebuild tables, figures and README from records")
     rp.add_argument("--tiny", action="store_true")
     rp.add_argument("--out")

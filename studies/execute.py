@@ -14,6 +14,7 @@ calls it serially, outside any pool.
 from __future__ import annotations
 
 import os
+import signal
 import statistics
 import time
 import traceback
@@ -25,6 +26,15 @@ from .solvers import get_solver
 
 DEFAULT_REPEATS = 3
 DEFAULT_BUDGET_S = 5.0
+DEFAULT_TIMEOUT_S = 300.0  # a run longer than this is stopped and recorded as failed
+
+
+class CaseTimeout(Exception):
+    pass
+
+
+def _alarm(signum, frame):
+    raise CaseTimeout("stopped by the runner's time limit")
 
 
 def _failed(case: Case, exc: BaseException) -> dict:
@@ -43,34 +53,47 @@ def _annotate(rec: dict, case: Case, started: float) -> dict:
     return rec
 
 
-def _run_once(case: Case) -> tuple[dict, float]:
+def _run_once(case: Case, timeout_s: float | None = None) -> tuple[dict, float]:
+    """One solver call; a solver error or a run beyond ``timeout_s`` (SIGALRM, main
+    thread: pool and MPI workers run tasks there) gives a failed record."""
     run = get_solver(case.solver).run
+    armed = bool(timeout_s) and hasattr(signal, "setitimer")
+    if armed:
+        previous = signal.signal(signal.SIGALRM, _alarm)
+        signal.setitimer(signal.ITIMER_REAL, timeout_s)
     t0 = time.perf_counter()
     try:
         rec = run(case.scene)
     except Exception as e:  # recorded, never lost: the study goes on
         rec = _failed(case, e)
+        if isinstance(e, CaseTimeout):
+            rec["reason"] = f"timeout: stopped after {timeout_s:g} s"
+            rec["timed_out"] = True
+    finally:
+        if armed:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, previous)
     return rec, time.perf_counter() - t0
 
 
-def execute(case: Case) -> dict:
+def execute(case: Case, timeout_s: float | None = DEFAULT_TIMEOUT_S) -> dict:
     """Run ``case`` once; return its record (never raises for a solver error)."""
     t0 = time.perf_counter()
-    rec, _ = _run_once(case)
+    rec, _ = _run_once(case, timeout_s)
     return _annotate(rec, case, t0)
 
 
-def execute_timed(case: Case) -> dict:
+def execute_timed(case: Case, timeout_s: float | None = DEFAULT_TIMEOUT_S) -> dict:
     """Warm-up, then the median of up to N timed runs (see the module doc)."""
     t0 = time.perf_counter()
     opts = case.timing or {}
     repeats = int(opts.get("repeats", DEFAULT_REPEATS))
     budget = float(opts.get("budget_s", DEFAULT_BUDGET_S))
-    rec, warm = _run_once(case)
+    rec, warm = _run_once(case, timeout_s)
     samples, solve = [], []
     if rec.get("status") == "converged":
         while len(samples) < repeats and (not samples or sum(samples) + samples[-1] <= budget):
-            rec, dt = _run_once(case)
+            rec, dt = _run_once(case, timeout_s)
             samples.append(dt)
             solve.append(rec.get("wall_s"))
     rec["timing"] = {

@@ -11,7 +11,8 @@
      (rank 0 runs this program, the other ranks are the workers);
    - ``serial``: this process (tests, debugging).
 
-   Each record is appended (flush + fsync) the moment its future completes.
+   Each record is appended (flush + fsync) the moment its future completes. A run
+   longer than ``timeout_s`` is stopped inside its worker and recorded as failed.
 3. Cases with a ``timing`` option then run serially in this process, after the pool
    has shut down (warm-up, median of N: :func:`studies.execute.execute_timed`), so that
    timings never come from a busy machine.
@@ -27,7 +28,7 @@ from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
 from .case import Case
-from .execute import execute, execute_timed
+from .execute import DEFAULT_TIMEOUT_S, execute, execute_timed
 from .store import RecordStore
 
 EXECUTORS = ("pool", "mpi", "serial")
@@ -85,7 +86,8 @@ def pending(cases: Sequence[Case], store: RecordStore, force: bool = False) -> l
 
 
 def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: str | None = None,
-              workers: int = DEFAULT_WORKERS, force: bool = False, progress: bool = True) -> RunSummary:
+              workers: int = DEFAULT_WORKERS, force: bool = False, progress: bool = True,
+              timeout_s: float | None = DEFAULT_TIMEOUT_S) -> RunSummary:
     t0 = time.perf_counter()
     cases = list(dict.fromkeys(cases))  # the same case twice runs once
     todo = pending(cases, store, force)
@@ -106,10 +108,10 @@ def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: s
     with _progress(len(todo), study, progress) as bar:
         if pooled and (executor == "serial" or (executor == "pool" and workers <= 1)):
             for c in pooled:
-                done(execute(c), "serial")
+                done(execute(c, timeout_s), "serial")
         elif pooled:
             with _make_executor(executor, workers) as ex:
-                futures = {ex.submit(execute, c): c for c in pooled}
+                futures = {ex.submit(execute, c, timeout_s): c for c in pooled}
                 for fut in cf.as_completed(futures):
                     try:
                         rec = fut.result()
@@ -117,7 +119,7 @@ def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: s
                         rec = _mark_worker_death(futures[fut], e)
                     done(rec, executor)
         for c in timed:
-            done(execute_timed(c), "serial-timed")
+            done(execute_timed(c, timeout_s), "serial-timed")
     store.compact(c.id for c in cases)
     summary.seconds = time.perf_counter() - t0
     return summary

@@ -236,3 +236,18 @@ def test_a_tiny_study_runs_through_mpiexec(tmp_path):
     assert len(recs) == 12
     assert all(x["status"] == "converged" and x["run"]["executor"] == "mpi" for x in recs.values())
     assert (out / "table3.md").exists() and (out / "README.md").exists()
+
+
+def test_a_run_beyond_the_time_limit_is_stopped_and_recorded(tmp_path, fake_solver):
+    def forever(scene):
+        while True:
+            time.sleep(0.01)
+
+    fake_solver.behaviour = forever
+    case = make_case("t", "fake", small_cases()[0].scene)
+    store = RecordStore(tmp_path / "t.jsonl")
+    t0 = time.perf_counter()
+    s = run_cases("t", [case], store, executor="serial", progress=False, timeout_s=0.3)
+    assert time.perf_counter() - t0 < 5 and s.failed == 1
+    rec = store.read()[case.id]
+    assert rec["status"] == "failed" and rec["timed_out"] and "timeout" in rec["reason"]
