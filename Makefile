@@ -4,7 +4,7 @@ PY := .venv/bin/python
 export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 
-.PHONY: setup test test-slow study bench bench-penalty clean-venv
+.PHONY: setup test test-slow study bench bench-penalty bench-peers clean-venv
 
 setup:
 	@bash tools/setup.sh
@@ -20,9 +20,14 @@ study: setup
 
 bench: setup
 	$(PY) -m studies.bench table3
+	$(PY) -m studies.bench pendulum
 
 bench-penalty: setup
 	$(PY) -m studies.bench penalty
+
+# Exudyn in a separate venv (.venv-peers), never in .venv
+bench-peers: setup
+	bash tools/setup_peers.sh && $(PY) -m studies.peers.compare
 
 clean-venv:
 	rm -rf .venv

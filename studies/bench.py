@@ -2,6 +2,7 @@
 
     python -m studies.bench table3    # the twelve ANCF cells of the paper's Table 3
     python -m studies.bench penalty   # static convergence over alpha = 10..1e5 C10
+    python -m studies.bench pendulum  # the paper's Table 4 grid, each case at its converged step
 
 Speed is measured here, never asserted in tests.
 """
@@ -12,6 +13,8 @@ import itertools
 import statistics
 import sys
 import time
+
+import numpy as np
 
 from ancf.run import run_scene
 from ancf.scene import scene_from_dict
@@ -78,13 +81,69 @@ def penalty(elements=(16, 160, 640), factors=(1e1, 1e2, 1e3, 1e4, 1e5)) -> bool:
     return ok
 
 
+def pendulum_scene(element: str, n: int, formulation: str, dt: float, rho_inf: float = 0.8) -> dict:
+    """The paper's pendulum (Yeoh) as a scene dict."""
+    return {
+        "name": f"pendulum-yeoh-{formulation}-{element}-{n}",
+        "beam": dict(paper.PENDULUM),
+        "material": paper.material_table("yeoh", formulation),
+        "ancf": {"element": element, "elements": n},
+        "supports": {"left": "pin"},
+        "loads": {"gravity": [0.0, -paper.GRAVITY]},
+        "analysis": {"kind": "dynamic", "t_end": 0.5, "dt": dt, "rho_inf": rho_inf,
+                     "output_times": [0.0, 0.1, 0.2, 0.3, 0.4, 0.5]},
+    }
+
+
+def tips(rec) -> np.ndarray:
+    return np.array([[h["x"], h["y"]] for h in rec["tip_history"]])
+
+
+def converged_step(element, n, formulation, rho_inf=0.8, dt0=8e-3, tol=1e-4, dt_floor=1e-4):
+    """The largest fixed dt (halving from dt0) whose tip positions at all output times
+    are within ``tol`` (0.1 mm) of the dt/2 run; returns (dt, difference in m)."""
+    dt = dt0
+    prev = run_scene(scene_from_dict(pendulum_scene(element, n, formulation, dt, rho_inf)))[0]
+    while dt / 2 >= dt_floor:
+        half = run_scene(scene_from_dict(pendulum_scene(element, n, formulation, dt / 2, rho_inf)))[0]
+        if prev["status"] == "converged" and half["status"] == "converged":
+            diff = float(np.abs(tips(prev) - tips(half)).max())
+            if diff <= tol:
+                return dt, diff
+        dt, prev = dt / 2, half
+    return None, None
+
+
+def pendulum(repeats: int = 5, rho_inf: float = 0.8, formulations=("plane-stress", "paper")) -> None:
+    print(f"Table 4 grid: pendulum (Yeoh, 0.5 s), generalized-alpha rho_inf = {rho_inf}; each case "
+          f"at its converged step (largest dt whose tip positions are within 0.1 mm of the dt/2 "
+          f"run); wall time = median of {repeats} warm runs, one process, one thread; the "
+          f"paper's CPU time on an i5-5200U for comparison")
+    for form in formulations:
+        print(f"\n{form}")
+        print(f"{'element':8s} {'n':>3s} {'ndof':>5s} {'dt ms':>6s} {'steps':>6s} {'newton':>6s} "
+              f"{'wall s':>7s} {'paper s':>8s} {'paper/ours':>10s}")
+        for element, n in itertools.product(("HB2n-12", "HB3n-12", "HB2n-16"), (4, 8, 16, 32)):
+            dt, _ = converged_step(element, n, form, rho_inf)
+            paper_s = paper.table4()[(element, n)]
+            if dt is None:
+                print(f"{element:8s} {n:3d}  no converged step above 0.1 ms")
+                continue
+            rec, wall = _timed(scene_from_dict(pendulum_scene(element, n, form, dt, rho_inf)), repeats)
+            print(f"{element:8s} {n:3d} {rec['ndof']:5d} {dt * 1e3:6.3f} {rec['steps']:6d} "
+                  f"{rec['newton_iterations']:6d} {wall:7.3f} {paper_s:8.1f} {paper_s / wall:10.0f}")
+            sys.stdout.flush()
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m studies.bench")
-    p.add_argument("which", choices=("table3", "penalty", "all"), nargs="?", default="table3")
+    p.add_argument("which", choices=("table3", "penalty", "pendulum", "all"), nargs="?", default="table3")
     p.add_argument("--repeats", type=int, default=5)
     a = p.parse_args(argv)
     if a.which in ("table3", "all"):
         table3(a.repeats)
+    if a.which in ("pendulum", "all"):
+        pendulum(a.repeats)
     if a.which in ("penalty", "all"):
         return 0 if penalty() else 1
     return 0
