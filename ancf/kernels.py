@@ -25,6 +25,7 @@ def assemble_force_tangent(F, WD, dN, w, dofs, b, n, with_tangent):
     f = np.zeros(n)
     ab = np.zeros((2 * b + 1, n)) if with_tangent else np.zeros((1, 1))
     A = np.empty((4, 4))
+    T = np.empty((ns, 2, 4))
     P = np.empty(4)
     c = np.empty(4)
     for e in range(ne):
@@ -53,18 +54,19 @@ def assemble_force_tangent(F, WD, dN, w, dofs, b, n, with_tangent):
             A[3, 0] += wj
             A[1, 2] -= wj
             A[2, 1] -= wj
-            # K_(a i, b k) = w sum_jl dN_a,j A_(2i+j, 2k+l) dN_b,l
+            # K_(a i, b k) = w sum_l T_(a i, k l) dN_b,l,  T_(a i, k l) = sum_j dN_a,j A_(2i+j, 2k+l)
+            for a in range(ns):
+                for i in range(2):
+                    for kl in range(4):
+                        T[a, i, kl] = wq * (dN[q, a, 0] * A[2 * i, kl] + dN[q, a, 1] * A[2 * i + 1, kl])
             for a in range(ns):
                 for i in range(2):
                     r = dofs[e, 2 * a + i]
                     for bb in range(ns):
+                        d0, d1 = dN[q, bb, 0], dN[q, bb, 1]
                         for k in range(2):
                             col = dofs[e, 2 * bb + k]
-                            s = 0.0
-                            for j in range(2):
-                                for l in range(2):
-                                    s += dN[q, a, j] * A[2 * i + j, 2 * k + l] * dN[q, bb, l]
-                            ab[b + r - col, col] += wq * s
+                            ab[b + r - col, col] += T[a, i, 2 * k] * d0 + T[a, i, 2 * k + 1] * d1
     return f, ab
 
 
