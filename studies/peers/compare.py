@@ -1,0 +1,180 @@
+"""Side by side with a peer: our HB2n-12 plane-stress Yeoh pendulum against Exudyn's
+ANCF cable pendulum, timed in the same run (``make bench-peers``).
+
+    .venv/bin/python -m studies.peers.compare [--dt 1e-3] [--rho-inf 0.8] [--repeats 5]
+
+Ours: ``scenes/pendulum-yeoh-plane-stress.toml`` (32 x HB2n-12, plane-stress Yeoh,
+generalized-alpha) with the given dt and rho_inf; the wall time is the median of the
+records' ``wall_s`` over ``--repeats`` warm runs of :func:`ancf.run.run_scene` in this
+process (one untimed run first: numba compilation, caches). Exudyn: the script
+``exudyn_pendulum.py`` beside this file, run with ``.venv-peers/bin/python`` (made by
+``tools/setup_peers.sh``), with the same dt, rho_inf and repeats; it prints its settings
+and the median wall time of its ``SolveDynamic`` calls as JSON on its last line.
+
+The two models differ in physics: Exudyn's ObjectANCFCable2D is an Euler-Bernoulli,
+linear elastic cable (E = 6 C10, no thickness deformation); ours is a 2D continuum
+beam with the incompressible plane-stress Yeoh law. The tip-position differences are
+reported, not asserted. Times are printed, never asserted.
+"""
+from __future__ import annotations
+
+import os
+
+for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_v, "1")                 # one thread, before numpy loads
+
+import argparse
+import json
+import math
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+SCENE = ROOT / "scenes" / "pendulum-yeoh-plane-stress.toml"
+PEER_SCRIPT = Path(__file__).with_name("exudyn_pendulum.py")
+PEER_PYTHON = ROOT / ".venv-peers" / "bin" / "python"
+TARGET_RATIO = 3.0          # issue 4: ours within 3x of Exudyn's time
+
+
+def ours(dt: float, rho_inf: float, repeats: int = 5, scene_path: Path = SCENE) -> dict:
+    """Time our pendulum: {'wall_s': [...], 'wall_median_s', 'first_run_s', 'setup_s',
+    'steps', 'newton_iterations', 'ndof', 'elements', 'element', 'tip_history'}."""
+    from ancf.run import run_scene
+    from ancf.scene import load_scene, scene_from_dict
+
+    d = load_scene(scene_path).to_dict()
+    d["analysis"].update(dt=dt, rho_inf=rho_inf)
+    scene = scene_from_dict(d)
+    t0 = time.perf_counter()
+    first, _ = run_scene(scene)                    # warm-up: numba compile, caches
+    first_s = time.perf_counter() - t0
+    recs = [run_scene(scene)[0] for _ in range(repeats)]
+    for r in [first, *recs]:
+        if r["status"] != "converged":
+            raise RuntimeError(f"our pendulum failed: {r['reason']}")
+    last = recs[-1]
+    return {
+        "element": scene.ancf.element, "elements": scene.ancf.elements,
+        "formulation": scene.material.formulation, "law": scene.material.law,
+        "integrator": last["integrator"], "dt": dt, "rho_inf": rho_inf,
+        "wall_s": [r["wall_s"] for r in recs], "wall_median_s": statistics.median(r["wall_s"] for r in recs),
+        "setup_median_s": statistics.median(r["setup_s"] for r in recs), "first_run_s": first_s,
+        "steps": last["steps"], "rejected_steps": last["rejected_steps"],
+        "newton_iterations": last["newton_iterations"], "ndof": last["ndof"],
+        "tip_history": last["tip_history"],
+    }
+
+
+def parse_peer_output(stdout: str) -> dict:
+    """The JSON object on the last non-empty line of the peer script's stdout."""
+    lines = [ln for ln in stdout.splitlines() if ln.strip()]
+    if not lines:
+        raise RuntimeError("the peer script printed nothing")
+    try:
+        out = json.loads(lines[-1])
+    except json.JSONDecodeError as e:
+        raise RuntimeError(f"the peer script's last line is not JSON: {lines[-1][:200]!r}") from e
+    if out.get("status") != "converged":
+        raise RuntimeError(f"the peer run failed: {out.get('reason')}")
+    return out
+
+
+def peer(dt: float, rho_inf: float, repeats: int = 5, python: Path = PEER_PYTHON,
+         module: str = "fast") -> dict:
+    """Run the Exudyn script in .venv-peers (in a scratch directory, so that nothing it
+    might write lands in the repository) and return its JSON output."""
+    if not Path(python).exists():
+        raise SystemExit(f"{python} not found: run `bash tools/setup_peers.sh` first")
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME")}
+    cmd = [str(python), str(PEER_SCRIPT), "--dt", repr(dt), "--rho-inf", repr(rho_inf),
+           "--repeats", str(repeats), "--module", module]
+    with tempfile.TemporaryDirectory(prefix="exudyn-peer-") as cwd:
+        p = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
+    if p.returncode != 0:
+        raise RuntimeError(f"peer script exited {p.returncode}:\n{p.stdout[-2000:]}\n{p.stderr[-2000:]}")
+    return parse_peer_output(p.stdout)
+
+
+def tip_differences(ours_tips: list[dict], peer_tips: list[dict]) -> list[dict]:
+    """Ours minus peer at the peer's output times, in mm: {'t', 'dx', 'dy', 'dist'}."""
+    by_t = {round(r["t"], 9): r for r in ours_tips}
+    out = []
+    for q in peer_tips:
+        r = by_t.get(round(q["t"], 9))
+        if r is None:
+            raise RuntimeError(f"our run has no tip position at t = {q['t']}")
+        dx, dy = (r["x"] - q["x"]) * 1e3, (r["y"] - q["y"]) * 1e3
+        out.append({"t": q["t"], "x": r["x"], "y": r["y"], "peer_x": q["x"], "peer_y": q["y"],
+                    "dx": dx, "dy": dy, "dist": math.hypot(dx, dy)})
+    return out
+
+
+def format_table(o: dict, p: dict, load: tuple | None = None) -> str:
+    """The report: times, ratio, steps, tip differences, the peer's settings."""
+    s = p["settings"]
+    ratio = o["wall_median_s"] / p["solve_median_s"]
+    lines = [
+        f"Flexible pendulum, 0.5 s, dt = {o['dt']:g} s, rho_inf = {o['rho_inf']:g}; "
+        f"wall time = median of {len(o['wall_s'])} warm runs, one thread",
+        "",
+        f"{'solver':34s} {'dofs':>5s} {'steps':>5s} {'newton':>6s} {'median s':>9s} {'runs s':s}",
+        f"{'ours: ' + o['element'] + ' x' + str(o['elements']) + ' ' + o['law'] + ' ' + o['formulation']:34s} "
+        f"{o['ndof']:5d} {o['steps']:5d} {o['newton_iterations']:6d} {o['wall_median_s']:9.4f} "
+        + " ".join(f"{t:.4f}" for t in o["wall_s"]),
+        f"{'Exudyn ' + s['exudyn'] + ': ANCFCable2D x' + str(s['elements']):34s} "
+        f"{'':>5s} {s['steps']:5d} {p['counters']['newtonSteps']:6d} {p['solve_median_s']:9.4f} "
+        + " ".join(f"{t:.4f}" for t in p["solve_s"]),
+        "",
+        f"ratio ours / Exudyn: {ratio:.2f} (target: within {TARGET_RATIO:g}x) -> "
+        + ("within target" if ratio <= TARGET_RATIO else "NOT within target"),
+        f"ours: first run (numba compile, caches) {o['first_run_s']:.2f} s, set-up per run "
+        f"{o['setup_median_s']:.3f} s (not in the wall time); rejected steps {o['rejected_steps']}",
+        f"Exudyn: system build + Assemble {p['build_median_s']:.4f} s (not in the wall time); "
+        f"Jacobian updates {p['counters']['newtonJacobians']}",
+        "",
+        "Tip position (free-end centre line), ours minus Exudyn, mm "
+        "(2D hyperelastic continuum beam vs Euler-Bernoulli linear elastic cable: reported, not asserted)",
+        f"{'t s':>5s} {'ours x':>9s} {'ours y':>9s} {'Exu x':>9s} {'Exu y':>9s} {'dx':>8s} {'dy':>8s} {'|d|':>8s}",
+    ]
+    for d in tip_differences(o["tip_history"], p["tip_history"]):
+        lines.append(f"{d['t']:5.2f} {d['x'] * 1e3:9.2f} {d['y'] * 1e3:9.2f} {d['peer_x'] * 1e3:9.2f} "
+                     f"{d['peer_y'] * 1e3:9.2f} {d['dx']:8.2f} {d['dy']:8.2f} {d['dist']:8.2f}")
+    lines += ["", "Exudyn settings:"]
+    for k, v in s.items():
+        if isinstance(v, dict):
+            lines += [f"  {k}:"] + [f"    {k2} = {v2}" for k2, v2 in v.items()]
+        else:
+            lines.append(f"  {k} = {v}")
+    if load is not None:
+        lines += ["", "load average (1, 5, 15 min): before " + " ".join(f"{x:.2f}" for x in load[0])
+                  + ", after " + " ".join(f"{x:.2f}" for x in load[1])]
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m studies.peers.compare", description=__doc__.splitlines()[0])
+    ap.add_argument("--dt", type=float, default=1e-3, help="fixed step, s (default 1e-3: the converged "
+                    "step of the 32 x HB2n-12 pendulum)")
+    ap.add_argument("--rho-inf", type=float, default=0.8, help="generalized-alpha spectral radius (default 0.8)")
+    ap.add_argument("--repeats", type=int, default=5, help="timed warm runs per solver (default 5)")
+    ap.add_argument("--peer-python", type=Path, default=PEER_PYTHON)
+    ap.add_argument("--module", choices=("fast", "regular"), default="fast",
+                    help="Exudyn's compiled module (default fast: no range checks, AVX2)")
+    ap.add_argument("--json", type=Path, help="also write both results as JSON here")
+    a = ap.parse_args(argv)
+    load0 = os.getloadavg()
+    o = ours(a.dt, a.rho_inf, a.repeats)
+    p = peer(a.dt, a.rho_inf, a.repeats, a.peer_python, a.module)
+    load1 = os.getloadavg()
+    print(format_table(o, p, (load0, load1)))
+    if a.json:
+        a.json.write_text(json.dumps({"ours": o, "exudyn": p, "load": [load0, load1]}, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

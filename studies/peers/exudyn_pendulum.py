@@ -1,0 +1,184 @@
+"""The paper's flexible pendulum in Exudyn (peer benchmark; runs in `.venv-peers`).
+
+    .venv-peers/bin/python studies/peers/exudyn_pendulum.py [--dt 1e-3] [--rho-inf 0.8]
+
+Imports only exudyn, numpy and the standard library (not ``ancf``): this file runs in the
+separate venv that ``tools/setup_peers.sh`` creates, never in ``.venv``.
+
+The model: 32 ObjectANCFCable2D elements (Euler-Bernoulli, linear elastic, 2 nodes with
+position and slope, 8 coordinates each), L = 0.350 m, h = 0.005 m, w = 0.007 m, density
+2150 kg/m^3, E = 6 C10 with C10 = 0.545235 MPa (the small-strain Young's modulus of the
+incompressible plane-stress Yeoh law: E = 3 mu, mu = 2 C10), A = h w, I = w h^3 / 12.
+The left node's position is held at the origin by two CoordinateConstraints (its slope,
+i.e. the rotation, is free); gravity (0, -9.81) m/s^2 on every element through
+MarkerBodyMass + LoadMassProportional; released from horizontal at rest; 0.5 s with a
+fixed step.
+
+Settings ("fastest fair"): generalized-alpha with spectral radius = rho_inf, modified
+Newton, EigenSparse linear solver, fixed step (adaptiveStep off: a failed step stops the
+run instead of being silently cut), no solution / restart / sensor files, verbose off,
+one thread. The compiled module is Exudyn's `fast` build (no range checks, AVX2) when the
+CPU has AVX2, else the regular one (``--module`` chooses).
+
+Output: one JSON object on the LAST line of stdout (anything Exudyn prints comes before
+it): the settings, the build and solve wall times of ``--repeats`` warm repetitions
+(one untimed warm-up first; each repetition builds a fresh system outside the timed
+region, then times ``SolveDynamic`` alone), their medians, and the tip (last node)
+position in m at the output times.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import statistics
+import sys
+import time
+
+L, H, W = 0.350, 0.005, 0.007          # m
+DENSITY = 2150.0                       # kg/m^3 (Yeoh, the paper's Table 2)
+C10 = 0.545235e6                       # Pa
+E = 6.0 * C10                          # Pa, small-strain modulus of incompressible plane-stress Yeoh
+GRAVITY = (0.0, -9.81)                 # m/s^2
+ELEMENTS = 32
+T_END = 0.5                            # s
+OUTPUT_TIMES = (0.1, 0.2, 0.3, 0.4, 0.5)
+
+
+def build(exu, dt: float, rho_inf: float, elements: int = ELEMENTS):
+    """A fresh SystemContainer with the assembled pendulum, its settings and the tip sensor."""
+    from exudyn.itemInterface import (CoordinateConstraint, LoadMassProportional, MarkerBodyMass,
+                                      MarkerNodeCoordinate, NodePoint2DSlope1, NodePointGround,
+                                      ObjectANCFCable2D, SensorNode, VCoordinateConstraint,
+                                      VObjectANCFCable2D)
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    A, I = H * W, W * H ** 3 / 12.0
+    le = L / elements
+    nodes = [mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[i * le, 0.0, 1.0, 0.0]))
+             for i in range(elements + 1)]
+    for i in range(elements):
+        cable = mbs.AddObject(ObjectANCFCable2D(
+            length=le, massPerLength=DENSITY * A, bendingStiffness=E * I, axialStiffness=E * A,
+            nodeNumbers=[nodes[i], nodes[i + 1]], visualization=VObjectANCFCable2D(show=False)))
+        m = mbs.AddMarker(MarkerBodyMass(bodyNumber=cable))
+        mbs.AddLoad(LoadMassProportional(markerNumber=m, loadVector=[GRAVITY[0], GRAVITY[1], 0.0]))
+    # pin: x and y of the first node held at 0 (slope coordinates free)
+    ground = mbs.AddNode(NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0]))
+    mg = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground, coordinate=0))
+    for c in (0, 1):
+        mc = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=c))
+        mbs.AddObject(CoordinateConstraint(markerNumbers=[mg, mc], visualization=VCoordinateConstraint(show=False)))
+    tip = mbs.AddSensor(SensorNode(nodeNumber=nodes[-1], outputVariableType=exu.OutputVariableType.Position,
+                                   storeInternal=True, writeToFile=False))
+    mbs.Assemble()
+
+    s = exu.SimulationSettings()
+    ti = s.timeIntegration
+    ti.solverType = exu.DynamicSolverType.GeneralizedAlpha
+    ti.generalizedAlpha.spectralRadius = rho_inf
+    ti.generalizedAlpha.useNewmark = False
+    ti.generalizedAlpha.useIndex2Constraints = False
+    ti.generalizedAlpha.computeInitialAccelerations = True
+    ti.newton.useModifiedNewton = True
+    ti.startTime = 0.0
+    ti.endTime = T_END
+    ti.numberOfSteps = int(round(T_END / dt))
+    ti.adaptiveStep = False
+    ti.automaticStepSize = False
+    ti.verboseMode = 0
+    ti.verboseModeFile = 0
+    s.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+    s.parallel.numberOfThreads = 1
+    s.solution.file.write = False
+    s.solution.restart.write = False
+    s.solution.sensors.writePeriod = dt       # sample every step; output times picked below
+    s.show.statistics = False
+    s.show.computationTime = False
+    s.show.globalTimers = False
+    return SC, mbs, s, tip
+
+
+def settings_summary(exu, s, steps: int, dt: float) -> dict:
+    ti = s.timeIntegration
+    nw = ti.newton
+    return {
+        "exudyn": exu.__version__, "module": exu.__dict__.get("_compiledModuleName", "?"),
+        "python": platform.python_version(),
+        "element": "ObjectANCFCable2D", "elements": ELEMENTS,
+        "E_Pa": E, "EA_N": E * H * W, "EI_Nm2": E * W * H ** 3 / 12.0, "rhoA_kg_m": DENSITY * H * W,
+        "pin": "CoordinateConstraint x, y of node 0 to ground (slope free)",
+        "gravity": "MarkerBodyMass + LoadMassProportional (0, -9.81, 0) per element",
+        "solverType": str(ti.solverType), "spectralRadius": ti.generalizedAlpha.spectralRadius,
+        "useNewmark": bool(ti.generalizedAlpha.useNewmark),
+        "useIndex2Constraints": bool(ti.generalizedAlpha.useIndex2Constraints),
+        "computeInitialAccelerations": bool(ti.generalizedAlpha.computeInitialAccelerations),
+        "linearSolver": str(s.linearSolver.solverType),
+        "reuseAnalyzedPattern": bool(s.linearSolver.reuseAnalyzedPattern),
+        "newton": {"useModifiedNewton": bool(nw.useModifiedNewton),
+                   "relativeTolerance": nw.relativeTolerance, "absoluteTolerance": nw.absoluteTolerance,
+                   "maxIterations": nw.maxIterations,
+                   "maxModifiedNewtonIterations": nw.maxModifiedNewtonIterations,
+                   "modifiedNewtonContractivity": nw.modifiedNewtonContractivity,
+                   "modifiedNewtonJacUpdatePerStep": bool(nw.modifiedNewtonJacUpdatePerStep),
+                   "numericalDifferentiation_forODE2": bool(nw.numericalDifferentiation.forODE2)},
+        "adaptiveStep": bool(ti.adaptiveStep), "reuseConstantMassMatrix": bool(ti.reuseConstantMassMatrix),
+        "threads": s.parallel.numberOfThreads,
+        "dt": dt, "steps": steps, "endTime": ti.endTime,
+    }
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(prog="exudyn_pendulum.py", description=__doc__.splitlines()[0])
+    p.add_argument("--dt", type=float, default=1e-3, help="fixed time step, s (default 1e-3)")
+    p.add_argument("--rho-inf", type=float, default=0.8, help="generalized-alpha spectral radius (default 0.8)")
+    p.add_argument("--repeats", type=int, default=5, help="timed warm repetitions (default 5)")
+    p.add_argument("--module", choices=("fast", "regular"), default="fast",
+                   help="Exudyn compiled module: fast (no range checks, AVX2, if the CPU has it) or regular")
+    a = p.parse_args(argv)
+    steps = int(round(T_END / a.dt))
+    if abs(steps * a.dt - T_END) > 1e-9 * T_END:
+        p.error(f"--dt {a.dt} does not divide t_end = {T_END}")
+
+    sys.exudynFast = a.module == "fast"
+    import exudyn as exu
+    import numpy as np
+
+    builds, solves, newton = [], [], None
+    tips = None
+    for rep in range(a.repeats + 1):               # rep 0: untimed warm-up
+        t0 = time.perf_counter()
+        SC, mbs, s, tip = build(exu, a.dt, a.rho_inf)
+        t1 = time.perf_counter()
+        ok = mbs.SolveDynamic(s)
+        t2 = time.perf_counter()
+        if not ok:
+            print(json.dumps({"status": "failed", "reason": "SolveDynamic returned False"}))
+            return 1
+        if rep:
+            builds.append(t1 - t0)
+            solves.append(t2 - t1)
+        data = np.asarray(mbs.GetSensorStoredData(tip))          # rows: t, x, y, z
+        tips = []
+        for t in OUTPUT_TIMES:
+            k = int(np.argmin(np.abs(data[:, 0] - t)))
+            if abs(data[k, 0] - t) > 1e-9:
+                raise RuntimeError(f"no sensor sample at t = {t} (nearest {data[k, 0]})")
+            tips.append({"t": t, "x": float(data[k, 1]), "y": float(data[k, 2])})
+        solver = mbs.sys["dynamicSolver"]
+        newton = {"newtonSteps": int(solver.it.newtonStepsCount),
+                  "newtonJacobians": int(solver.it.newtonJacobiCount),
+                  "currentStepIndex": int(solver.it.currentStepIndex)}
+        summary = settings_summary(exu, s, steps, a.dt)
+        del SC, mbs
+    print(json.dumps({
+        "status": "converged", "settings": summary, "counters": newton,
+        "repeats": a.repeats, "build_s": builds, "solve_s": solves,
+        "build_median_s": statistics.median(builds), "solve_median_s": statistics.median(solves),
+        "tip_history": tips,
+    }))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
