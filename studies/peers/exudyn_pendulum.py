@@ -168,7 +168,9 @@ def main(argv=None) -> int:
         solver = mbs.sys["dynamicSolver"]
         newton = {"newtonSteps": int(solver.it.newtonStepsCount),
                   "newtonJacobians": int(solver.it.newtonJacobiCount),
-                  "currentStepIndex": int(solver.it.currentStepIndex)}
+                  "currentStepIndex": int(solver.it.currentStepIndex),
+                  "ODE2_coordinates": int(mbs.systemData.ODE2Size()),
+                  "algebraic_coordinates": int(mbs.systemData.AEsize())}
         summary = settings_summary(exu, s, steps, a.dt)
         del SC, mbs
     print(json.dumps({
