@@ -5,6 +5,11 @@
 - ``converge SCENE.toml [--levels N] [--json OUT.json]``: refinement study, table of
   tip values per level, observed order, Richardson value and error estimate;
 - ``gold [--out DIR] [--levels N]``: regenerate tests/gold/fem_cantilever.json;
+  ``gold --pendulum [--models M ...]``: regenerate tests/gold/fem_pendulum.json
+  (three laws x models, each with its dt / 2 and refined-mesh runs);
+- ``pendulum [--law L] [--model M] [--dt DT] [--cells-height N] [--aspect A]
+  [--rho-inf R] [--integrator I] [--json OUT]``: step and mesh convergence check of
+  the paper's pendulum at one (mesh, dt): tip positions and changes per output time;
 - ``report [GOLD.json]``: markdown tables for reports/reference_fem.md from the gold file.
 """
 from __future__ import annotations
@@ -36,8 +41,15 @@ def _run(args) -> int:
     print(f"status      {rec['status']}" + (f"  ({rec['reason']})" if rec["reason"] else ""))
     if rec["tip"]:
         print(f"tip         ux = {rec['tip']['ux'] * 1e3:.4f} mm   uy = {rec['tip']['uy'] * 1e3:.4f} mm")
-    print(f"newton      {rec['newton_iterations']} iterations, {rec['load_steps']} load steps, "
-          f"{rec['rejected_steps']} rejected")
+    if rec.get("tip_history") is not None:
+        for h, e in zip(rec["tip_history"], rec["energy"]):
+            print(f"t = {h['t']:.4f} s  x = {h['x'] * 1e3:10.4f} mm  y = {h['y'] * 1e3:10.4f} mm  "
+                  f"E = {e['total']:.4e} J")
+        print(f"newton      {rec['newton_iterations']} iterations, {rec['steps']} steps, "
+              f"{rec['rejected_steps']} rejected")
+    else:
+        print(f"newton      {rec['newton_iterations']} iterations, {rec['load_steps']} load steps, "
+              f"{rec['rejected_steps']} rejected")
     print(f"time        solve {rec['wall_s']:.3f} s wall, {rec['cpu_s']:.3f} s cpu; "
           f"set-up {rec['setup_s']:.3f} s (meshing + JIT)")
     print(f"effects     {', '.join(rec['effects'] or [])}")
@@ -80,11 +92,42 @@ def _converge(args) -> int:
 
 
 def _gold(args) -> int:
+    if args.pendulum:
+        from .pendulum import write_pendulum_gold
+
+        path = write_pendulum_gold(Path(args.out), tuple(args.models), workers=args.workers,
+                                   progress=lambda m: print(m, flush=True))
+        print(f"wrote {path}")
+        return 0
     from .gold import write_gold
 
     path = write_gold(Path(args.out), args.levels, progress=print)
     print(f"wrote {path}")
     return 0
+
+
+def _pendulum(args) -> int:
+    from ancf.record import sanitize
+
+    from .pendulum import convergence_case
+
+    case = convergence_case(args.law, args.model, args.dt, args.cells_height, args.aspect,
+                            workers=args.workers, rho_inf=args.rho_inf, integrator=args.integrator)
+    for name, run in case["runs"].items():
+        f = run["fem"] or {}
+        print(f"{name:13s} {f.get('cells_length')} x {f.get('cells_height')}  ndof {run['ndof']}  "
+              f"steps {run['steps']}  newton {run['newton_iterations']}  rejected {run['rejected_steps']}  "
+              f"{run['wall_s'] or 0:.1f} s  energy drift {run['energy_drift_J'] or float('nan'):.2e} J  "
+              f"{run['status']}" + (f" ({run['reason']})" if run["reason"] else ""))
+    if case["tip_history"]:
+        print(f"{'t (s)':>6s} {'x (mm)':>10s} {'y (mm)':>10s} {'d dt/2 (mm)':>12s} {'d mesh (mm)':>12s}")
+        for h, a, b in zip(case["tip_history"], case["change_half_dt_m"], case["change_refined_mesh_m"]):
+            print(f"{h['t']:6.3f} {h['x'] * 1e3:10.4f} {h['y'] * 1e3:10.4f} {a * 1e3:12.5f} {b * 1e3:12.5f}")
+        print(f"converged (< {0.1:g} mm at t > 0): {case['converged']}")
+    if args.json:
+        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+        Path(args.json).write_text(json.dumps(sanitize(case), indent=1) + "\n")
+    return 0 if case.get("converged") else 1
 
 
 def _report(args) -> int:
@@ -113,11 +156,27 @@ def main(argv: list[str] | None = None) -> int:
     gd = sub.add_parser("gold", help="regenerate the gold file of the paper's cantilever")
     gd.add_argument("--out", default="tests/gold", help="directory (default tests/gold)")
     gd.add_argument("--levels", type=int, default=5, help="meshes per case (default 5)")
+    gd.add_argument("--pendulum", action="store_true",
+                    help="the pendulum's gold file (tests/gold/fem_pendulum.json) instead")
+    gd.add_argument("--models", nargs="+", default=["plane-stress", "plane-strain"],
+                    choices=["plane-stress", "plane-strain"], help="with --pendulum")
+    gd.add_argument("--workers", type=int, default=2, help="processes (with --pendulum)")
+    pd = sub.add_parser("pendulum", help="step and mesh convergence of the paper's pendulum")
+    pd.add_argument("--law", default="yeoh", choices=["neo-hookean", "mooney-rivlin", "yeoh"])
+    pd.add_argument("--model", default="plane-stress", choices=["plane-stress", "plane-strain"])
+    pd.add_argument("--dt", type=float, default=1e-3)
+    pd.add_argument("--cells-height", type=int, default=4)
+    pd.add_argument("--aspect", type=float, default=2.0)
+    pd.add_argument("--rho-inf", type=float, default=0.8)
+    pd.add_argument("--integrator", default="generalized-alpha", choices=["generalized-alpha", "newmark"])
+    pd.add_argument("--workers", type=int, default=2)
+    pd.add_argument("--json", metavar="OUT")
     rp = sub.add_parser("report", help="markdown tables from the gold file")
     rp.add_argument("gold", nargs="?", default="tests/gold/fem_cantilever.json")
     args = p.parse_args(argv)
     try:
-        return {"run": _run, "converge": _converge, "gold": _gold, "report": _report}[args.command](args)
+        return {"run": _run, "converge": _converge, "gold": _gold, "report": _report,
+                "pendulum": _pendulum}[args.command](args)
     except (SceneError, ValueError) as e:
         print(f"reference_fem: error: {e}", file=sys.stderr)
         return 2

@@ -11,6 +11,8 @@ Interface:
   mesh, the unknown, test functions, measures, constants, Dirichlet conditions,
   point evaluation and output;
 - :class:`NonlinearSystem`: residual, Newton increment (LU), state save/restore;
+- :class:`Functional`, :class:`VectorNorm`: a compiled scalar form's value, the norm
+  of an assembled vector form (for energies and Newton scales in dynamics);
 - :class:`PointwiseEvaluator`: a UFL expression of a constant F (and phat) evaluated
   as numbers, for checking the UFL laws against :mod:`ancf`.
 """
@@ -76,6 +78,23 @@ class Discretisation:
         self._zeros: list = []  # keep the bc value functions alive
 
     # -- data ----------------------------------------------------------------------
+    def function(self):
+        """A new function of the (mixed) space, zero."""
+        return dolfinx.fem.Function(self.W)
+
+    def split(self, f):
+        """(displacement, scaled pressure or None) of a function or argument of W."""
+        if self.pressure:
+            return ufl.split(f)
+        return f, None
+
+    def displacement_dofs(self) -> np.ndarray:
+        """Indices of the displacement components in the arrays of W."""
+        if not self.pressure:
+            return np.arange(len(self.w.x.array))
+        _, dofs = self.W.sub(0).collapse()
+        return np.asarray(dofs, dtype=np.int64)
+
     @property
     def ndof(self) -> int:
         imap = self.W.dofmap.index_map
@@ -166,12 +185,15 @@ def fixed_dof_count(bcs) -> int:
 
 
 class NonlinearSystem:
-    """R(w) = 0 with homogeneous Dirichlet conditions; Newton increments by LU (MUMPS)."""
+    """R(w) = 0 with homogeneous Dirichlet conditions; Newton increments by LU (MUMPS).
 
-    def __init__(self, disc: Discretisation, residual, bcs):
+    ``unknown``: the function of W solved for (default ``disc.w``)."""
+
+    def __init__(self, disc: Discretisation, residual, bcs, unknown=None):
         self.disc = disc
+        self.w = disc.w if unknown is None else unknown
         self.bcs = list(bcs)
-        jacobian = ufl.derivative(residual, disc.w, disc.trial)
+        jacobian = ufl.derivative(residual, self.w, disc.trial)
         self.R = dolfinx.fem.form(residual)
         self.K = dolfinx.fem.form(jacobian)
         self.b = dolfinx.fem.petsc.create_vector(self.R)
@@ -185,7 +207,7 @@ class NonlinearSystem:
 
     @property
     def x(self):
-        return self.disc.w.vector
+        return self.w.vector
 
     def residual_norm(self) -> float:
         """Assemble R at the current state (zero rows at fixed dofs); its 2-norm."""
@@ -214,13 +236,40 @@ class NonlinearSystem:
         return float(self.x.norm())
 
     def save(self) -> np.ndarray:
-        return self.disc.w.x.array.copy()
+        return self.w.x.array.copy()
 
     def restore(self, saved: np.ndarray) -> None:
-        self.disc.w.x.array[:] = saved
+        self.w.x.array[:] = saved
 
     def reset(self) -> None:
-        self.disc.w.x.array[:] = 0.0
+        self.w.x.array[:] = 0.0
+
+
+class Functional:
+    """A compiled scalar form; calling it assembles its value."""
+
+    def __init__(self, expr):
+        self.form = dolfinx.fem.form(expr)
+
+    def __call__(self) -> float:
+        return float(dolfinx.fem.assemble_scalar(self.form))
+
+
+class VectorNorm:
+    """The 2-norm of an assembled vector form, zero at the Dirichlet dofs."""
+
+    def __init__(self, expr, bcs):
+        self.form = dolfinx.fem.form(expr)
+        self.bcs = list(bcs)
+        self.b = dolfinx.fem.petsc.create_vector(self.form)
+
+    def __call__(self) -> float:
+        with self.b.localForm() as loc:
+            loc.set(0.0)
+        dolfinx.fem.petsc.assemble_vector(self.b, self.form)
+        self.b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+        dolfinx.fem.petsc.set_bc(self.b, self.bcs, scale=0.0)
+        return float(self.b.norm())
 
 
 class PointwiseEvaluator:
