@@ -235,6 +235,10 @@ class NonlinearSystem:
     def state_norm(self) -> float:
         return float(self.x.norm())
 
+    def last_increment(self) -> np.ndarray:
+        """The last Newton increment dw (array of W)."""
+        return self.dx.getArray(readonly=True)
+
     def save(self) -> np.ndarray:
         return self.w.x.array.copy()
 

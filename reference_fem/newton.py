@@ -23,6 +23,8 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable, Iterator
 
+import numpy as np
+
 
 @dataclass
 class Increment:
@@ -73,6 +75,39 @@ def newton(system, r_ref: float, rtol: float, max_iterations: int) -> tuple[int,
         if dw <= rtol * system.state_norm() and r <= math.sqrt(rtol) * r_ref:
             residuals.append(system.residual_norm())
             return it + 1, residuals
+    raise StepFailure(f"no convergence within {max_iterations} iterations "
+                      f"(residual {residuals[-1]:.3e}, target {rtol * r_ref:.3e})", max_iterations)
+
+
+def newton_dynamic(system, r_ref: float, rtol: float, max_iterations: int, dofs, utol: float,
+                   length: float) -> int:
+    """Newton for one time step, with ANCF's stopping rule (ancf.dynamics): ||R|| <=
+    rtol * r_ref, or a correction max|dw| over ``dofs`` (the displacements) <= utol *
+    max(max|w|, length). The second rule is the one that ends stiff runs, whose residual
+    has a round-off floor eps ||K|| ||u|| above rtol * r_ref (constants x 1e6). Returns
+    the iterations; raises StepFailure (non-finite values, divergence, no convergence)."""
+    residuals: list[float] = []
+    for it in range(max_iterations + 1):
+        r = system.residual_norm()
+        residuals.append(r)
+        if not math.isfinite(r):
+            raise StepFailure("non-finite residual", it)
+        if r <= rtol * r_ref:
+            return it
+        if it == max_iterations:
+            break
+        if it >= 3 and r > 1e4 * residuals[0]:
+            raise StepFailure("diverging", it)
+        try:
+            system.newton_update()
+        except ArithmeticError as e:
+            raise StepFailure(str(e), it) from None
+        dw = np.abs(system.last_increment()[dofs])
+        if not np.all(np.isfinite(dw)):
+            raise StepFailure("non-finite increment", it + 1)
+        w = system.save()[dofs]
+        if dw.max() <= utol * max(np.abs(w).max(), length):
+            return it + 1
     raise StepFailure(f"no convergence within {max_iterations} iterations "
                       f"(residual {residuals[-1]:.3e}, target {rtol * r_ref:.3e})", max_iterations)
 

@@ -31,8 +31,8 @@ from .settings import FemSettings, fem_settings
 
 def check_static(scene: Scene) -> None:
     if scene.analysis.kind != "static":
-        raise SceneError(f"analysis.kind: {scene.analysis.kind!r} is not available yet in "
-                         "reference_fem; allowed: 'static'")
+        raise SceneError(f"analysis.kind: {scene.analysis.kind!r}: refinement studies are "
+                         "static only (dynamic scenes: `run`, `pendulum`); allowed: 'static'")
 
 
 def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | None = None,

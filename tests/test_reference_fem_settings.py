@@ -75,10 +75,11 @@ def test_paper_scenes_need_a_model():
         _settings(fem={"model": "plane stress"}, formulation="paper")
 
 
-def test_dynamic_scenes_are_refused():
+def test_refinement_studies_refuse_dynamic_scenes():
+    """`converge` is static only (the pendulum has `python -m reference_fem pendulum`)."""
     d = cantilever_dict("yeoh", "plane-stress")
     d["analysis"] = {"kind": "dynamic", "t_end": 0.5, "dt": 1e-3}
-    with pytest.raises(SceneError, match=r"analysis\.kind.*not available yet"):
+    with pytest.raises(SceneError, match=r"analysis\.kind.*static only"):
         check_static(scene_from_dict(d))
 
 
