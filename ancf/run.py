@@ -43,6 +43,16 @@ def tip_position(model, u) -> np.ndarray:
     return np.array([model.mesh.length, 0.0]) + model.tip_displacement(u)
 
 
+def default_energy_limit(scene: Scene) -> float:
+    """1e-3 m |g| L / 2 (J): a thousandth of the pendulum's potential-energy scale; inf
+    without gravity."""
+    if scene.loads.gravity is None:
+        return float("inf")
+    b = scene.beam
+    m = scene.material.density * b.length * b.height * b.width
+    return 1e-3 * m * float(np.hypot(*scene.loads.gravity)) * b.length / 2
+
+
 def _run_dynamic(scene: Scene, model, rec: dict, t0: float):
     a = scene.analysis
     M = model.mass_matrix()
@@ -57,11 +67,14 @@ def _run_dynamic(scene: Scene, model, rec: dict, t0: float):
     integrator = INTEGRATORS[a.integrator](model, M, f_ext, a.rho_inf, a.newton_rtol, a.max_iterations)
     integrator.initial_state(u0)  # warm caches
     rec["setup_s"] = time.perf_counter() - t0
-    res = integrator.run(u0, a.t_end, a.dt, a.output_times, a.dt_min, a.tolerance)
+    limit = a.energy_limit if a.energy_limit is not None else default_energy_limit(scene)
+    res = integrator.run(u0, a.t_end, a.dt, a.output_times, a.dt_min, a.tolerance,
+                         energy_limit=None if limit == float("inf") else limit)
     rec.update(
         status=res.status, reason=res.reason, ndof=model.n_free,
         newton_iterations=res.newton_iterations, steps=res.steps, rejected_steps=res.rejected_steps,
         cpu_s=res.cpu_s, wall_s=res.wall_s, effects=sorted(model.effects),
+        energy_limit=limit,
         integrator={"name": a.integrator, "rho_inf": a.rho_inf,
                     **{k: getattr(integrator, k) for k in ("alpha_m", "alpha_f", "gamma", "beta")}},
     )

@@ -23,10 +23,10 @@ from .laws import LAWS
 SUPPORTS = ("clamp", "pin")
 CLAMPS = ("face", "all")
 ANALYSES = ("static", "dynamic")
-INTEGRATORS = ("generalized-alpha", "newmark")
+INTEGRATORS = ("generalized-alpha", "newmark", "discrete-gradient")  # ancf.dynamics.INTEGRATORS
 STATIC_KEYS = ("kind", "load_steps", "newton_rtol", "max_iterations")
 DYNAMIC_KEYS = ("kind", "t_end", "dt", "dt_min", "tolerance", "output_times", "integrator",
-                "rho_inf", "newton_rtol", "max_iterations")
+                "rho_inf", "newton_rtol", "max_iterations", "energy_limit")
 
 
 @dataclass(frozen=True)
@@ -79,6 +79,7 @@ class Analysis:
     output_times: tuple[float, ...] | None = None
     integrator: str = "generalized-alpha"
     rho_inf: float = 0.8
+    energy_limit: float | None = None  # J; None: 1e-3 m |g| L / 2 (with gravity); inf: no check
 
 
 @dataclass(frozen=True)
@@ -233,6 +234,15 @@ def _loads(t) -> Loads:
                  tip_force=_vector("loads.tip_force", t["tip_force"]) if "tip_force" in t else None)
 
 
+def _energy_limit(t):
+    if "energy_limit" not in t:
+        return None
+    v = t["energy_limit"]
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not v > 0:
+        raise SceneError(f"analysis.energy_limit: must be a positive number of J (inf: no check), got {v!r}")
+    return float(v)
+
+
 def _analysis(t) -> Analysis:
     kind = _choice("analysis.kind", t.get("kind"), ANALYSES)
     if kind == "static":
@@ -264,6 +274,7 @@ def _analysis(t) -> Analysis:
         output_times=out,
         integrator=_choice("analysis.integrator", t.get("integrator", Analysis.integrator), INTEGRATORS),
         rho_inf=rho_inf,
+        energy_limit=_energy_limit(t),
         newton_rtol=_positive("analysis.newton_rtol", t.get("newton_rtol", Analysis.newton_rtol)),
         max_iterations=_positive("analysis.max_iterations", t.get("max_iterations", Analysis.max_iterations), int),
     )

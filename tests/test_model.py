@@ -174,3 +174,22 @@ def test_compiled_kernel_matches_the_numpy_reference(element, law, form, rng):
     x = rng.standard_normal(u.size)
     np.testing.assert_allclose(K.matvec(x), K_ref.to_sparse() @ x, rtol=0,
                                atol=1e-12 * np.abs(K_ref.ab).max() * np.abs(x).sum())
+
+
+@pytest.mark.parametrize("element,law,form", CASES)
+def test_discrete_gradient_identity(element, law, form, rng):
+    """(u1 - u0) . f_dg(u0, u1) = U(u1) - U(u0) to round-off for a finite step, and
+    f_dg -> f_int at the midpoint as u1 -> u0 (second order)."""
+    model = make_model(element, law, form)
+    u0 = bent_state(model, rng, angle=0.2)
+    u1 = bent_state(model, rng, angle=0.25)
+    f, _ = model.discrete_gradient_force_and_tangent(u0, u1)
+    dU = model.strain_energy(u1) - model.strain_energy(u0)
+    scale = abs(model.strain_energy(u1)) + abs(model.strain_energy(u0))
+    assert (u1 - u0) @ f == pytest.approx(dU, abs=1e-11 * scale)
+    errs = []
+    for h in (1e-3, 5e-4):
+        v = u0 + h * (u1 - u0)
+        fdg, _ = model.discrete_gradient_force_and_tangent(u0, v)
+        errs.append(np.abs(fdg - model.internal_force(0.5 * (u0 + v))).max())
+    assert errs[1] < 0.3 * errs[0] or errs[1] < 1e-9 * np.abs(f).max()
