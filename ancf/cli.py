@@ -15,10 +15,18 @@ def _run(args) -> int:
     from .scene import load_scene
 
     scene = load_scene(args.scene)
-    rec, _ = run_scene(scene)
+    rec, (model, res) = run_scene(scene)
     rec = sanitize(rec)
     if args.json:
         write_record(rec, args.json)
+    if args.vtk and res is not None and getattr(res, "u", True) is not None:
+        from .output import frame_strip, write_vtk
+        states = [(s.t, s.u) for s in res.states] if scene.analysis.kind == "dynamic" else [(0.0, res.u)]
+        pvd = write_vtk(model, states, args.vtk, scene.name)
+        extra = ""
+        if rec.get("configurations"):
+            extra = f" and {frame_strip(rec['configurations'], pvd.with_name(scene.name + '-frames.png'), scene.name)}"
+        print(f"vtk         {pvd}{extra}")
     print(f"scene       {scene.name}  ({scene.ancf.element} x {scene.ancf.elements}, "
           f"{scene.material.law}, {scene.material.formulation}, ndof {rec['ndof']})")
     print(f"status      {rec['status']}" + (f"  ({rec['reason']})" if rec["reason"] else ""))
@@ -55,6 +63,8 @@ def main(argv: list[str] | None = None) -> int:
     r = sub.add_parser("run", help="solve one scene file")
     r.add_argument("scene", help="scene file (TOML)")
     r.add_argument("--json", metavar="OUT", help="write the result record here")
+    r.add_argument("--vtk", metavar="DIR", help="write the deformed beam (.vtu per output time, .pvd) "
+                                                  "and, for dynamics, a frame strip PNG here")
     sub.add_parser("elements", help="list the registered elements")
     sub.add_parser("laws", help="list the registered laws")
     sub.add_parser("formulations", help="list the 2D formulations")

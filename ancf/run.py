@@ -79,6 +79,10 @@ def _run_dynamic(scene: Scene, model, rec: dict, t0: float):
                     **{k: getattr(integrator, k) for k in ("alpha_m", "alpha_f", "gamma", "beta")}},
     )
     rec["tip_history"] = [dict(zip(("t", "x", "y"), (s.t, *tip_position(model, s.u)))) for s in res.states]
+    rec["configurations"] = []
+    for s in res.states:
+        line = model.centre_line(s.u, per_element=4)
+        rec["configurations"].append({"t": s.t, "x": line[:, 0].tolist(), "y": line[:, 1].tolist()})
     rec["energy"] = []
     for s in res.states:
         k, e, g = integrator.energies(s)

@@ -219,3 +219,34 @@ def test_rho_inf_extremes_stay_within_the_energy_bound(rho):
     rec, _ = run_scene(scene_from_dict(pendulum_scene(t_end=0.2, rho_inf=rho)))
     assert rec["status"] == "converged", rec["reason"]
     assert _energy_drift(rec) < rec["energy_limit"]
+
+
+def test_cli_vtk_and_frame_strip(tmp_path):
+    """`ancf run --vtk DIR`: a .vtu per output time (valid XML, 4 x 2 quads per
+    element, displacement zero at t = 0), a .pvd collection and a frame strip PNG; the
+    record carries the centre-line configurations."""
+    import subprocess
+    import sys
+    import xml.etree.ElementTree as ET
+    import tomllib
+
+    from ancf.scene import load_scene
+    s = pendulum_scene(n=4, t_end=0.02, dt=1e-3)
+    scene_file = tmp_path / "p.toml"
+    scene_file.write_text("\n".join(
+        [f'name = "p"'] + [f"[{k}]\n" + "\n".join(f"{kk} = {v!r}".replace("'", '"') for kk, v in t.items())
+                           for k, t in s.items() if isinstance(t, dict)]))
+    assert load_scene(scene_file).ancf.elements == 4
+    out = tmp_path / "vtk"
+    p = subprocess.run([sys.executable, "-m", "ancf", "run", str(scene_file), "--vtk", str(out),
+                        "--json", str(tmp_path / "r.json")], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    vtus = sorted(out.glob("p_*.vtu"))
+    assert len(vtus) == 6 and (out / "p.pvd").exists() and (out / "p-frames.png").stat().st_size > 1000
+    piece = ET.parse(vtus[0]).getroot().find(".//Piece")
+    assert int(piece.get("NumberOfCells")) == 4 * 4 * 2
+    disp = np.array(piece.find(".//PointData/DataArray").text.split(), float)
+    assert np.abs(disp).max() < 1e-12
+    import json
+    rec = json.loads((tmp_path / "r.json").read_text())
+    assert len(rec["configurations"]) == 6 and rec["configurations"][0]["x"][-1] == pytest.approx(0.35)
