@@ -3,7 +3,9 @@
 ``tests/gold/studies_tiny.json`` holds {name: {"value", "tolerance"}} (SI), collected
 from every study's ``gold_values(ctx)`` after a tiny run. :func:`compare` names each
 mismatch with the difference; a value missing from either side is a mismatch too.
-The file changes only through ``python -m studies gold --refresh``.
+The file changes only through ``python -m studies gold --refresh``. Runs that end on an
+equilibrium whose tangent is singular or indefinite (record ``stable`` false) give no
+golden values: their tip is not fixed by the equations but by the solver's path.
 """
 from __future__ import annotations
 
