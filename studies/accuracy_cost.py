@@ -74,8 +74,8 @@ def report(ctx) -> Section:
             ax = axes[i][j]
             sel = [p for p in pts if p["law"] == law and p["model"] == m]
             for cfg in dict.fromkeys(p["config"] for p in sel):
-                ser = sorted([p for p in sel if p["config"] == cfg and p["error"] is not None and p["time"]],
-                             key=lambda p: p["time"])
+                ser = [p for p in sel if p["config"] == cfg and p["error"] is not None and p["time"]]
+                ser.sort(key=lambda p: p["ndof"] or 0)  # along the refinement
                 if not ser:
                     continue
                 if cfg.startswith("continuum"):
@@ -90,7 +90,7 @@ def report(ctx) -> Section:
             ax.set_xscale("log")
             ax.set_yscale("log")
             ax.grid(True, which="major", alpha=0.3)
-            ax.set_title(f"{law}: ANCF `{f}` vs continuum {m}", fontsize=9)
+            ax.set_title(f"{law}\nANCF {f} vs continuum {m}", fontsize=9)
             ax.set_xlabel("wall time, serial warm (s)")
             if j == 0:
                 ax.set_ylabel("|u - u_ref| / |u_ref|")
