@@ -142,6 +142,10 @@ def load_path(model: BeamModel, target: Callable[[float], np.ndarray], u0: np.nd
             retry = newton(model, u, target(t + dt), atol, max_iterations, line_search=True)
             retry.iterations += res.iterations
             res = retry
+        if not res.converged:        # then descend the potential (indefinite tangents)
+            retry = _descend(model, u, target(t + dt), atol, 4 * max_iterations)
+            retry.iterations += res.iterations
+            res = retry
         stats["newton_iterations"] = stats.get("newton_iterations", 0) + res.iterations
         if not res.converged:
             stats["rejected_steps"] += 1
@@ -253,13 +257,10 @@ def _escape(model, u, mode, f_ext, atol, max_iterations, stats) -> np.ndarray | 
     minimum; keep the end state of lower energy (None if neither side converges).
 
     Plain Newton would return to the saddle it started next to. Energy differences near
-    a saddle are below the round-off of the energy itself, so both searches use slopes
-    g = (f_int - Q_K) . d, which are accurate: first along the mode, the step doubles
-    (from 1e-3 h up to the beam's length) while g < 0 and the sign change is bisected;
-    then a shifted Newton method, (K + sigma diag K) du = -R with sigma raised until the
-    matrix is positive definite, with a backtracking line search whose decrease is
-    measured as s/2 (g(0) + g(s)). Near a minimum sigma falls to 0 and the convergence
-    is Newton's again.
+    a saddle are below the round-off of the energy itself, so the search along the mode
+    uses slopes g = (f_int - Q_K) . d, which are accurate: the step doubles (from
+    1e-3 h up to the beam's length) while g < 0 and the sign change is bisected; then
+    :func:`_descend` finishes.
     """
     mode = mode / max(np.abs(mode).max(), 1e-300)
     free = np.ones(model.mesh.n_dof, bool)
@@ -289,15 +290,36 @@ def _escape(model, u, mode, f_ext, atol, max_iterations, stats) -> np.ndarray | 
             except InadmissibleState:
                 g = 1.0
             lo, hi = (mid, hi) if g < 0 else (lo, mid)
-        v = u + lo * d
-        sigma, converged = 0.0, False
-        for it in range(20 * max_iterations):
+        res = _descend(model, u + lo * d, f_ext, atol, 20 * max_iterations)
+        stats["newton_iterations"] = stats.get("newton_iterations", 0) + res.iterations
+        if res.converged:
+            e = potential(model, res.u, f_ext)
+            if best is None or e < best[0]:
+                best = (e, res.u)
+    return None if best is None else best[1]
+
+
+def _descend(model, v, f_ext, atol, max_iterations) -> NewtonResult:
+    """Shifted Newton descent to a minimum of the potential: (K + sigma diag K) du = -R
+    with sigma raised until the matrix is positive definite (and lowered 10x each
+    iteration), and a backtracking line search whose decrease is measured from slopes
+    as s/2 (g(0) + g(s)) (energy differences would drown in round-off). Converges from
+    where plain Newton diverges, e.g. where the tangent is indefinite; near a minimum
+    sigma falls to 0 and the convergence is Newton's again."""
+    free = np.ones(model.mesh.n_dof, bool)
+    free[model.fixed] = False
+
+    def slope(w, d):
+        return float(np.where(free, model.internal_force(w) - f_ext, 0.0) @ d)
+
+    sigma, residuals = 0.0, []
+    try:
+        for it in range(max_iterations):
             f, K = model.internal_force_and_tangent(v)
             R = np.where(free, f - f_ext, 0.0)
-            stats["newton_iterations"] = stats.get("newton_iterations", 0) + 1
-            if np.linalg.norm(R) <= atol:
-                converged = True
-                break
+            residuals.append(float(np.linalg.norm(R)))
+            if residuals[-1] <= atol:
+                return NewtonResult(v, True, it, residuals)
             K = K.constrain(model.fixed)
             sigma = sigma / 10 if sigma > 1e-12 else 0.0
             du = K.solve_shifted(-R, sigma)
@@ -315,13 +337,10 @@ def _escape(model, u, mode, f_ext, atol, max_iterations, stats) -> np.ndarray | 
                 step *= 0.5
             v = v + step * du
             if sigma == 0.0 and np.abs(step * du).max() <= 1e-9 * max(np.abs(v).max(), model.mesh.height):
-                converged = True
-                break
-        if converged:
-            e = potential(model, v, f_ext)
-            if best is None or e < best[0]:
-                best = (e, v)
-    return None if best is None else best[1]
+                return NewtonResult(v, True, it + 1, residuals)
+    except InadmissibleState as e:
+        return NewtonResult(v, False, len(residuals), residuals, f"inadmissible state ({e})")
+    return NewtonResult(v, False, max_iterations, residuals, "descent did not converge")
 
 
 @dataclass
@@ -342,6 +361,8 @@ class Stability:
                 "undetermined": "undetermined: the lowest eigenvalue is within round-off "
                                 "(the tangent is too ill-conditioned to decide in double precision)",
                 }[self.kind]
+        if self.lowest is None:
+            return "undetermined: the eigen solve for the lowest mode did not converge"
         return f"{what} (lowest scaled eigenvalue {self.lowest:.3g})"
 
 
@@ -372,6 +393,8 @@ def check_stability(model: BeamModel, u: np.ndarray) -> Stability:
     if c is not None and (c[K.b] ** 2).min() > MIN_PIVOT:
         return Stability("stable", None, None)
     lowest, mode = _lowest_mode(K, model.fixed)
+    if lowest is None:
+        return Stability("undetermined", None, None)
     if lowest > SINGULAR_TOL:
         return Stability("stable", lowest, None)
     if lowest < -SINGULAR_TOL:
@@ -392,21 +415,25 @@ def _is_quadrature_mode(model: BeamModel, mode: np.ndarray) -> bool:
     return strain(model) <= 1e-6 * strain(full)
 
 
-def _lowest_mode(K, fixed) -> tuple[float, np.ndarray]:
+def _lowest_mode(K, fixed) -> tuple[float | None, np.ndarray | None]:
     """Lowest eigenpair of the Jacobi-scaled K by shift-invert Lanczos around a tiny
     negative shift (S + 1e-10 I stays factorisable when S is singular and separates the
-    near-zero cluster), dense below 3000 unknowns if Lanczos does not converge."""
+    near-zero cluster), from a fixed start vector (deterministic) with bounded
+    iterations; dense below 3000 unknowns if Lanczos does not converge; (None, None)
+    if neither gives an answer."""
     from scipy.sparse import diags
-    from scipy.sparse.linalg import ArpackNoConvergence, eigsh
+    from scipy.sparse.linalg import ArpackError, ArpackNoConvergence, eigsh
 
     A = K.to_sparse()
     s = 1.0 / np.sqrt(np.abs(A.diagonal()))
     S = (diags(s) @ A @ diags(s)).tocsc()
+    n = S.shape[0]
+    v0 = np.cos(np.arange(n) * 0.7) + 1.0          # fixed, non-degenerate start vector
     try:
-        vals, vecs = eigsh(S, k=1, sigma=-1e-10, which="LM", maxiter=5000)
-    except ArpackNoConvergence:
-        if S.shape[0] > 3000:
-            raise
+        vals, vecs = eigsh(S, k=1, sigma=-1e-10, which="LM", v0=v0, maxiter=300)
+    except (ArpackNoConvergence, ArpackError, RuntimeError):
+        if n > 3000:
+            return None, None
         vals, vecs = np.linalg.eigh(S.toarray())
         vals, vecs = vals[:1], vecs[:, :1]
     mode = s * vecs[:, 0]
