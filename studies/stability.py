@@ -1,0 +1,159 @@
+"""The hard-case report of the dynamics issue: does the integration stay stable, and
+does it hold the energy bound, when the pendulum is made hard?
+
+From a base pendulum (``base`` grid key: law, formulation, element, count, step, time),
+one change at a time: rho_inf over ``rho_inf``; penalty alpha = factor x C10 over
+``penalty_factors`` in each of ``penalty_formulations``; ``long_t_end`` s of motion;
+``many_elements`` elements; every law constant times ``softer``; a step
+``larger_step`` times the base step. Each with every integrator of ``integrators``
+(rho_inf applies to generalized-alpha only: for the others those rows are the base run).
+
+The bound, stated before measuring: |E(t) - E(0)| <= 1e-3 m g L / 2 for the
+conservative settings (Newmark average acceleration, the discrete gradient,
+generalized-alpha with rho_inf = 1); with numerical dissipation (rho_inf < 1) E may fall,
+but never rise above E(0) by more than the bound. The ANCF run itself stops with status
+"failed", reason "energy-growth", when E rises above E(0) + bound at any step; that is an
+honest outcome and shows as such. E is sampled in the records at the output times
+(every ``energy_every`` s; ``long_energy_every`` for the long run). Wall time: median of
+serial warm runs (``timing``); for a failed run, its single (warm-up) run.
+"""
+from __future__ import annotations
+
+from .pendulum import describe_dynamic, gold_tips, pendulum_dict
+from .case import make_case
+from .report import Section, Table
+
+CONSERVATIVE = ("newmark", "discrete-gradient")
+
+
+def hard_cases(grid: dict) -> list[tuple[str, str, dict]]:
+    """[(group, label, pendulum_dict keyword changes)] in report order."""
+    b = grid["base"]
+    out = [("base", f"base: {b['elements']} x {b['element']}, `{b['formulation']}`, dt {1e3 * b['dt']:g} ms, "
+                    f"{b['t_end']:g} s, rho_inf {b['rho_inf']}", {})]
+    out += [("rho_inf", f"rho_inf = {r:g}", {"rho_inf": r}) for r in grid["rho_inf"]]
+    out += [("penalty", f"penalty {p:g} C10, `{f}`", {"formulation": f, "penalty_factor": p})
+            for f in grid["penalty_formulations"] for p in grid["penalty_factors"]]
+    out += [("long", f"{grid['long_t_end']:g} s of motion", {"t_end": grid["long_t_end"],
+                                                             "every": grid["long_energy_every"]}),
+            ("many", f"{grid['many_elements']} elements", {"n": grid["many_elements"]}),
+            ("softer", f"material x {grid['softer']:g} (softer)", {"stiffness_scale": grid["softer"]}),
+            ("larger-step", f"step x {grid['larger_step']:g} ({1e3 * b['dt'] * grid['larger_step']:g} ms)",
+             {"dt": b["dt"] * grid["larger_step"]})]
+    return out
+
+
+def scene_for(grid: dict, changes: dict, integrator: str) -> dict:
+    b = dict(grid["base"])
+    kw = {"element": b["element"], "n": b["elements"], "formulation": b["formulation"], "dt": b["dt"],
+          "rho_inf": b["rho_inf"], "law": b.get("law", "yeoh"), "t_end": b["t_end"], "every": grid["energy_every"]}
+    kw.update(changes)
+    if integrator != "generalized-alpha":
+        kw["rho_inf"] = b["rho_inf"]          # not used by the method: the same run as the base's
+    return pendulum_dict(integrator=integrator, **kw)
+
+
+def cases(grid: dict, tiny: bool) -> list:
+    opts = {"timing": dict(grid["timing"])}
+    return [make_case("stability", "ancf", scene_for(grid, ch, integ), opts)
+            for _, _, ch in hard_cases(grid) for integ in grid["integrators"]]
+
+
+def bound_J(scene: dict) -> float:
+    """1e-3 m g L / 2 of the scene (J)."""
+    b, m = scene["beam"], scene["material"]
+    mass = m["density"] * b["length"] * b["height"] * b["width"]
+    g = abs(scene["loads"]["gravity"][1])
+    return 1e-3 * mass * g * b["length"] / 2
+
+
+def energy_drift(rec: dict) -> tuple[float | None, float | None]:
+    """(max |E(t) - E(0)|, max E(t) - E(0)) over the recorded output times (J)."""
+    e = [x["total"] for x in rec.get("energy") or [] if x.get("total") is not None]
+    if not e:
+        return None, None
+    return max(abs(x - e[0]) for x in e), max(x - e[0] for x in e)
+
+
+def verdict(d: dict, drift: float | None, rise: float | None, bound: float) -> str:
+    if d["status"] != "converged":
+        reason = str(d["reason"] or "")
+        if reason.startswith("energy-growth"):
+            return "energy-growth (stopped)"
+        return "failed: " + (reason.split(":")[0] if reason else "?")
+    if drift is None:
+        return "no energy"
+    conservative = d["integrator"] in CONSERVATIVE or d["rho_inf"] == 1.0
+    if conservative:
+        return "holds" if drift <= bound else "exceeds the bound"
+    return "no growth (dissipative)" if rise <= bound else "growth above the bound"
+
+
+def rows_of(ctx) -> list[dict]:
+    g = ctx.study.grid
+    recs = {r["case_id"]: r for r in ctx.records()}
+    out = []
+    for group, label, ch in hard_cases(g):
+        for integ in g["integrators"]:
+            c = make_case("stability", "ancf", scene_for(g, ch, integ), {"timing": dict(g["timing"])})
+            r = recs.get(c.id)
+            if r is None:
+                continue
+            d = describe_dynamic(r)
+            drift, rise = energy_drift(r)
+            bound = bound_J(r["scene"])
+            med = (d["timing"] or {}).get("median_s")
+            out.append({"group": group, "label": label, "integrator": integ, "d": d, "drift": drift, "rise": rise,
+                        "bound": bound, "verdict": verdict(d, drift, rise, bound),
+                        "wall": med if med is not None else d["wall_s"], "timed": med is not None,
+                        "same_as_base": integ != "generalized-alpha" and group == "rho_inf"})
+    return out
+
+
+def report(ctx) -> Section:
+    g = ctx.study.grid
+    rows = rows_of(ctx)
+    bound = rows[0]["bound"] if rows else None
+    sec = Section(ctx.study.title,
+                  "The bound, stated before the numbers: |E(t) - E(0)| <= 1e-3 m g L / 2"
+                  + (f" = {bound:.3e} J" if bound else "") + " for the conservative settings (Newmark, discrete "
+                  "gradient, generalized-alpha with rho_inf = 1); with dissipation (generalized-alpha rho_inf < 1) E "
+                  "may fall but must not rise above E(0) by more than the bound. A run whose energy rises above it is "
+                  "stopped with status failed, reason energy-growth: shown as such. E sampled at the output times "
+                  f"(every {1e3 * g['energy_every']:g} ms; {1e3 * g['long_energy_every']:g} ms for the long run).")
+    table = []
+    for x in rows:
+        d = x["d"]
+        table.append([x["label"], x["integrator"] + (" (= base)" if x["same_as_base"] else ""), d["status"],
+                      x["verdict"], x["drift"], x["rise"], x["bound"], d["steps"], d["rejected"], d["newton"],
+                      x["wall"], "" if x["timed"] else "single run",
+                      (str(d["reason"])[:90] if d["reason"] else "")])
+    sec.table(ctx, Table("stability_runs", ["hard case", "integrator", "status", "verdict", "max |E - E0| (J)",
+                                       "max E - E0 (J)", "bound (J)", "steps", "rejected", "Newton", "wall s",
+                                       "timing", "reason"], table,
+                         {4: ".2e", 5: ".2e", 6: ".2e", 10: ".3f"}),
+              "Every hard case with every integrator: status, the energy verdict against the bound, the largest energy "
+              "change and rise over the sampled times, accepted and rejected steps, Newton iterations and wall time.")
+    bad = [x for x in rows if x["verdict"] not in ("holds", "no growth (dissipative)")]
+    lines = [f"- {sum(1 for x in rows if x['verdict'] in ('holds', 'no growth (dissipative)'))} of {len(rows)} runs "
+             "hold the bound (conservative) or do not gain energy (dissipative)."]
+    lines += [f"- {x['label']}, {x['integrator']}: **{x['verdict']}**"
+              + (f" ({str(x['d']['reason'])[:120]})" if x["d"]["reason"] else
+                 f" (max |E - E0| = {x['drift']:.2e} J)" if x["drift"] is not None else "") for x in bad]
+    sec.text = "\n".join(lines)
+    (ctx.out / "stability.md").write_text(
+        f"# {ctx.study.title}\n\n{sec.intro}\n\n{(ctx.out / 'stability_runs.md').read_text()}\n{sec.text}\n\n"
+        "Generated by `python -m studies run stability` from the records in `data/stability.jsonl` "
+        "(CSV: [stability_runs.csv](stability_runs.csv)).\n")
+    sec.text += "\n- The hard-case report as one page: [stability.md](stability.md)."
+    return sec
+
+
+def gold_values(ctx) -> dict:
+    out = {}
+    for x in rows_of(ctx):
+        if x["verdict"] in ("holds", "no growth (dissipative)") and not x["same_as_base"]:
+            d = x["d"]
+            key = f"stability/{x['group']}/{x['label'].split(':')[0].replace(' ', '_')}/{x['integrator']}"
+            out.update(gold_tips(key, d))
+    return out

@@ -1,0 +1,141 @@
+"""Table 4 reproduced: time of the pendulum (Yeoh, 0.5 s) per element type and count,
+ours beside the paper's CPU time.
+
+Each (element, count, formulation) runs over the step ladder of
+:func:`studies.bench.converged_step` (dt0 halving, down to ``dt_floor``), every rung a
+timed case (serial warm runs: one warm-up, the median of up to ``repeats`` runs within
+``budget_s``; the ``timing`` grid key). The report picks the converged step with the
+same rule as ``converged_step`` (its defaults are read from its signature): the largest
+dt whose tip positions at all output times are within ``tol`` (0.1 mm, componentwise)
+of the dt/2 run, both converged; and shows that rung's median wall time, steps, Newton
+iterations and ndof beside the paper's CPU time (``studies.paper.table4()``) and the
+ratio paper / ours. Different machines: the paper's is an i5-5200U laptop.
+"""
+from __future__ import annotations
+
+import inspect
+
+import numpy as np
+
+from . import bench, paper
+from .pendulum import describe_dynamic, gold_tips, pendulum_case
+from .report import Section, Table, figure
+
+_CS = inspect.signature(bench.converged_step).parameters
+DT0, TOL, DT_FLOOR = _CS["dt0"].default, _CS["tol"].default, _CS["dt_floor"].default
+
+
+def ladder(dt0: float = DT0, dt_floor: float = DT_FLOOR, last: float | None = None) -> list[float]:
+    """dt0, dt0/2, ... while dt/2 >= dt_floor (converged_step's ladder), cut at ``last``."""
+    out = [dt0]
+    while out[-1] / 2 >= dt_floor and (last is None or out[-1] / 2 >= last * (1 - 1e-9)):
+        out.append(out[-1] / 2)
+    return out
+
+
+def cases(grid: dict, tiny: bool) -> list:
+    opts = {"timing": dict(grid["timing"])}
+    return [pendulum_case("table4", el, n, f, dt, rho_inf=grid["rho_inf"], t_end=grid["t_end"], options=opts)
+            for f in grid["formulations"] for el in grid["elements"] for n in grid["counts"]
+            for dt in ladder(grid.get("dt0", DT0), DT_FLOOR, grid.get("dt_last"))]
+
+
+def converged_rung(rungs: list[dict], tol: float = TOL) -> tuple[dict | None, float | None]:
+    """converged_step's rule on records: rungs sorted by decreasing dt; returns (the
+    converged rung, its tip difference to the dt/2 rung in m) or (None, None)."""
+    for prev, half in zip(rungs, rungs[1:]):
+        if prev["ok"] and half["ok"]:
+            a = np.array([prev["tips"][t] for t in sorted(prev["tips"])])
+            b = np.array([half["tips"][t] for t in sorted(half["tips"])])
+            if a.shape == b.shape:
+                diff = float(np.abs(a - b).max())
+                if diff <= tol:
+                    return prev, diff
+    return None, None
+
+
+def selected(ctx) -> list[dict]:
+    """One row per (formulation, element, count): the converged rung or None."""
+    g = ctx.study.grid
+    descs = [describe_dynamic(r) for r in ctx.records()]
+    out = []
+    for f in g["formulations"]:
+        for el in g["elements"]:
+            for n in g["counts"]:
+                rungs = sorted([d for d in descs if (d["formulation"], d["element"], d["elements"]) == (f, el, n)],
+                               key=lambda d: -d["dt"])
+                best, diff = converged_rung(rungs)
+                out.append({"formulation": f, "element": el, "n": n, "rung": best, "diff": diff,
+                            "rungs": rungs, "smallest": rungs[-1]["dt"] if rungs else None})
+    return out
+
+
+def report(ctx) -> Section:
+    g = ctx.study.grid
+    sel = selected(ctx)
+    ptab = paper.table4()
+    sec = Section(ctx.study.title,
+                  f"Time of the pendulum (Yeoh, {g['t_end']:g} s; generalized-alpha, rho_inf = {g['rho_inf']}) per "
+                  f"element and count, each at its converged step (largest dt of the ladder {DT0 * 1e3:g} ms, halving, "
+                  f"whose tip positions are within {TOL * 1e3:g} mm of the dt/2 run); wall time = median of serial warm "
+                  f"runs in one process and one thread (compile time and warm-up apart). The paper's CPU time is from an "
+                  "Intel i5-5200U laptop.")
+    rows, plot = [], {}
+    for s in sel:
+        r = s["rung"]
+        med = (r["timing"] or {}).get("median_s") if r else None
+        p = ptab.get((s["element"], s["n"]))
+        rows.append([s["formulation"], s["element"], s["n"], r["ndof"] if r else None,
+                     1e3 * r["dt"] if r else f"none >= {1e3 * s['smallest']:g}" if s["smallest"] else "no runs",
+                     1e3 * s["diff"] if r else None, r["steps"] if r else None, r["newton"] if r else None,
+                     med, (r["timing"] or {}).get("warmup_s") if r else None, p,
+                     p / med if (p and med) else None])
+        if med:
+            plot.setdefault((s["formulation"], s["element"]), []).append((s["n"], med))
+    sec.table(ctx, Table("table4", ["formulation", "element", "n", "ndof", "converged dt (ms)",
+                                    "tip change at dt/2 (mm)", "steps", "Newton", "wall s (median)",
+                                    "first run s (incl. compile)", "paper CPU s", "paper / ours"], rows,
+                         {4: "g", 5: ".4f", 8: ".3f", 9: ".2f", 10: ".2f", 11: ".0f"}),
+              "Table 4 beside the paper's: our median serial warm wall time of the pendulum at each case's converged "
+              "step, with the steps, Newton iterations and ndof of that run, and the ratio of the paper's CPU time to ours.")
+    long = []
+    for s in sel:
+        for d in s["rungs"]:
+            long.append([s["formulation"], s["element"], s["n"], 1e3 * d["dt"], d["status"], d["steps"],
+                         d["rejected"], d["newton"], (d["timing"] or {}).get("median_s"),
+                         "yes" if s["rung"] is d else ""])
+    t = Table("table4_ladder", ["formulation", "element", "n", "dt (ms)", "status", "steps", "rejected", "Newton",
+                                "wall s (median)", "converged step"], long, {3: "g", 8: ".4f"})
+    t.write(ctx.out)
+    sec.items.append(("link", t.name + ".md", "Every rung of the step ladder (status, steps, time)."))
+    if plot:
+        fig, ax = figure(1, 1, figsize=(5.5, 4.0))
+        for (f, el), pts in plot.items():
+            ax.plot([n for n, _ in pts], [m for _, m in pts], marker="o", ls="-" if f == "plane-stress" else "--",
+                    label=f"ours {el} `{f}`")
+        for el in g["elements"]:
+            pp = [(n, ptab[(el, n)]) for n in g["counts"] if (el, n) in ptab]
+            ax.plot([n for n, _ in pp], [v for _, v in pp], marker="x", ls=":", color="grey", lw=0.8)
+        ax.plot([], [], "x:", color="grey", label="paper (CPU s, i5-5200U)")
+        ax.set_xscale("log", base=2)
+        ax.set_yscale("log")
+        ax.set_xlabel("number of elements")
+        ax.set_ylabel("time for 0.5 s of motion (s)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=6)
+        sec.figure(ctx, fig, "table4_times", "Our wall times (median of serial warm runs, at each converged step) and "
+                   "the paper's CPU times, against the number of elements, log scales: the gap is the ratio column.")
+    ratios = [r[11] for r in rows if r[11]]
+    sec.text = (f"Paper / ours ranges from {min(ratios):.0f} to {max(ratios):.0f} over the {len(ratios)} timed cells "
+                "(different machines and compilers; same physics, element and step rule)." if ratios else "")
+    return sec
+
+
+def gold_values(ctx) -> dict:
+    out = {}
+    for s in selected(ctx):
+        if s["rung"]:
+            d = s["rung"]
+            out[f"table4/{s['formulation']}/{s['element']}/{s['n']}/converged_dt"] = (d["dt"], 1e-12)
+            out.update(gold_tips(f"table4/{s['formulation']}/{s['element']}/{s['n']}", d))
+    return out
