@@ -103,8 +103,8 @@ def rows_of(ctx) -> list[dict]:
             drift, rise = energy_drift(r)
             bound = bound_J(r["scene"])
             med = (d["timing"] or {}).get("median_s")
-            out.append({"group": group, "label": label, "integrator": integ, "d": d, "drift": drift, "rise": rise,
-                        "bound": bound, "verdict": verdict(d, drift, rise, bound),
+            out.append({"group": group, "label": label, "changes": ch, "integrator": integ, "d": d, "drift": drift, "rise": rise,
+                        "bound": bound, "enforced": r.get("energy_limit"), "verdict": verdict(d, drift, rise, bound),
                         "wall": med if med is not None else d["wall_s"], "timed": med is not None,
                         "same_as_base": integ != "generalized-alpha" and group == "rho_inf"})
     return out
@@ -154,6 +154,7 @@ def gold_values(ctx) -> dict:
     for x in rows_of(ctx):
         if x["verdict"] in ("holds", "no growth (dissipative)") and not x["same_as_base"]:
             d = x["d"]
-            key = f"stability/{x['group']}/{x['label'].split(':')[0].replace(' ', '_')}/{x['integrator']}"
+            key = "/".join(["stability", x["group"], x["integrator"]]
+                           + [f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in sorted(x["changes"].items())])
             out.update(gold_tips(key, d))
     return out
