@@ -10,7 +10,8 @@
 - ``pendulum [--law L] [--model M] [--dt DT] [--cells-height N] [--aspect A]
   [--rho-inf R] [--integrator I] [--json OUT]``: step and mesh convergence check of
   the paper's pendulum at one (mesh, dt): tip positions and changes per output time;
-- ``report [GOLD.json]``: markdown tables for reports/reference_fem.md from the gold file.
+- ``report [GOLD.json] [--pendulum]``: markdown tables for reports/reference_fem.md from
+  the gold file (of the cantilever, or of the pendulum).
 """
 from __future__ import annotations
 
@@ -131,9 +132,14 @@ def _pendulum(args) -> int:
 
 
 def _report(args) -> int:
+    if args.pendulum:
+        from .pendulum import render as render_pendulum
+
+        print(render_pendulum(Path(args.gold or "tests/gold/fem_pendulum.json")), end="")
+        return 0
     from .report import render
 
-    print(render(Path(args.gold)), end="")
+    print(render(Path(args.gold or "tests/gold/fem_cantilever.json")), end="")
     return 0
 
 
@@ -172,7 +178,9 @@ def main(argv: list[str] | None = None) -> int:
     pd.add_argument("--workers", type=int, default=2)
     pd.add_argument("--json", metavar="OUT")
     rp = sub.add_parser("report", help="markdown tables from the gold file")
-    rp.add_argument("gold", nargs="?", default="tests/gold/fem_cantilever.json")
+    rp.add_argument("gold", nargs="?", default=None,
+                    help="default tests/gold/fem_cantilever.json (fem_pendulum.json with --pendulum)")
+    rp.add_argument("--pendulum", action="store_true", help="tables of the pendulum gold file")
     args = p.parse_args(argv)
     try:
         return {"run": _run, "converge": _converge, "gold": _gold, "report": _report,
