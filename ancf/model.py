@@ -102,6 +102,10 @@ class BeamModel:
         return float(np.sum(self.material.energy_jet(a, J).v * self._w))
 
     def internal_force(self, u: np.ndarray) -> np.ndarray:
+        """Internal force (N) at u, by the compiled kernel without the tangent."""
+        return self._kernel(u, with_tangent=False)[0]
+
+    def internal_force_numpy(self, u: np.ndarray) -> np.ndarray:
         _, P, _ = self.material.evaluate(self._checked(self.gradients(u)), tangent=False)
         fe = P.reshape(P.shape[0], -1) @ self._Bw_flat      # (ne, nd)
         return np.bincount(self._dofs.ravel(), fe.ravel(), minlength=self.mesh.n_dof)
@@ -116,6 +120,9 @@ class BeamModel:
     def internal_force_and_tangent(self, u: np.ndarray) -> tuple[np.ndarray, Banded]:
         """Internal force (N) and tangent (N/m) at u, by the compiled kernel
         (:mod:`ancf.kernels`); :meth:`internal_force_and_tangent_numpy` is the reference."""
+        return self._kernel(u, with_tangent=True)
+
+    def _kernel(self, u: np.ndarray, with_tangent: bool):
         from .kernels import assemble_force_tangent
 
         F = self._checked(self.gradients(u))
@@ -125,8 +132,9 @@ class BeamModel:
         J = f4[..., 0] * f4[..., 3] - f4[..., 1] * f4[..., 2]
         W = self.material.energy_jet(a, J)   # W.D: (6, ne, nq) = W and its (a, J) partials
         m = self.mesh
-        f, ab = assemble_force_tangent(f4, W.D, self._dN, self._w, self._dofs, m.bandwidth, m.n_dof, True)
-        return f, Banded(ab, m.bandwidth)
+        f, ab = assemble_force_tangent(f4, W.D, self._dN, self._w, self._dofs, m.bandwidth,
+                                       m.n_dof, with_tangent)
+        return f, (Banded(ab, m.bandwidth) if with_tangent else None)
 
     def discrete_gradient_force_and_tangent(self, u0: np.ndarray, u1: np.ndarray):
         """f_dg(u0, u1) with (u1 - u0) . f_dg = U(u1) - U(u0), and the midpoint tangent / 2.
