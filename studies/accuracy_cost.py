@@ -121,8 +121,80 @@ def report(ctx) -> Section:
                                        "time (s)", "error (%)"], long, {7: ".4f", 8: ".4f"})
     t.write(ctx.out)
     sec.items.append(("link", t.name + ".md", "Every point of the diagram."))
+    pendulum_part(ctx, sec)
     failed = [p for p in pts if p["status"] != "converged"]
     if failed:
-        sec.text = f"{len(failed)} of {len(pts)} runs failed: " + "; ".join(
+        sec.text += f"\n{len(failed)} of {len(pts)} static runs failed: " + "; ".join(
             f"{LAW_SHORT[p['law']]} {p['model']} {p['config']} x {p['mesh']}" for p in failed[:12])
     return sec
+
+
+def pendulum_points(ctx) -> list[dict]:
+    """The dynamic half: every timed rung of Table 4 (element, count, step) as a point:
+    its median serial warm wall time and its pendulum error max over t of |r - r_ref| / L
+    against the converged continuum plane-stress pendulum (`paper` against it too)."""
+    from .pendulum import continuum_pendulum, describe_dynamic, tip_errors
+
+    cont = continuum_pendulum()
+    out = []
+    for r in ctx.records("table4"):
+        d = describe_dynamic(r)
+        ref = cont.get((d["law"], "plane-stress"))
+        e = tip_errors(d["tips"], ref.tips) if (ref and d["ok"]) else {}
+        t = (d["timing"] or {}).get("median_s")
+        out.append({"formulation": d["formulation"], "element": d["element"], "n": d["elements"], "dt": d["dt"],
+                    "status": d["status"], "time": t if d["ok"] else None, "error": max(e.values()) if e else None})
+    return out
+
+
+def pendulum_part(ctx, sec: Section) -> None:
+    from .pendulum import continuum_pendulum
+
+    pts = pendulum_points(ctx)
+    if not pts:
+        return
+    g = ctx.study.grid
+    cont = continuum_pendulum().get(("yeoh", "plane-stress"))
+    forms = list(dict.fromkeys(p["formulation"] for p in pts))
+    fig, axes = figure(1, len(forms), figsize=(5.2 * len(forms), 4.2), squeeze=False, sharey=True)
+    for j, f in enumerate(forms):
+        ax = axes[0][j]
+        for el in dict.fromkeys(p["element"] for p in pts):
+            for n in sorted({p["n"] for p in pts if p["element"] == el}):
+                ser = sorted([p for p in pts if (p["formulation"], p["element"], p["n"]) == (f, el, n)
+                              and p["error"] is not None and p["time"]], key=lambda p: -p["dt"])
+                if ser:
+                    ax.plot([p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], marker=MARKERS.get(el, "."),
+                            lw=0.8, ms=3, label=f"{el} x {n}")
+        if cont and cont.wall_s and cont.error_estimate:
+            ax.plot([cont.wall_s], [cont.error_estimate / 0.350], "kD", ms=7,
+                    label="continuum (gold base run, own error estimate)")
+        for a in g["accuracies"]:
+            ax.axhline(a, color="grey", lw=0.6, ls=":")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.grid(True, which="major", alpha=0.3)
+        ax.set_xlabel("wall time, serial warm (s)")
+        ax.set_title(f"pendulum (Yeoh, 0.5 s): ANCF `{f}` vs continuum plane stress", fontsize=9)
+        if j == 0:
+            ax.set_ylabel("max over t of |r - r_ref| / L")
+    axes[0][-1].legend(fontsize=5, ncol=2, loc="lower left")
+    sec.figure(ctx, fig, "accuracy_cost_pendulum",
+               "Work-precision diagram of the pendulum: each line one element and count along the step ladder of "
+               "Table 4 (8 ms halving; larger dt to the left), error against the converged continuum plane-stress "
+               "pendulum; the black diamond is the continuum's own run (one run's wall time, its error estimate).")
+    rows = []
+    for f in forms:
+        for a in g["accuracies"]:
+            ok = [p for p in pts if p["formulation"] == f and p["error"] is not None and p["time"]
+                  and p["error"] <= a]
+            best = min(ok, key=lambda p: p["time"]) if ok else None
+            rows.append([f, f"{100 * a:g} %", f"{best['element']} x {best['n']}, dt {1e3 * best['dt']:g} ms"
+                         if best else "none", best["time"] if best else None, pct(best["error"]) if best else None,
+                         cont.wall_s if cont else None, pct(cont.error_estimate / 0.350) if cont and cont.error_estimate
+                         else None])
+    sec.table(ctx, Table("accuracy_cost_pendulum", ["ANCF formulation", "accuracy", "cheapest ANCF", "time (s)",
+                                                    "error (%)", "continuum run (s)", "continuum error estimate (%)"],
+                         rows, {3: ".3f", 4: ".3f", 5: ".1f", 6: ".4f"}),
+              "For 1 % and 0.1 % pendulum accuracy (max over t of |r - r_ref| / L), the cheapest ANCF run of the Table 4 "
+              "ladder (median serial warm wall time), beside the wall time of the continuum gold's base run (DOLFINx, one run inside the generator's 2-process pool, not warm) and its own error estimate.")

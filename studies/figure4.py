@@ -71,6 +71,7 @@ def report(ctx) -> Section:
     for j, f in enumerate(forms):
         ref, label, provisional = reference_for(ctx, f, descs)
         ax = axes[0][j]
+        block = []
         for el in g["elements"]:
             ser = series(descs, f, el, g["dt"])
             ok = [d for d in ser if d["ok"]]
@@ -101,6 +102,10 @@ def report(ctx) -> Section:
                     (f, el, max(g["counts"]), g["dt"] / 2) and d["ok"]]
             dstep = tip_errors(finest["tips"], half[0]["tips"]) if (half and finest and
                                                                      finest["elements"] == max(g["counts"])) else {}
+            summary = [f"{d['elements']}: {1e3 * LENGTH * max(e.values()):.2f}" for d, e, _ in good]
+            if summary:
+                block.append(f"  - {el}, max tip error over t (mm) at n = " + ", ".join(summary)
+                             + (f"; within 1 mm of its own finest mesh from n = {conv}." if conv else "."))
             steprows.append([f, el, max(g["counts"]), 1e3 * g["dt"],
                              1e3 * LENGTH * max(dstep.values()) if dstep else None, conv])
         ax.set_xscale("log")
@@ -110,7 +115,7 @@ def report(ctx) -> Section:
         ax.set_title(f"`{f}` vs {label}", fontsize=8)
         if j == 0:
             ax.set_ylabel("|r - r_ref| / L")
-        lines.append(f"- `{f}`: reference {label}.")
+        lines += [f"- `{f}` against {label}:"] + block
     axes[0][-1].legend(fontsize=6, loc="best")
     sec.figure(ctx, fig, "figure4_pendulum_convergence",
                "Tip error of the pendulum against the number of elements per element (solid: at t_end, dashed: maximum "

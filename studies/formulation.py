@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 from .grid import cantilever_case
+from .pendulum import LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case, tip_errors
 from .reference import LAW_SHORT, MATCHING, VARIANT_LABEL, abaqus, continuum_references, describe
 from .report import Section, Table, mm, pct, vec_error
 
@@ -22,9 +23,61 @@ def configurations(grid: dict) -> list[tuple[str, tuple[int, int], str]]:
 
 
 def cases(grid: dict, tiny: bool) -> list:
-    return [cantilever_case("formulation", law, f, el, n, q, c)
-            for law in grid["laws"] for f, q, c in configurations(grid)
-            for el in grid["elements"] for n in grid["counts"]]
+    out = [cantilever_case("formulation", law, f, el, n, q, c)
+           for law in grid["laws"] for f, q, c in configurations(grid)
+           for el in grid["elements"] for n in grid["counts"]]
+    p = grid.get("pendulum")
+    if p:
+        out += [pendulum_case("formulation", el, p["count"], f, p["dt"], rho_inf=p["rho_inf"], t_end=p["t_end"],
+                              law=law)
+                for law in grid["laws"] for f in p["formulations"] for el in p["elements"]]
+    return out
+
+
+def static_records(ctx) -> list[dict]:
+    return [r for r in ctx.records() if r["scene"]["analysis"]["kind"] == "static"]
+
+
+def pendulum_part(ctx, sec: Section) -> list[str]:
+    """The dynamic half: each formulation's ANCF pendulum against both continuum pendulums."""
+    p = ctx.study.grid.get("pendulum")
+    if not p:
+        return []
+    cont = continuum_pendulum()
+    models = ("plane-stress", "plane-strain")
+    rows, lines = [], []
+    descs = [describe_dynamic(r) for r in ctx.records() if r["scene"]["analysis"]["kind"] == "dynamic"]
+    for law in ctx.study.grid["laws"]:
+        for f in p["formulations"]:
+            dists = {m: [] for m in models}
+            for d in descs:
+                if (d["law"], d["formulation"]) != (law, f):
+                    continue
+                errs = {m: tip_errors(d["tips"], cont[(law, m)].tips) if (d["ok"] and (law, m) in cont) else {}
+                        for m in models}
+                row = [LAW_SHORT[law], f, d["element"], d["elements"], d["status"]]
+                for m in models:
+                    e = errs[m]
+                    row += [1e3 * LENGTH * e[max(e)] if e else None, 1e3 * LENGTH * max(e.values()) if e else None]
+                    if e:
+                        dists[m].append(1e3 * LENGTH * max(e.values()))
+                rows.append(row)
+            if all(dists[m] for m in models):
+                near = min(models, key=lambda m: min(dists[m]))
+                lines.append(f"- pendulum, {law}, ANCF `{f}`: closest to the continuum **{near}** pendulum (max tip "
+                             f"distance {min(dists['plane-stress']):.2f} mm to plane stress, "
+                             f"{min(dists['plane-strain']):.2f} mm to plane strain).")
+    missing = sorted({f"{law}/{m}" for law in ctx.study.grid["laws"] for m in models if (law, m) not in cont})
+    hdr = ["law", "ANCF formulation", "element", "n", "status"]
+    for m in models:
+        hdr += [f"vs continuum {m}: at t_end (mm)", f"vs continuum {m}: max over t (mm)"]
+    sec.table(ctx, Table("formulation_pendulum", hdr, rows, {i: ".2f" for i in range(5, 9)}),
+              f"The pendulum ({p['t_end']:g} s, {p['count']} elements, dt {1e3 * p['dt']:g} ms, generalized-alpha "
+              f"rho_inf {p['rho_inf']}): each ANCF formulation's tip against the converged continuum plane-stress and "
+              "plane-strain (exactly incompressible) pendulums of tests/gold/fem_pendulum.json, at t_end and the "
+              "maximum over t = 0.1 ... t_end." + (f" No converged continuum case for: {', '.join(missing)}." if missing
+                                                   else ""))
+    return lines
 
 
 def candidates(ctx) -> dict[str, list[tuple[str, tuple[float, float], float | None]]]:
@@ -32,7 +85,7 @@ def candidates(ctx) -> dict[str, list[tuple[str, tuple[float, float], float | No
     the continuum models, then every ANCF element x configuration at its finest mesh."""
     g = ctx.study.grid
     refs = continuum_references(ctx.records("continuum"))
-    recs = [describe(r) for r in ctx.records()]
+    recs = [describe(r) for r in static_records(ctx)]
     out = {}
     for law in g["laws"]:
         lst = [(f"continuum {VARIANT_LABEL[v]}", refs[(law, v)].tip, None)
@@ -91,7 +144,7 @@ def report(ctx) -> Section:
                          {2: ".2f", 4: ".2f", 5: "+.2f", 6: "+.2f"}),
               "Which model the paper's ABAQUS column matches: the closest and the next closest of all models above, "
               "with the componentwise deviation (closest - ABAQUS) / |ABAQUS|.")
-    sec.text = "\n".join(lines + _verdict(cands, g["laws"]))
+    sec.text = "\n".join(lines + _verdict(cands, g["laws"]) + pendulum_part(ctx, sec))
     return sec
 
 
@@ -127,7 +180,7 @@ def _verdict(cands, laws) -> list[str]:
 
 def gold_values(ctx) -> dict:
     out = {}
-    for r in ctx.records():
+    for r in static_records(ctx):
         d = describe(r)
         if d["status"] == "converged" and d["stable"] is not False:
             q = d["quadrature"]

@@ -90,6 +90,7 @@ class ContinuumPendulum:
     ndof: int | None
     dt: float | None
     label: str
+    error_estimate: float | None = None  # m, the gold's largest error estimate over t > 0
 
 
 def continuum_pendulum(path: Path = FEM_GOLD) -> dict[tuple[str, str], ContinuumPendulum]:
@@ -113,7 +114,8 @@ def continuum_pendulum(path: Path = FEM_GOLD) -> dict[tuple[str, str], Continuum
             {round(k["t"], 9): (k["x"], k["y"]) for k in confs}, bool(c.get("converged")),
             base.get("wall_s"), c.get("ndof"), c.get("dt", g.get("dt")),
             f"continuum {model} ({cells.get('cells_length', '?')} x {cells.get('cells_height', '?')} Q2, "
-            f"dt {1e3 * (c.get('dt') or g.get('dt') or math.nan):g} ms)")
+            f"dt {1e3 * (c.get('dt') or g.get('dt') or math.nan):g} ms)",
+            max(c.get("error_estimate_m") or [math.nan]) if c.get("error_estimate_m") else None)
     return out
 
 
