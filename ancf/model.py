@@ -99,7 +99,7 @@ class BeamModel:
         f = F.reshape(F.shape[0], F.shape[1], 4)
         a = np.einsum("eqi,eqi->eq", f, f)
         J = f[..., 0] * f[..., 3] - f[..., 1] * f[..., 2]
-        return float(np.sum(self.material.energy_jet(a, J).v * self._w))
+        return float(np.sum(self.energy_derivatives(a, J)[0] * self._w))
 
     def internal_force(self, u: np.ndarray) -> np.ndarray:
         """Internal force (N) at u, by the compiled kernel without the tangent."""
@@ -122,6 +122,21 @@ class BeamModel:
         (:mod:`ancf.kernels`); :meth:`internal_force_and_tangent_numpy` is the reference."""
         return self._kernel(u, with_tangent=True)
 
+    @cached_property
+    def _tape(self):
+        """The material's energy traced once (:mod:`ancf.tape`), replayed compiled."""
+        from .tape import trace
+        return trace(self.material)
+
+    def energy_derivatives(self, a: np.ndarray, J: np.ndarray) -> np.ndarray:
+        """W and its (a, J) partials, (6, *a.shape), by the compiled tape (the numpy
+        :meth:`Material.energy_jet` is the reference)."""
+        from .tape import evaluate
+        shape = np.shape(a)
+        a2 = np.ascontiguousarray(np.reshape(a, (-1, shape[-1])), dtype=float)
+        J2 = np.ascontiguousarray(np.reshape(J, (-1, shape[-1])), dtype=float)
+        return evaluate(*self._tape, a2, J2).reshape((6,) + shape)
+
     def _kernel(self, u: np.ndarray, with_tangent: bool):
         from .kernels import assemble_force_tangent
 
@@ -130,9 +145,9 @@ class BeamModel:
         f4 = np.ascontiguousarray(F.reshape(ne, nq, 4))
         a = np.einsum("eqi,eqi->eq", f4, f4)
         J = f4[..., 0] * f4[..., 3] - f4[..., 1] * f4[..., 2]
-        W = self.material.energy_jet(a, J)   # W.D: (6, ne, nq) = W and its (a, J) partials
+        WD = self.energy_derivatives(a, J)   # (6, ne, nq) = W and its (a, J) partials
         m = self.mesh
-        f, ab = assemble_force_tangent(f4, W.D, self._dN, self._w, self._dofs, m.bandwidth,
+        f, ab = assemble_force_tangent(f4, WD, self._dN, self._w, self._dofs, m.bandwidth,
                                        m.n_dof, with_tangent)
         return f, (Banded(ab, m.bandwidth) if with_tangent else None)
 
@@ -164,7 +179,7 @@ class BeamModel:
                             np.broadcast_to(a1, J_line.shape)])
         Jv = np.concatenate([Jm[None], np.broadcast_to(J0, a_line.shape),
                              np.broadcast_to(J1, a_line.shape), J_line, J_line])
-        WD = self.material.energy_jet(A, Jv).D                 # (6, 13, ne, nq)
+        WD = self.energy_derivatives(A, Jv)                    # (6, 13, ne, nq)
         D = np.ascontiguousarray(WD[:, 0])                     # midpoint second derivatives
         D[1] = 0.5 * np.einsum("k,keq->eq", w3, WD[1, 1:4] + WD[1, 4:7])
         D[2] = 0.5 * np.einsum("k,keq->eq", w3, WD[2, 7:10] + WD[2, 10:13])
