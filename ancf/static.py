@@ -9,8 +9,10 @@ caller can watch, record or stop it. :func:`solve_static` runs the whole job:
 3. check the converged state for stability (:mod:`ancf.stability`); if it
    is unstable, perturb along the unstable mode and re-solve, and say so.
 
-Increments are cut (x 1/2) when Newton fails or meets an inadmissible state, and grown
-(x 1.5) after easy convergence; below ``min_step`` the run fails with a reason.
+An increment whose Newton fails (or meets an inadmissible state) is retried from the
+last state with a line search, then by a shifted-Newton energy descent, and only then
+cut (x 1/2); increments grow (x 1.5) after easy convergence; below ``min_step`` the run
+fails with a reason.
 """
 from __future__ import annotations
 
