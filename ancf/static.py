@@ -10,8 +10,8 @@ caller can watch, record or stop it. :func:`solve_static` runs the whole job:
    is unstable, perturb along the unstable mode and re-solve, and say so.
 
 An increment whose Newton fails (or meets an inadmissible state) is retried from the
-last state with a line search, then by a shifted-Newton energy descent, and only then
-cut (x 1/2); increments grow (x 1.5) after easy convergence; below ``min_step`` the run
+last state with a line search, then (once the increment is small) by a shifted-Newton
+energy descent, and only then cut (x 1/2); increments grow (x 1.5) after easy convergence; below ``min_step`` the run
 fails with a reason.
 """
 from __future__ import annotations
@@ -114,6 +114,11 @@ def _line_search(model, u, du, target, R0, free) -> float:
     return lo if lo > 0 else 0.5 * hi
 
 
+# The energy descent retries only increments at most this large (of the whole path);
+# larger failing increments are cut first, which is cheaper.
+DESCENT_BELOW = 1e-2
+
+
 @dataclass
 class Increment:
     phase: str          # "relax" | "load"
@@ -145,7 +150,9 @@ def load_path(model: BeamModel, target: Callable[[float], np.ndarray], u0: np.nd
             retry = newton(model, u, target(t + dt), atol, max_iterations, line_search=True)
             retry.iterations += res.iterations
             res = retry
-        if not res.converged:        # then descend the potential (indefinite tangents)
+        if not res.converged and dt <= DESCENT_BELOW:
+            # a small increment that still fails is not a step-size problem (e.g. an
+            # indefinite tangent): descend the potential before cutting further
             retry = _descend(model, u, target(t + dt), atol, 4 * max_iterations)
             retry.iterations += res.iterations
             res = retry
