@@ -65,7 +65,7 @@ def pendulum_part(ctx, sec: Section) -> list[str]:
             if all(dists[m] for m in models):
                 near = min(models, key=lambda m: min(dists[m]))
                 lines.append(f"- pendulum, {law}, ANCF `{f}`: closest to the continuum **{near}** pendulum (max tip "
-                             f"distance {min(dists['plane-stress']):.2f} mm to plane stress, "
+                             f"distance of its best element {min(dists['plane-stress']):.2f} mm to plane stress, "
                              f"{min(dists['plane-strain']):.2f} mm to plane strain).")
     missing = sorted({f"{law}/{m}" for law in ctx.study.grid["laws"] for m in models if (law, m) not in cont})
     hdr = ["law", "ANCF formulation", "element", "n", "status"]
@@ -188,4 +188,9 @@ def gold_values(ctx) -> dict:
                 v = d["tip"][comp]
                 out[f"formulation/{d['formulation']}/q{q[0]}{q[1]}/{d['clamp']}/{d['element']}/{d['elements']}/"
                     f"{LAW_SHORT[d['law']]}/{comp}"] = (v, 1e-6 * abs(v) + 1e-9)
+    for r in ctx.records():
+        if r["scene"]["analysis"]["kind"] == "dynamic":
+            d = describe_dynamic(r)
+            out.update(gold_tips(f"formulation/pendulum/{d['formulation']}/{d['element']}/{d['elements']}/"
+                                 f"{LAW_SHORT[d['law']]}", d))
     return out

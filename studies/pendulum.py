@@ -125,15 +125,16 @@ def tip_errors(tips: dict, ref: dict, skip_zero: bool = True) -> dict[float, flo
             for t in sorted(set(tips) & set(ref)) if not (skip_zero and t == 0)}
 
 
-def gold_tips(prefix: str, d: dict) -> dict:
+def gold_tips(prefix: str, d: dict, last_only: bool = False) -> dict:
     """Golden values of a converged run: tip x, y at every output time after t = 0
-    (tolerance 1e-6 |v| + 10 nm: Newton's accepted correction is below 1e-6 of the state,
+    (``last_only``: at the last output time only; tolerance 1e-6 |v| + 10 nm: Newton's accepted correction is below 1e-6 of the state,
     and the error after it is of its square)."""
     out = {}
     if not d["ok"]:
         return out
+    last = max(d["tips"]) if d["tips"] else None
     for t, (x, y) in d["tips"].items():
-        if t > 0:
+        if t > 0 and (t == last or not last_only):
             for comp, v in (("x", x), ("y", y)):
                 out[f"{prefix}/t{t:g}/{comp}"] = (v, 1e-6 * abs(v) + 1e-8)
     return out

@@ -156,5 +156,5 @@ def gold_values(ctx) -> dict:
             d = x["d"]
             key = "/".join(["stability", x["group"], x["integrator"]]
                            + [f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in sorted(x["changes"].items())])
-            out.update(gold_tips(key, d))
+            out.update(gold_tips(key, d, last_only=True))
     return out

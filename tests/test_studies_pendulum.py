@@ -138,3 +138,24 @@ def test_stability_report_states_the_bound_first_and_shows_failures_honestly(tin
     # conserved to Newton's tolerance (README: about 1e-13 J), far inside the bound
     assert dg and all(x["drift"] <= 1e-6 * x["bound"] for x in dg)
     assert "NaN" not in page and "nan" not in (out / "stability_runs.csv").read_text()
+
+
+def test_the_pendulum_work_precision_points_are_table4_rungs_against_the_continuum(tiny):
+    from studies.accuracy_cost import pendulum_points
+
+    out, cat = tiny
+    if not pendulum.FEM_GOLD.exists():
+        pytest.skip("no continuum pendulum gold file")
+    ref = {round(h["t"], 9): (h["x"], h["y"])
+           for h in json.loads(pendulum.FEM_GOLD.read_text())["cases"]["yeoh/plane-stress"]["tip_history"]}
+    pts = pendulum_points(ctx(out, cat, "accuracy-cost"))
+    recs = ctx(out, cat, "table4").records()
+    assert len(pts) == len(recs) > 0
+    for p, r in zip(pts, recs):
+        if r["status"] != "converged":
+            assert p["error"] is None and p["time"] is None
+            continue
+        e = max(math.hypot(h["x"] - ref[round(h["t"], 9)][0], h["y"] - ref[round(h["t"], 9)][1])
+                for h in r["tip_history"] if h["t"] > 0) / 0.350
+        assert p["error"] == pytest.approx(e, rel=1e-12)
+        assert p["time"] == r["timing"]["median_s"]
