@@ -108,7 +108,8 @@ def report(ctx) -> Section:
                              + (f"; within 1 mm of its own finest mesh from n = {conv}." if conv else "."))
             steprows.append([f, el, max(g["counts"]), 1e3 * g["dt"],
                              1e3 * LENGTH * max(dstep.values()) if dstep else None, conv])
-        ax.set_xscale("log")
+        ax.set_xscale("log", base=2)
+        ax.set_xticks(g["counts"], [str(n) for n in g["counts"]])
         ax.set_yscale("log")
         ax.grid(True, which="both", alpha=0.3)
         ax.set_xlabel("number of elements")

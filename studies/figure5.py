@@ -38,12 +38,12 @@ def report(ctx) -> Section:
     rows = []
     forms = g["formulations"]
     for law in g["laws"]:
-        fig, axes = figure(1, len(forms), figsize=(5.4 * len(forms), 4.4), squeeze=False, sharey=True)
+        fig, axes = figure(1, len(forms), figsize=(5.6 * len(forms), 5.6), squeeze=False, sharey=True)
         for j, f in enumerate(forms):
             ax = axes[0][j]
             c = cont.get((law, CONTINUUM_MODEL[f]))
             ts = sorted({t for d in descs if d["law"] == law for t in d["tips"]})
-            colours = {t: cm.viridis(i / max(len(ts) - 1, 1)) for i, t in enumerate(ts)}
+            colours = {t: cm.viridis(0.85 * i / max(len(ts) - 1, 1)) for i, t in enumerate(ts)}
             for el in g["elements"]:
                 for r, d in zip(recs, descs):
                     if (d["law"], d["formulation"], d["element"]) != (law, f, el) or not d["ok"]:
@@ -60,7 +60,7 @@ def report(ctx) -> Section:
                 for t, (xs, ys) in c.configurations.items():
                     ax.plot([1e3 * x for x in xs], [1e3 * y for y in ys], color="k", lw=0.6, alpha=0.6)
                 ax.plot([1e3 * c.tips[t][0] for t in ts if t in c.tips], [1e3 * c.tips[t][1] for t in ts if t in c.tips],
-                        "k*", ms=7, label=f"{c.label}" + ("" if c.configurations else ": tip"))
+                        "r*", ms=8, zorder=5, label=f"{c.label}" + ("" if c.configurations else ": tip"))
             ax.plot([0], [0], "ko", ms=4)
             if j == 0:
                 for t in ts:
@@ -71,10 +71,10 @@ def report(ctx) -> Section:
             if j == 0:
                 ax.set_ylabel("y (mm)")
             ax.set_title(f"{law}, `{f}`" + (" (vs continuum plane stress)" if f == "paper" else ""), fontsize=9)
-            ax.legend(fontsize=6, loc="lower left")
+            ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=3)
         sec.figure(ctx, fig, f"figure5_{law}",
                    f"{law}: pendulum centre lines at t = 0 ... {g['t_end']:g} s (colour: time, line style: element; "
-                   f"left `{forms[0]}`{', right `' + forms[1] + '`' if len(forms) > 1 else ''}); black stars: the "
+                   f"left `{forms[0]}`{', right `' + forms[1] + '`' if len(forms) > 1 else ''}); red stars: the "
                    "converged continuum plane-stress tip" + (" and lines its configurations." if any(
                        c.configurations for c in cont.values()) else " (the gold file has no configurations)."))
     ts = sorted({t for d in descs for t in d["tips"] if t > 0})
