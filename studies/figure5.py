@@ -71,7 +71,7 @@ def report(ctx) -> Section:
             if j == 0:
                 ax.set_ylabel("y (mm)")
             ax.set_title(f"{law}, `{f}`" + (" (vs continuum plane stress)" if f == "paper" else ""), fontsize=9)
-            ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=3)
+            ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=3)
         sec.figure(ctx, fig, f"figure5_{law}",
                    f"{law}: pendulum centre lines at t = 0 ... {g['t_end']:g} s (colour: time, line style: element; "
                    f"left `{forms[0]}`{', right `' + forms[1] + '`' if len(forms) > 1 else ''}); red stars: the "
