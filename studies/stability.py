@@ -128,7 +128,7 @@ def report(ctx) -> Section:
                       x["verdict"], x["drift"], x["rise"], x["bound"], d["steps"], d["rejected"], d["newton"],
                       x["wall"], "" if x["timed"] else "single run",
                       (str(d["reason"])[:90] if d["reason"] else "")])
-    sec.table(ctx, Table("stability_runs", ["hard case", "integrator", "status", "verdict", "max |E - E0| (J)",
+    sec.table(ctx, Table("stability_runs", ["hard case", "integrator", "status", "verdict", "max abs(E - E0) (J)",
                                        "max E - E0 (J)", "bound (J)", "steps", "rejected", "Newton", "wall s",
                                        "timing", "reason"], table,
                          {4: ".2e", 5: ".2e", 6: ".2e", 10: ".3f"}),
