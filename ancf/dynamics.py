@@ -163,8 +163,8 @@ class Integrator:
     def _try(self, s: State, dt: float) -> State | None:
         try:
             new = self.step(s, dt)
-        except InadmissibleState:
-            new = None
+        except (InadmissibleState, np.linalg.LinAlgError):
+            new = None                   # a rejected step, retried smaller
         if new is not None and not all(np.all(np.isfinite(x)) for x in (new.u, new.v, new.a)):
             new = None
         return new

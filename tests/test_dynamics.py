@@ -276,3 +276,20 @@ def test_hard_cases_stay_within_the_energy_bound(label, kw, soft):
     rec, _ = run_scene(scene_from_dict(s))
     assert rec["status"] == "converged", (label, rec["reason"])
     assert _energy_drift(rec) < 1e-11 * rec["steps"]
+
+
+def test_a_singular_step_matrix_is_a_rejected_step_not_a_crash(monkeypatch):
+    """A LinAlgError in a step's solve (the 5 s Newmark run met one) rejects the step;
+    it never escapes the integrator."""
+    from ancf import banded
+    calls = {"n": 0}
+    solve = banded.Banded.solve
+
+    def flaky(self, rhs):
+        calls["n"] += 1
+        if calls["n"] == 3:
+            raise np.linalg.LinAlgError("singular matrix")
+        return solve(self, rhs)
+    monkeypatch.setattr(banded.Banded, "solve", flaky)
+    rec, _ = run_scene(scene_from_dict(pendulum_scene(t_end=0.01, integrator="newmark", rho_inf=1.0)))
+    assert rec["status"] == "converged" and rec["rejected_steps"] == 1
