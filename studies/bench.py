@@ -81,12 +81,13 @@ def penalty(elements=(16, 160, 640), factors=(1e1, 1e2, 1e3, 1e4, 1e5)) -> bool:
     return ok
 
 
-def pendulum_scene(element: str, n: int, formulation: str, dt: float, rho_inf: float = 0.5) -> dict:
-    """The paper's pendulum (Yeoh) as a scene dict."""
+def pendulum_scene(element: str, n: int, formulation: str, dt: float, rho_inf: float = 0.5,
+                   law: str = "yeoh", penalty: float = paper.PENALTY) -> dict:
+    """The paper's pendulum as a scene dict (Yeoh unless ``law`` says otherwise)."""
     return {
-        "name": f"pendulum-yeoh-{formulation}-{element}-{n}",
+        "name": f"pendulum-{law}-{formulation}-{element}-{n}",
         "beam": dict(paper.PENDULUM),
-        "material": paper.material_table("yeoh", formulation),
+        "material": paper.material_table(law, formulation, penalty),
         "ancf": {"element": element, "elements": n},
         "supports": {"left": "pin"},
         "loads": {"gravity": [0.0, -paper.GRAVITY]},

@@ -43,10 +43,8 @@ def pendulum_dict(element: str, n: int, formulation: str, dt: float, rho_inf: fl
 
     ``penalty_factor``: penalty alpha = factor x C10 (formulations with a penalty);
     ``stiffness_scale``: every law constant (and the penalty) times this factor."""
-    s = pendulum_scene(element, int(n), formulation, float(dt), float(rho_inf))
-    if law != "yeoh" or penalty_factor is not None:
-        kw = {} if penalty_factor is None else {"penalty": penalty_factor * paper.materials()[law]["C10"]}
-        s["material"] = paper.material_table(law, formulation, **kw)
+    penalty = paper.PENALTY if penalty_factor is None else penalty_factor * paper.materials()[law]["C10"]
+    s = pendulum_scene(element, int(n), formulation, float(dt), float(rho_inf), law=law, penalty=penalty)
     if stiffness_scale != 1.0:
         for k in list(s["material"]):
             if k.startswith("C") or k == "penalty":
