@@ -194,6 +194,15 @@ class DynamicProblem:
         self.ve.x.array[:] = v
         return self.kinetic(), self.strain(), self.gravity()
 
+    def centre_line(self, u: np.ndarray, n: int = 65) -> np.ndarray:
+        """Deformed positions (n, 2) in m of n points of the centre line y = 0."""
+        pts = np.c_[np.linspace(0.0, self.tip_point[0], n), np.zeros(n)]
+        saved = self.disc.w.x.array.copy()
+        self.disc.w.x.array[:] = u
+        d = self.disc.point_displacement(pts)
+        self.disc.w.x.array[:] = saved
+        return pts + d
+
     def tip(self, u: np.ndarray) -> np.ndarray:
         """Position (x, y) of the free-end centre point (L, 0) in m."""
         saved = self.disc.w.x.array.copy()

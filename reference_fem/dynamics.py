@@ -63,6 +63,7 @@ class Output:
     t: float
     tip: tuple[float, float]
     energy: tuple[float, float, float]   # kinetic, strain, gravity (J)
+    line: np.ndarray | None = None       # deformed centre line (n, 2), m
 
 
 @dataclass
@@ -121,7 +122,8 @@ class Integrator:
 
     def _output(self, s: State) -> Output:
         x, y = self.problem.tip(s.u)
-        return Output(s.t, (float(x), float(y)), self.problem.energies(s.u, s.v))
+        return Output(s.t, (float(x), float(y)), self.problem.energies(s.u, s.v),
+                      self.problem.centre_line(s.u))
 
     def run(self, u0: np.ndarray, t_end: float, dt: float, output_times=None,
             dt_min: float | None = None, tolerance: float | None = None,

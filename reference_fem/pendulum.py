@@ -163,6 +163,7 @@ def convergence_case(law: str, model: str, dt: float = GOLD_DT, cells_height: in
     later = [i for i, t in enumerate(ts) if t > 0]
     case.update(
         tip_history=r_base["tip_history"], values=values,
+        configurations=r_base.get("configurations"),
         change_half_dt_m=d_dt, change_refined_mesh_m=d_h, error_estimate_m=est,
         max_change_m=max(max(d_dt[i], d_h[i]) for i in later),
         converged=all(d_dt[i] < CRITERION_M and d_h[i] < CRITERION_M for i in later),

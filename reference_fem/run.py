@@ -103,6 +103,8 @@ def run_dynamic(scene: Scene, settings: FemSettings, output: Path | None = None,
                effects=sorted(problem.effects),
                integrator={"name": a.integrator, "rho_inf": a.rho_inf, **coef})
     rec["tip_history"] = [{"t": o.t, "x": o.tip[0], "y": o.tip[1]} for o in res.outputs]
+    rec["configurations"] = [{"t": o.t, "x": o.line[:, 0].tolist(), "y": o.line[:, 1].tolist()}
+                             for o in res.outputs if o.line is not None]
     rec["energy"] = [{"t": o.t, "kinetic": o.energy[0], "strain": o.energy[1],
                       "gravity": o.energy[2], "total": sum(o.energy)} for o in res.outputs]
     if energy_every_step:
