@@ -194,22 +194,22 @@ class DynamicProblem:
         self.ve.x.array[:] = v
         return self.kinetic(), self.strain(), self.gravity()
 
-    def centre_line(self, u: np.ndarray, n: int = 65) -> np.ndarray:
-        """Deformed positions (n, 2) in m of n points of the centre line y = 0."""
-        pts = np.c_[np.linspace(0.0, self.tip_point[0], n), np.zeros(n)]
+    def positions(self, u: np.ndarray, points) -> np.ndarray:
+        """Deformed positions (n, 2) in m of reference points (n, 2) at the state u."""
+        points = np.asarray(points, float)
         saved = self.disc.w.x.array.copy()
         self.disc.w.x.array[:] = u
-        d = self.disc.point_displacement(pts)
+        d = self.disc.point_displacement(points)
         self.disc.w.x.array[:] = saved
-        return pts + d
+        return points + d
+
+    def centre_line(self, u: np.ndarray, n: int = 65) -> np.ndarray:
+        """Deformed positions (n, 2) in m of n points of the centre line y = 0."""
+        return self.positions(u, np.c_[np.linspace(0.0, self.tip_point[0], n), np.zeros(n)])
 
     def tip(self, u: np.ndarray) -> np.ndarray:
         """Position (x, y) of the free-end centre point (L, 0) in m."""
-        saved = self.disc.w.x.array.copy()
-        self.disc.w.x.array[:] = u
-        d = self.disc.point_displacement([self.tip_point])[0]
-        self.disc.w.x.array[:] = saved
-        return self.tip_point + d
+        return self.positions(u, [self.tip_point])[0]
 
 
 def build_dynamic_problem(scene: Scene, settings: FemSettings) -> DynamicProblem:
