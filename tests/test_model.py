@@ -193,3 +193,13 @@ def test_discrete_gradient_identity(element, law, form, rng):
         fdg, _ = model.discrete_gradient_force_and_tangent(u0, v)
         errs.append(np.abs(fdg - model.internal_force(0.5 * (u0 + v))).max())
     assert errs[1] < 0.3 * errs[0] or errs[1] < 1e-9 * np.abs(f).max()
+
+
+@pytest.mark.parametrize("element,law,form", CASES)
+def test_compiled_force_only_path_matches_the_numpy_reference(element, law, form, rng):
+    """internal_force (kernel without the tangent, used by line searches, descents and
+    initial accelerations) equals the numpy reference internal_force_numpy."""
+    model = make_model(element, law, form)
+    u = bent_state(model, rng)
+    ref = model.internal_force_numpy(u)
+    np.testing.assert_allclose(model.internal_force(u), ref, rtol=0, atol=1e-12 * np.abs(ref).max())
