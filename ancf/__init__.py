@@ -2,6 +2,7 @@
 
 Elements are data (:mod:`ancf.elements`), laws are energies (:mod:`ancf.laws`), a
 formulation says which invariants a law sees (:mod:`ancf.formulations`); a scene file
-(:mod:`ancf.scene`) names them and :mod:`ancf.build` turns the names into objects.
+(:mod:`contract.scene`, shared with the continuum solver) names them and
+:mod:`ancf.build` checks the names and turns them into objects.
 """
 __version__ = "0.1.0"

@@ -63,7 +63,7 @@ class Banded:
             raise ValueError(f"gbsv: illegal argument {-info}")
         return x
 
-    def _scaled_cholesky(self, shift: float = 0.0):
+    def scaled_cholesky(self, shift: float = 0.0):
         """Banded Cholesky factor of D^-1/2 K D^-1/2 + shift I, or None if that is not
         positive definite. The Jacobi scaling keeps K's inertia and removes the spread
         between position and gradient dofs that would otherwise make the factorisation
@@ -84,12 +84,12 @@ class Banded:
 
     def is_positive_definite(self, shift: float = 0.0) -> bool:
         """Is D^-1/2 K D^-1/2 + shift I positive definite? (shift < 0 asks for a margin)"""
-        return self._scaled_cholesky(shift)[0] is not None
+        return self.scaled_cholesky(shift)[0] is not None
 
     def solve_shifted(self, rhs: np.ndarray, shift: float):
         """x = (K + shift D)^-1 rhs with D = diag K, if K + shift D is positive definite
         (else None): the step of a shifted (Levenberg-Marquardt) Newton method."""
-        c, s = self._scaled_cholesky(shift)
+        c, s = self.scaled_cholesky(shift)
         if c is None:
             return None
         return s * cho_solve_banded((c, False), s * rhs, check_finite=False)

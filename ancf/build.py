@@ -1,20 +1,31 @@
 """Scene -> objects: the one place where the names in a scene become elements, laws,
-formulations, quadrature rules and supports."""
+formulations, quadrature rules, supports and integrators; :func:`check` first checks
+those names against ancf's registries."""
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 
-from .elements import get_element
-from .errors import SceneError
-from .formulations import get_formulation
-from .laws import get_law
+from contract.errors import SceneError
+from contract.scene import MaterialSpec, Scene, check_names
+
+from .elements import ELEMENTS, get_element
+from .formulations import FORMULATIONS, get_formulation
+from .integrators import INTEGRATORS
+from .laws import LAWS, get_law
 from .material import Material
 from .mesh import Mesh, fixed_dofs
 from .model import BeamModel
 from .quadrature import gauss
-from .scene import MaterialSpec, Scene
+
+
+def check(scene: Scene) -> Scene:
+    """The scene's names against ancf's registries (one message naming the field and
+    the allowed values); an ANCF run needs the [ancf] table."""
+    if scene.ancf is None:
+        raise SceneError("ancf: the scene has no [ancf] table (element, elements)")
+    return check_names(scene, laws={k: v.constants for k, v in LAWS.items()},
+                       formulations={k: v.penalised for k, v in FORMULATIONS.items()},
+                       integrators=INTEGRATORS, elements=ELEMENTS)
 
 
 def build_material(spec: MaterialSpec) -> Material:
@@ -23,20 +34,23 @@ def build_material(spec: MaterialSpec) -> Material:
 
 
 def build_model(scene: Scene) -> BeamModel:
-    if scene.ancf is None:
-        raise SceneError("ancf: the scene has no [ancf] table (element, elements)")
-    s = scene.ancf
+    s = check(scene).ancf
     mesh = Mesh(get_element(s.element), s.elements, scene.beam.length,
                 scene.beam.height, scene.beam.width)
     return BeamModel(mesh, build_material(scene.material), gauss(*s.quadrature),
                      fixed_dofs(mesh, scene.supports.left, scene.supports.clamp))
 
 
-def external_force(model: BeamModel, scene: Scene) -> np.ndarray:
-    """The dead external load vector Q_K (N): only the loads the scene names are built."""
-    f = np.zeros(model.mesh.n_dof)
+def external_loads(model: BeamModel, scene: Scene) -> dict[str, np.ndarray]:
+    """The dead load vectors Q (N) by effect: only the loads the scene names are built."""
+    loads = {}
     if scene.loads.gravity is not None:
-        f += model.gravity_force(scene.loads.gravity)
+        loads["gravity"] = model.gravity_force(scene.loads.gravity)
     if scene.loads.tip_force is not None:
-        f += model.tip_force(scene.loads.tip_force)
-    return f
+        loads["tip_force"] = model.tip_force(scene.loads.tip_force)
+    return loads
+
+
+def build_integrator(scene: Scene, model: BeamModel, M, loads: dict):
+    a = check(scene).analysis
+    return INTEGRATORS[a.integrator](model, M, loads, a.rho_inf, a.newton_rtol, a.max_iterations)

@@ -10,9 +10,10 @@ T_IMPORT = time.perf_counter()
 
 
 def _run(args) -> int:
-    from .record import sanitize, write_record
+    from contract.record import sanitize, write_record
+    from contract.scene import load_scene
+
     from .run import run_scene
-    from .scene import load_scene
 
     scene = load_scene(args.scene)
     rec, (model, res) = run_scene(scene)
@@ -21,7 +22,8 @@ def _run(args) -> int:
         write_record(rec, args.json)
     if args.vtk and res is not None and getattr(res, "u", True) is not None:
         from .output import frame_strip, write_vtk
-        states = [(s.t, s.u) for s in res.states] if scene.analysis.kind == "dynamic" else [(0.0, res.u)]
+        states = ([(o.t, o.state.u) for o in res.outputs] if scene.analysis.kind == "dynamic"
+                  else [(0.0, res.u)])
         pvd = write_vtk(model, states, args.vtk, scene.name)
         extra = ""
         if rec.get("configurations"):
@@ -56,7 +58,7 @@ def _list(registry: dict) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from .errors import SceneError
+    from contract.errors import SceneError
 
     p = argparse.ArgumentParser(prog="ancf", description="2D ANCF beams with hyperelastic laws")
     sub = p.add_subparsers(dest="command", required=True)

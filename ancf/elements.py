@@ -23,7 +23,7 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
-from .errors import UnknownName
+from contract.errors import UnknownName
 from .polynomial import Poly, parse
 
 # Nodal coordinate kind -> (derivative order in x, in y). Physical value = dimensionless

@@ -18,7 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable
 
-from .errors import UnknownName
+from contract.errors import UnknownName
 
 
 @dataclass(frozen=True)

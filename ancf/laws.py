@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Mapping
 
-from .errors import UnknownName
+from contract.errors import UnknownName
 
 
 @dataclass(frozen=True)

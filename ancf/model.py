@@ -8,13 +8,13 @@ and w the quadrature weights times the element volume l_e h w_b:
     f_e = sum_q w_q B_q^T vec P_eq
     K_e = sum_q w_q B_q^T A_eq B_q
 
-Only what a scene calls for is built (see :attr:`BeamModel.effects`): the mass matrix
-only for dynamics, gravity only when the scene has it, the penalty only in the
-penalised formulations.
+Only what a scene calls for is built (:mod:`ancf.build` says which effects it built):
+the mass matrix only for dynamics, gravity only when the scene has it, the penalty
+only in the penalised formulations.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
@@ -35,12 +35,12 @@ class BeamModel:
     material: Material
     rule: Rule                 # quadrature of the elastic terms
     fixed: np.ndarray          # fixed global dofs (homogeneous)
-    effects: set = field(default_factory=set)  # filled as terms are built
 
-    def __post_init__(self):
-        self.effects.add("elastic")
-        if self.material.formulation.penalised:
-            self.effects.add("penalty")
+    @property
+    def elastic_effects(self) -> list[str]:
+        """The internal-force terms: the elastic energy, and the penalty where the
+        formulation has one."""
+        return ["elastic"] + (["penalty"] if self.material.formulation.penalised else [])
 
     # -- tabulation ------------------------------------------------------------------
     @cached_property
@@ -80,12 +80,15 @@ class BeamModel:
         return self.mesh.n_dof - len(self.fixed)
 
     # -- kinematics ------------------------------------------------------------------
+    def strain_variation(self, v: np.ndarray) -> np.ndarray:
+        """vec(grad v) at every element and elastic quadrature point, (ne, nq * 4): the
+        strain a displacement field v produces where the rule looks."""
+        return v[self._dofs] @ self._B_flat.T
+
     def gradients(self, u: np.ndarray) -> np.ndarray:
         """F at every element and quadrature point, (ne, nq, 2, 2)."""
-        ue = u[self._dofs]                                  # (ne, nd)
-        gradu = ue @ self._B_flat.T                         # (ne, nq * 4)
-        F = gradu.reshape(len(ue), -1, 2, 2) + np.eye(2)
-        return F
+        gradu = self.strain_variation(u)                    # (ne, nq * 4)
+        return gradu.reshape(len(gradu), -1, 2, 2) + np.eye(2)
 
     def _checked(self, F: np.ndarray) -> np.ndarray:
         J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
@@ -205,7 +208,6 @@ class BeamModel:
 
     def gravity_force(self, g) -> np.ndarray:
         """Q_g = int rho N^T g dV (N), exact."""
-        self.effects.add("gravity")
         m, rule = self.mesh, self._exact
         N, _ = m.element.tabulate(rule.xi, rule.eta, m.element_length, m.height)
         vol = m.element_length * m.height * m.width
@@ -216,7 +218,6 @@ class BeamModel:
 
     def tip_force(self, force) -> np.ndarray:
         """A dead load (N) at the free-end centre line r(L, 0)."""
-        self.effects.add("tip_force")
         m = self.mesh
         N, _ = m.element.tabulate([1.0], [0.0], m.element_length, m.height)
         f = np.zeros(m.n_dof)
@@ -226,7 +227,6 @@ class BeamModel:
 
     def mass_matrix(self) -> Banded:
         """M = int rho S^T S dV (kg), exact."""
-        self.effects.add("inertia")
         m, rule = self.mesh, self._exact
         N, _ = m.element.tabulate(rule.xi, rule.eta, m.element_length, m.height)
         vol = m.element_length * m.height * m.width

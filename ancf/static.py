@@ -1,7 +1,8 @@
 """Static equilibrium: Newton's method with adaptive load stepping.
 
-The path is a generator (:func:`load_path`): it yields each accepted increment, so a
-caller can watch, record or stop it. :func:`solve_static` runs the whole job:
+The load path follows the one rule of :mod:`ancf.loadpath` (shared with the continuum
+solver); :func:`increment_solver` is ANCF's attempt of one increment.
+:func:`solve_static` runs the whole job:
 
 1. if the formulation is not stress-free (``paper``), relax to the unloaded equilibrium
    along the homotopy f_int(u) = (1 - t) f_int(0), t: 0 -> 1;
@@ -11,17 +12,17 @@ caller can watch, record or stop it. :func:`solve_static` runs the whole job:
 
 An increment whose Newton fails (or meets an inadmissible state) is retried from the
 last state with a line search, then (once the increment is small) by a shifted-Newton
-energy descent, and only then cut (x 1/2); increments grow (x 1.5) after easy convergence; below ``min_step`` the run
-fails with a reason.
+energy descent, and only then cut by the load-path rule.
 """
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
-from typing import Callable, Iterator
+from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
+from .loadpath import Attempt, PathCounts, PathFailure, follow
 from .model import BeamModel, InadmissibleState
 from .stability import check_stability
 
@@ -119,57 +120,34 @@ def _line_search(model, u, du, target, R0, free) -> float:
 DESCENT_BELOW = 1e-2
 
 
-@dataclass
-class Increment:
-    phase: str          # "relax" | "load"
-    t: float            # path parameter reached, 0..1
-    u: np.ndarray
-    iterations: int
-    residuals: list[float]
+def increment_solver(model: BeamModel, target: Callable[[float], np.ndarray], u0: np.ndarray,
+                     atol: float, max_iterations: int):
+    """The ANCF attempt of one load increment for :func:`ancf.loadpath.follow`, and the
+    state it keeps: from the last accepted u, Newton from a secant predictor; if it
+    fails, Newton with a line search from u; if that fails on a small increment, the
+    shifted-Newton energy descent. Returns (solve, state) with state["u"] the last
+    accepted equilibrium."""
+    state = {"u": u0, "du_prev": None}
 
-
-@dataclass
-class PathFailure(Exception):
-    phase: str
-    t: float
-    reason: str
-
-
-def load_path(model: BeamModel, target: Callable[[float], np.ndarray], u0: np.ndarray,
-              phase: str, steps: int, atol: float, max_iterations: int,
-              min_step: float = 1e-6, stats: dict | None = None) -> Iterator[Increment]:
-    """Follow f_int(u) = target(t) from t = 0 (u0 in equilibrium) to t = 1."""
-    stats = stats if stats is not None else {}
-    stats.setdefault("rejected_steps", 0)
-    t, dt, u, du_prev = 0.0, 1.0 / steps, u0, None
-    while t < 1.0 - 1e-14:
-        dt = min(dt, 1.0 - t)
-        guess = u if du_prev is None else u + du_prev[1] * (dt / du_prev[0])
-        res = newton(model, guess, target(t + dt), atol, max_iterations)
+    def solve(t0: float, t1: float) -> Attempt:
+        u, prev, dt = state["u"], state["du_prev"], t1 - t0
+        guess = u if prev is None else u + prev[1] * (dt / prev[0])
+        res = newton(model, guess, target(t1), atol, max_iterations)
         if not res.converged:        # retry from the last state with a line search
-            retry = newton(model, u, target(t + dt), atol, max_iterations, line_search=True)
+            retry = newton(model, u, target(t1), atol, max_iterations, line_search=True)
             retry.iterations += res.iterations
             res = retry
         if not res.converged and dt <= DESCENT_BELOW:
             # a small increment that still fails is not a step-size problem (e.g. an
             # indefinite tangent): descend the potential before cutting further
-            retry = _descend(model, u, target(t + dt), atol, 4 * max_iterations)
+            retry = _descend(model, u, target(t1), atol, 4 * max_iterations)
             retry.iterations += res.iterations
             res = retry
-        stats["newton_iterations"] = stats.get("newton_iterations", 0) + res.iterations
-        if not res.converged:
-            stats["rejected_steps"] += 1
-            dt *= 0.5
-            if dt < min_step:
-                raise PathFailure(phase, t, f"load increment below {min_step:g} at t = {t:.6g} "
-                                            f"({phase}): {res.reason}")
-            continue
-        du_prev = (dt, res.u - u)
-        t, u = t + dt, res.u
-        stats["accepted"] = stats.get("accepted", 0) + 1
-        yield Increment(phase, t, u, res.iterations, res.residuals)
-        if res.iterations <= 4:
-            dt *= 1.5
+        if res.converged:
+            state["du_prev"], state["u"] = (dt, res.u - u), res.u
+        return Attempt(res.converged, res.iterations, res.reason)
+
+    return solve, state
 
 
 @dataclass
@@ -183,29 +161,25 @@ class StaticResult:
     relax_steps: int
     stable: bool | None
     stability: str | None          # what the stability check found and did
-    increments: list[Increment] = field(default_factory=list)
     cpu_s: float = 0.0
     wall_s: float = 0.0
 
 
 def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
-                 rtol: float = 1e-8, max_iterations: int = 25,
-                 keep_increments: bool = False) -> StaticResult:
+                 rtol: float = 1e-8, max_iterations: int = 25) -> StaticResult:
     wall0, cpu0 = time.perf_counter(), time.process_time()
     free = np.ones(model.mesh.n_dof, bool)
     free[model.fixed] = False
     u = np.zeros(model.mesh.n_dof)
-    stats: dict = {}
-    increments: list[Increment] = []
+    counts = PathCounts()
     n_relax = 0
     f0 = np.where(free, model.internal_force(u), 0.0)
     scale = max(np.linalg.norm(f_ext[free]), np.linalg.norm(f0), 1e-30)
     atol = rtol * scale
 
     def finish(status, reason, u, stable=None, stability=None):
-        return StaticResult(u, status, reason, stats.get("newton_iterations", 0),
-                            stats.get("accepted", 0), stats.get("rejected_steps", 0), n_relax,
-                            stable, stability, increments,
+        return StaticResult(u, status, reason, counts.newton_iterations, counts.accepted,
+                            counts.rejected, n_relax, stable, stability,
                             time.process_time() - cpu0, time.perf_counter() - wall0)
 
     phases = []
@@ -215,11 +189,10 @@ def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
         phases.append(("load", lambda t: f_ext * t, load_steps))
     try:
         for phase, target, steps in phases:
-            for inc in load_path(model, target, u, phase, steps, atol, max_iterations, stats=stats):
+            solve, state = increment_solver(model, target, u, atol, max_iterations)
+            for _ in follow(solve, steps, counts, phase):
                 n_relax += phase == "relax"
-                if keep_increments:
-                    increments.append(inc)
-                u = inc.u
+            u = state["u"]
     except PathFailure as e:
         return finish("failed", e.reason, None)
 
@@ -228,7 +201,7 @@ def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
     tries = 0
     while verdict.kind == "unstable" and tries < 3:
         tries += 1
-        u_new = _escape(model, u, verdict.mode, f_ext, atol, max_iterations, stats)
+        u_new = _escape(model, u, verdict.mode, f_ext, atol, max_iterations, counts)
         if u_new is None:
             break
         u = u_new
@@ -247,7 +220,7 @@ def relax(model: BeamModel, rtol: float = 1e-8, max_iterations: int = 25) -> Sta
     is not negligible)."""
     m = model.mesh
     hold = m.dofs(m.n_nodes - 1, ["r"])[1:2]
-    held = BeamModel(m, model.material, model.rule, np.union1d(model.fixed, hold), set())
+    held = BeamModel(m, model.material, model.rule, np.union1d(model.fixed, hold))
     res = solve_static(held, np.zeros(m.n_dof), rtol=rtol, max_iterations=max_iterations)
     if res.u is not None:
         reaction = abs(held.internal_force(res.u)[hold[0]])
@@ -262,7 +235,7 @@ def potential(model: BeamModel, u: np.ndarray, f_ext: np.ndarray) -> float:
     return model.strain_energy(u) - float(f_ext @ u)
 
 
-def _escape(model, u, mode, f_ext, atol, max_iterations, stats) -> np.ndarray | None:
+def _escape(model, u, mode, f_ext, atol, max_iterations, counts: PathCounts) -> np.ndarray | None:
     """From u, move along +- the unstable mode and descend the potential energy to a
     minimum; keep the end state of lower energy (None if neither side converges).
 
@@ -301,7 +274,7 @@ def _escape(model, u, mode, f_ext, atol, max_iterations, stats) -> np.ndarray | 
                 g = 1.0
             lo, hi = (mid, hi) if g < 0 else (lo, mid)
         res = _descend(model, u + lo * d, f_ext, atol, 20 * max_iterations)
-        stats["newton_iterations"] = stats.get("newton_iterations", 0) + res.iterations
+        counts.newton_iterations += res.iterations
         if res.converged:
             e = potential(model, res.u, f_ext)
             if best is None or e < best[0]:

@@ -33,9 +33,6 @@ class Node:
     tape: Tape
     i: int
 
-    def _node(self, o) -> "Node":
-        return o if isinstance(o, Node) else self.tape.push(CONST, c=o)
-
     def __add__(self, o):
         if isinstance(o, Node):
             return self.tape.push(ADD, self.i, o.i)

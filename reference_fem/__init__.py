@@ -1,20 +1,24 @@
 """Continuum reference in FEniCSx (DOLFINx 0.5): the only package that imports dolfinx.
 
-The scene's beam as a 2D continuum on a structured gmsh mesh: plane strain, exactly
+The scene's beam as a continuum on a structured gmsh mesh: plane strain, exactly
 incompressible (Taylor-Hood, mixed) or with the ANCF penalty (perturbed Lagrangian),
-or incompressible plane stress (F33 = 1/det F). Same scene files (``ancf.scene``)
-and records (``ancf.record``) as ``ancf``.
+or incompressible plane stress (F33 = 1/det F). Same scene files (``contract.scene``)
+and records (``contract.record``) as ``ancf``, the same load-path rule
+(``ancf.loadpath``) and time loop (``ancf.timeloop``).
 
 Modules, one concept each:
 
 - :mod:`.settings`: the scene's [fem] table, validated and resolved (no dolfinx);
-- :mod:`.energies`: the laws and continuum models in UFL;
-- :mod:`.geometry`: the gmsh rectangle; :mod:`.dolfinx_backend`: every DOLFINx call;
-- :mod:`.problem`: energy + loads + supports -> nonlinear system;
-- :mod:`.newton`: load stepping with step cutting (no dolfinx);
+- :mod:`.energies`: the laws in UFL and their invariants;
+- :mod:`.models`: the continuum models as strategies (invariants, incompressibility,
+  geometry); :mod:`.geometry`: the gmsh meshes and where supports and the tip are;
+- :mod:`.dolfinx_backend`: every DOLFINx call;
+- :mod:`.setup`: scene -> spaces, law, model, supports, loads; the static problem;
+- :mod:`.dynamic_problem`: the forms of one time step; :mod:`.dynamics`: its stepper;
+- :mod:`.newton`: Newton and static load stepping (no dolfinx);
 - :mod:`.run`: scene -> record; :mod:`.convergence`: refinement and Richardson;
-- :mod:`.cases`, :mod:`.gold`, :mod:`.report`: the paper's cantilever, gold data, tables;
-- :mod:`.cli`: ``python -m reference_fem run | converge | gold | report``.
+- :mod:`.gold`, :mod:`.pendulum`, :mod:`.report`: gold data of the paper's examples, tables;
+- :mod:`.cli`: ``python -m reference_fem run | converge | gold | pendulum | report``.
 
 Importing the package imports nothing heavy; dolfinx is loaded when a problem is built.
 """

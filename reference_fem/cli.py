@@ -25,8 +25,8 @@ T_IMPORT = time.perf_counter()
 
 
 def _run(args) -> int:
-    from ancf.record import sanitize, write_record
-    from ancf.scene import load_scene
+    from contract.record import sanitize, write_record
+    from contract.scene import load_scene
 
     from .run import run_scene
 
@@ -67,8 +67,8 @@ def _level_line(level: dict) -> str:
 
 
 def _converge(args) -> int:
-    from ancf.record import sanitize
-    from ancf.scene import load_scene
+    from contract.record import sanitize
+    from contract.scene import load_scene
 
     from .convergence import refinement_study
     from .run import check_static
@@ -108,7 +108,7 @@ def _gold(args) -> int:
 
 
 def _pendulum(args) -> int:
-    from ancf.record import sanitize
+    from contract.record import sanitize
 
     from .pendulum import convergence_case
 
@@ -144,7 +144,7 @@ def _report(args) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from ancf.errors import SceneError
+    from contract.errors import SceneError
 
     p = argparse.ArgumentParser(prog="python -m reference_fem",
                                 description="2D continuum reference (DOLFINx) for the ANCF scenes")

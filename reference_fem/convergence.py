@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ancf.scene import Scene
+from contract.scene import Scene
 
 from .settings import FemSettings, fem_settings
 

@@ -140,16 +140,28 @@ class Discretisation:
     def displacement(self):
         return self.w.sub(0).collapse() if self.pressure else self.w
 
-    def point_displacement(self, points: np.ndarray) -> np.ndarray:
-        """u at points (n, 2) in the reference configuration -> (n, 2)."""
+    def point_displacement(self, points) -> np.ndarray:
+        """u at points (n, gdim) in the reference configuration -> (n, gdim)."""
+        points = np.asarray(points, float)
+        gdim = self.mesh.geometry.dim
         pts = np.zeros((len(points), 3))
-        pts[:, :2] = points
+        pts[:, :points.shape[1]] = points
         tree = dolfinx.geometry.BoundingBoxTree(self.mesh, self.mesh.topology.dim)
         candidates = dolfinx.geometry.compute_collisions(tree, pts)
         cells = dolfinx.geometry.compute_colliding_cells(self.mesh, candidates, pts)
         first = [cells.links(i)[0] for i in range(len(pts))]
         values = self.displacement().eval(pts, np.array(first, dtype=np.int32))
-        return np.asarray(values).reshape(len(pts), -1)[:, :2]
+        return np.asarray(values).reshape(len(pts), -1)[:, :gdim]
+
+    def positions(self, w: np.ndarray, points) -> np.ndarray:
+        """Deformed positions (n, gdim) in m of reference points (n, gdim) at the state w
+        (an array of W); the current state is kept."""
+        points = np.asarray(points, float)
+        saved = self.w.x.array.copy()
+        self.w.x.array[:] = w
+        d = self.point_displacement(points)
+        self.w.x.array[:] = saved
+        return points + d
 
     def write(self, path: Path, fmt: str, scale: float = 1.0, t: float = 0.0) -> Path:
         """Write the mesh with the displacement (and pressure p = scale * phat)

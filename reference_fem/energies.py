@@ -1,4 +1,4 @@
-"""The hyperelastic laws and 2D continuum models in UFL (written once, no dolfinx).
+"""The hyperelastic laws in UFL and the invariants they see (written once, no dolfinx).
 
 Laws carry the names and constants of :mod:`ancf.laws` (checked by a test) and are
 energies psi(I1, I2) of the 3D invariants. The invariants are built here from the 3D
@@ -10,15 +10,8 @@ right Cauchy-Green tensor, independently of the 2D shortcuts in
 - plane stress (incompressible): F3 = diag(F, 1/J), so I1 = tr C + J^-2,
   I2 = tr C J^-2 + J^2; no volumetric term.
 
-Continuum models (energy per unit reference volume, Pa; the 2D problem is per unit
-width). The pressure unknown is scaled by a modulus ``mu`` (p = mu * phat) so that
-its rows and unknowns have the size of the displacement ones:
-
-- ``mixed`` plane strain: psi(I1bar, I2bar) + mu phat (J - 1)  (exactly incompressible)
-- ``penalty`` plane strain: psi(I1bar, I2bar) + mu phat (J - 1) - (mu phat)^2 / (2 alpha);
-  eliminating phat gives the ANCF ``plane-strain`` energy psi + alpha/2 (J - 1)^2
-  without locking (perturbed Lagrangian);
-- ``exact`` plane stress: psi(I1, I2) with F33 = 1/J; displacement only.
+How a continuum model uses them (and enforces incompressibility) is
+:mod:`reference_fem.models`.
 """
 from __future__ import annotations
 
@@ -27,7 +20,7 @@ from typing import Callable, Mapping
 
 import ufl
 
-from ancf.errors import UnknownName
+from contract.errors import UnknownName
 
 
 @dataclass(frozen=True)
@@ -35,6 +28,10 @@ class LawUFL:
     name: str
     constants: tuple[str, ...]
     energy: Callable  # (I1, I2, c: Mapping[str, UFL scalar]) -> UFL scalar
+
+    def shear_modulus(self, c: Mapping[str, float]) -> float:
+        """Small-strain shear modulus mu = 2 (dpsi/dI1 + dpsi/dI2) at I1 = I2 = 3 (Pa)."""
+        return 2.0 * (c.get("C10", 0.0) + c.get("C01", 0.0))
 
 
 def _neo_hookean(I1, I2, c):
@@ -85,35 +82,3 @@ def plane_stress_invariants(F):
     F3 = ufl.as_matrix([[F[0, 0], F[0, 1], 0], [F[1, 0], F[1, 1], 0], [0, 0, 1 / J]])
     I1, I2 = _invariants_3d(F3.T * F3)
     return I1, I2, J
-
-
-@dataclass(frozen=True)
-class Incompressibility:
-    """How a continuum model enforces J = 1 (or penalises J - 1)."""
-
-    name: str           # "mixed" | "penalty" | "exact"
-    model: str          # "plane-strain" | "plane-stress"
-    has_pressure: bool
-
-    def energy(self, law: LawUFL, c: Mapping, F, phat=None, mu=None, alpha=None):
-        """Energy density (Pa) at gradient F (and scaled pressure phat where used)."""
-        if self.model == "plane-stress":
-            I1, I2, _ = plane_stress_invariants(F)
-            return law.energy(I1, I2, c)
-        I1, I2, J = plane_strain_invariants(F)
-        W = law.energy(I1, I2, c) + mu * phat * (J - 1)
-        if self.name == "penalty":
-            W = W - (mu * phat) ** 2 / (2 * alpha)
-        return W
-
-
-INCOMPRESSIBILITIES = {
-    ("plane-strain", "mixed"): Incompressibility("mixed", "plane-strain", True),
-    ("plane-strain", "penalty"): Incompressibility("penalty", "plane-strain", True),
-    ("plane-stress", "exact"): Incompressibility("exact", "plane-stress", False),
-}
-
-
-def first_piola(W, F):
-    """P = dW/dF for W built on ``F = ufl.variable(...)``."""
-    return ufl.diff(W, F)

@@ -18,7 +18,9 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from .cases import cantilever
+from contract import paper
+from contract.scene import Scene, scene_from_dict
+
 from .convergence import refinement_study
 from .settings import FemSettings, default_quadrature_degree
 
@@ -30,6 +32,15 @@ VARIANTS = {  # case suffix -> (scene formulation, [fem] incompressibility)
     "plane-stress": ("plane-stress", None),
 }
 REGRESSION_RTOL = 1e-6
+
+
+def cantilever(law: str, model: str, incompressibility: str | None = None, fem: dict | None = None) -> Scene:
+    """The paper's cantilever for ``law`` in the continuum ``model``."""
+    fem = dict(fem or {})
+    if incompressibility:
+        fem["incompressibility"] = incompressibility
+    return scene_from_dict(paper.cantilever_scene(law, model, fem=fem or None, load_steps=10,
+                                                  name=f"fem-cantilever-{law}-{model}"))
 
 
 def base_settings(model: str, incompressibility: str | None) -> FemSettings:

@@ -2,7 +2,7 @@
 convergence, gold data for the ANCF comparison (no dolfinx imported at module level).
 
 Pendulum: L = 350 mm, h = 5 mm, w = 7 mm, the paper's laws and densities (Table 2,
-as in :mod:`reference_fem.cases`), gravity (0, -9.81) m/s^2, pinned at the centre of
+:mod:`contract.paper`), gravity (0, -9.81) m/s^2, pinned at the centre of
 the left face, released from horizontal at rest, 0.5 s, output times 0, 0.1, ... 0.5 s.
 
 Convergence check of a (mesh, dt): two more runs, one with dt / 2 and one with the
@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .cases import MATERIALS, PENALTY
+from contract import paper
 
 PIN_NOTE = ("The pin is the centre node of the left face: a point support, whose local field "
             "is logarithmically singular in a 2D continuum. Refining the mesh shrinks the "
@@ -41,10 +41,9 @@ PIN_NOTE = ("The pin is the centre node of the left face: a point support, whose
             "criterion by this effect (converged: false); its time step is converged.")
 FILE = "fem_pendulum.json"
 LAWS = ("neo-hookean", "mooney-rivlin", "yeoh")
-LENGTH, HEIGHT, WIDTH = 0.350, 0.005, 0.007
-GRAVITY = 9.81
-T_END = 0.5
-OUTPUT_TIMES = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5]
+LENGTH = paper.PENDULUM["length"]
+GRAVITY = paper.GRAVITY
+T_END = paper.PENDULUM_T_END
 CRITERION_M = 1e-4
 TOLERANCE_FACTOR = 2.0
 TOLERANCE_FLOOR_M = 5e-6
@@ -61,42 +60,23 @@ def pendulum_dict(law: str, model: str, dt: float = GOLD_DT, cells_height: int =
                   rho_inf: float = GOLD_RHO_INF, stiffness_scale: float = 1.0, output_times=None,
                   **analysis) -> dict:
     """The pendulum scene (as a TOML-like dict) for ``law`` in the continuum ``model``."""
-    material = {"law": law, "formulation": model, **MATERIALS[law]}
-    for k in material:
-        if k.startswith("C"):
-            material[k] *= stiffness_scale
-    if model == "plane-strain":
-        material["penalty"] = PENALTY * stiffness_scale
-    if output_times is None:
-        output_times = [t for t in OUTPUT_TIMES if t <= t_end + 1e-12]
-        if output_times[-1] < t_end:
-            output_times.append(t_end)
-    return {
-        "name": f"pendulum-{law}-{model}-fem",
-        "beam": {"length": LENGTH, "height": HEIGHT, "width": WIDTH},
-        "material": material,
-        "supports": {"left": "pin"},
-        "loads": {"gravity": [0.0, -GRAVITY]},
-        "analysis": {"kind": "dynamic", "t_end": t_end, "dt": dt, "output_times": list(output_times),
-                     "integrator": integrator, "rho_inf": rho_inf, **analysis},
-        "fem": {"cells_height": cells_height, "aspect": aspect},
-    }
-
-
-def mass() -> dict:
-    """{law: m (kg)} of the pendulum."""
-    return {law: MATERIALS[law]["density"] * LENGTH * HEIGHT * WIDTH for law in LAWS}
+    d = paper.pendulum_scene(law, model, dt, rho_inf=rho_inf, t_end=t_end, integrator=integrator,
+                             stiffness_scale=stiffness_scale, name=f"pendulum-{law}-{model}-fem",
+                             fem={"cells_height": cells_height, "aspect": aspect}, **analysis)
+    if output_times is not None:
+        d["analysis"]["output_times"] = list(output_times)
+    return d
 
 
 def energy_bound(law: str) -> float:
     """1e-3 m g L / 2 (J): the issue's bound on |E(t) - E(0)| for conservative settings."""
-    return 1e-3 * mass()[law] * GRAVITY * LENGTH / 2
+    return 1e-3 * paper.pendulum_mass(law) * GRAVITY * LENGTH / 2
 
 
 def run_case(d: dict, energy_every_step: bool = False) -> dict:
     """Run one scene dict; return its record (plain JSON types)."""
-    from ancf.record import sanitize
-    from ancf.scene import scene_from_dict
+    from contract.record import sanitize
+    from contract.scene import scene_from_dict
 
     from .run import run_scene, run_dynamic
     from .settings import fem_settings

@@ -11,7 +11,7 @@ import json
 import math
 from pathlib import Path
 
-from .cases import ABAQUS_TIP
+from contract.paper import paper_tip
 
 LABEL = {"plane-strain": "plane strain, mixed (exact)", "plane-strain-penalty":
          "plane strain, penalty 1000 MPa", "plane-stress": "plane stress (F33 = 1/J)"}
@@ -26,7 +26,7 @@ def abaqus_table(cases: dict) -> list[str]:
             "| ux vs ABAQUS | uy vs ABAQUS |", "|---|---|---|---|---|---|---|---|"]
     for key, c in cases.items():
         law, variant = key.split("/")
-        t, (ax, ay) = c["tip"], ABAQUS_TIP[law]
+        t, (ax, ay) = c["tip"], paper_tip("ABAQUS", law)
         rows.append(f"| {law} | {LABEL[variant]} | {t['ux'] * 1e3:.3f} | {t['uy'] * 1e3:.3f} "
                     f"| {c['error_estimate_m'] * 1e3:.1e} | {ax * 1e3:.2f}, {ay * 1e3:.2f} "
                     f"| {(t['ux'] - ax) / abs(ax) * 100:+.2f} % | {(t['uy'] - ay) / abs(ay) * 100:+.2f} % |")

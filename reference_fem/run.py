@@ -1,6 +1,6 @@
 """Run one scene with the continuum reference and produce its record.
 
-The record is :func:`ancf.record.new_record` ("fenicsx") with the same keys as an
+The record is :func:`contract.record.new_record` ("fenicsx") with the same keys as an
 ANCF run, plus ``continuum_model`` ("plane-strain" | "plane-stress"),
 ``incompressibility`` ("mixed" | "penalty" | "exact") and ``fem`` (the resolved
 discretisation: cells, cell type, degree, quadrature degree) and ``dolfinx``
@@ -8,25 +8,36 @@ discretisation: cells, cell type, degree, quadrature degree) and ``dolfinx``
 degrees of freedom minus those the supports fix), like ancf's free dofs. ``setup_s``
 is meshing and JIT compilation, apart from the solve.
 
-Dynamic scenes (``analysis.kind = "dynamic"``) add the keys of ``ancf run``'s dynamic
-records: ``tip_history`` [{t, x, y}] (position of the free-end centre point (L, 0) at
-the output times; pin at the origin, beam along +x at t = 0), ``energy`` [{t,
-kinetic, strain, gravity, total}] (J, full width, gravity potential -int rho g . r dV),
-``steps``, ``rejected_steps``, ``newton_iterations`` and ``integrator`` (name, rho_inf,
-coefficients); ``pin`` says how the support is modelled (see
-:mod:`reference_fem.dynamic_problem`). The continuum models are stress-free at the
-reference: the motion starts from the undeformed beam at rest.
+Dynamic scenes (``analysis.kind = "dynamic"``) add the dynamic keys of the one time
+loop (:func:`ancf.timeloop.record_keys`, the same as ``ancf run``'s): ``tip_history``
+[{t, x, y}] (position of the free-end centre point at the output times),
+``configurations``, ``energy`` [{t, kinetic, strain, gravity, total}] (J, full beam),
+``steps``, ``rejected_steps``, ``newton_iterations``, ``integrator`` (name, rho_inf,
+coefficients) and ``energy_limit``; ``pin`` says how the support is modelled. The
+continuum models are stress-free at the reference: the motion starts from the
+undeformed beam at rest.
 """
 from __future__ import annotations
 
 import time
 from pathlib import Path
 
-from ancf.errors import SceneError
-from ancf.record import new_record
-from ancf.scene import Scene
+from contract.errors import SceneError
+from contract.record import new_record
+from contract.scene import Scene, check_names
 
-from .settings import FemSettings, fem_settings
+from .settings import FORMULATIONS, FemSettings, fem_settings
+
+
+def check(scene: Scene) -> FemSettings:
+    """The scene's names against reference_fem's vocabulary, and its [fem] table
+    resolved (one message naming the field and the allowed values)."""
+    from .dynamics import alpha_family
+    from .energies import LAWS_UFL
+
+    check_names(scene, laws={k: v.constants for k, v in LAWS_UFL.items()},
+                formulations=FORMULATIONS, integrators=alpha_family())
+    return fem_settings(scene)
 
 
 def check_static(scene: Scene) -> None:
@@ -35,23 +46,30 @@ def check_static(scene: Scene) -> None:
                          "static only (dynamic scenes: `run`, `pendulum`); allowed: 'static'")
 
 
-def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | None = None,
-              output_format: str = "vtk") -> dict:
-    """Solve ``scene`` (with ``settings`` overriding its [fem] table, e.g. in a
-    refinement study); return the record. ``output``: write the deformed mesh there."""
-    settings = settings or fem_settings(scene)
-    if scene.analysis.kind == "dynamic":
-        return run_dynamic(scene, settings, output=output, output_format=output_format)
-    check_static(scene)
+def _record(scene: Scene, settings: FemSettings) -> dict:
     from . import dolfinx_backend as backend
-    from .newton import solve_static
-    from .problem import build_beam_problem
 
     rec = new_record("fenicsx", scene.to_dict())
     rec.update(continuum_model=settings.model, incompressibility=settings.incompressibility,
                fem=settings.to_dict(), dolfinx=backend.VERSION)
+    return rec
+
+
+def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | None = None,
+              output_format: str = "vtk") -> dict:
+    """Solve ``scene`` (with ``settings`` overriding its [fem] table, e.g. in a
+    refinement study); return the record. ``output``: write the deformed mesh there."""
+    checked = check(scene)
+    settings = settings or checked
+    if scene.analysis.kind == "dynamic":
+        return run_dynamic(scene, settings, output=output, output_format=output_format)
+    from .newton import solve_static
+    from .setup import set_up, static_problem
+
+    rec = _record(scene, settings)
     t0 = time.perf_counter()
-    problem = build_beam_problem(scene, settings)
+    s = set_up(scene, settings)
+    problem = static_problem(s)
     rec["setup_s"] = time.perf_counter() - t0
     a = scene.analysis
     res = solve_static(problem.system, problem.set_load, a.load_steps, a.newton_rtol,
@@ -59,62 +77,47 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
     rec.update(status=res.status, reason=res.reason, ndof=problem.n_free,
                newton_iterations=res.newton_iterations, load_steps=res.load_steps,
                rejected_steps=res.rejected_steps, cpu_s=res.cpu_s, wall_s=res.wall_s,
-               effects=sorted(problem.effects), load_reached=res.t_reached)
+               effects=sorted(s.effects), load_reached=res.t_reached)
     if res.status == "converged":
-        ux, uy = problem.disc.point_displacement([[scene.beam.length, 0.0]])[0]
+        tip = s.model.geometry.tip_point(scene.beam)
+        ux, uy = s.disc.point_displacement([tip])[0][:2]
         rec["tip"] = {"ux": float(ux), "uy": float(uy)}
         if output is not None:
-            rec["output"] = str(problem.disc.write(Path(output) / scene.name, output_format,
-                                                   scale=problem.pressure_scale))
+            rec["output"] = str(s.disc.write(Path(output) / scene.name, output_format, scale=s.mu))
     return rec
-
-
-
-PIN = ("the node at the centre (0, 0) of the left face: both displacement components "
-       "zero there; the face is otherwise free to rotate and deform")
 
 
 def run_dynamic(scene: Scene, settings: FemSettings, output: Path | None = None,
                 output_format: str = "vtk", energy_every_step: bool = False,
                 energy_limit: float | None = None, progress=None) -> dict:
-    """Integrate a dynamic scene; the record has the keys of ``ancf run``'s dynamic records."""
+    """Integrate a dynamic scene; the record has the keys of ``ancf run``'s dynamic records.
+    ``energy_limit``: overrides the scene's (or the default) limit."""
     import numpy as np
 
-    from . import dolfinx_backend as backend
+    from ancf.timeloop import energy_limit as scene_energy_limit
+    from ancf.timeloop import integrate, record_keys
+
     from .dynamic_problem import build_dynamic_problem
-    from .dynamics import Integrator, coefficients
+    from .dynamics import ContinuumStepper
 
     a = scene.analysis
-    coef = coefficients(a.integrator, a.rho_inf)   # refuses unknown methods before meshing
-    rec = new_record("fenicsx", scene.to_dict())
-    rec.update(continuum_model=settings.model, incompressibility=settings.incompressibility,
-               fem=settings.to_dict(), dolfinx=backend.VERSION,
-               pin=PIN if scene.supports.left == "pin" else "clamp: the whole face x = 0 fixed")
+    rec = _record(scene, settings)
     t0 = time.perf_counter()
     problem = build_dynamic_problem(scene, settings)
-    integrator = Integrator(problem, a.integrator, a.rho_inf, a.newton_rtol, a.max_iterations)
+    rec["pin"] = (problem.setup.model.geometry.pin_note if scene.supports.left == "pin"
+                  else "clamp: the whole face x = 0 fixed")
+    stepper = ContinuumStepper(problem, a.integrator, a.rho_inf, a.newton_rtol, a.max_iterations, scene.beam)
     rec["setup_s"] = time.perf_counter() - t0
-    res = integrator.run(np.zeros(problem.n_dof), a.t_end, a.dt, a.output_times, a.dt_min,
-                         a.tolerance, energy_limit=energy_limit,
-                         energy_every_step=energy_every_step, progress=progress)
-    rec.update(status=res.status, reason=res.reason, ndof=problem.n_free,
-               newton_iterations=res.newton_iterations, steps=res.steps,
-               rejected_steps=res.rejected_steps, cpu_s=res.cpu_s, wall_s=res.wall_s,
-               effects=sorted(problem.effects),
-               integrator={"name": a.integrator, "rho_inf": a.rho_inf, **coef})
-    rec["tip_history"] = [{"t": o.t, "x": o.tip[0], "y": o.tip[1]} for o in res.outputs]
-    rec["configurations"] = [{"t": o.t, "x": o.line[:, 0].tolist(), "y": o.line[:, 1].tolist()}
-                             for o in res.outputs if o.line is not None]
-    rec["energy"] = [{"t": o.t, "kinetic": o.energy[0], "strain": o.energy[1],
-                      "gravity": o.energy[2], "total": sum(o.energy)} for o in res.outputs]
+    limit = energy_limit if energy_limit is not None else scene_energy_limit(scene)
+    res = integrate(stepper, np.zeros(problem.n_dof), a.t_end, a.dt, a.output_times, a.dt_min,
+                    a.tolerance, energy_limit=None if limit == float("inf") else limit,
+                    energy_every_step=energy_every_step, progress=progress)
+    rec.update(ndof=problem.n_free, effects=sorted(problem.setup.effects + ["inertia"]),
+               **record_keys(res, stepper.describe(), limit, scene.beam.length))
     if energy_every_step:
-        rec["energy_steps"] = [{"t": e[0], "kinetic": e[1], "strain": e[2], "gravity": e[3],
-                                "total": sum(e[1:])} for e in res.energy_steps]
-    if res.outputs and res.status == "converged":
-        x, y = res.outputs[-1].tip
-        rec["tip"] = {"ux": x - scene.beam.length, "uy": y}
+        rec["energy_steps"] = [e.to_dict(t) for t, e in res.energy_steps]
     if output is not None and res.final is not None:
         problem.disc.w.x.array[:] = res.final.u
         rec["output"] = str(problem.disc.write(Path(output) / scene.name, output_format,
-                                               scale=problem.pressure_scale, t=res.final.t))
+                                               scale=problem.setup.mu, t=res.final.t))
     return rec

@@ -1,8 +1,8 @@
 """The scene's ``[fem]`` table: validated here, resolved against the scene's beam.
 
-``ancf.scene`` hands the table over raw (``scene.fem``, a dict or None); this module is
+``contract.scene`` hands the table over raw (``scene.fem``, a dict or None); this module is
 the one place that checks it, with the same kind of errors as the scene loader
-(:class:`ancf.errors.SceneError` naming the field and the allowed values; unknown keys
+(:class:`contract.errors.SceneError` naming the field and the allowed values; unknown keys
 are rejected). No dolfinx here.
 
 Keys (all optional except ``model`` for ``paper`` scenes):
@@ -24,12 +24,17 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, replace
 from typing import Any, Mapping
 
-from ancf.errors import SceneError, UnknownName
-from ancf.scene import Scene
+from contract.errors import SceneError, UnknownName
+from contract.scene import Scene
+
+from .models import get_model
 
 CELLS = ("quadrilateral", "triangle")
 INCOMPRESSIBILITY = ("mixed", "penalty")
 MODELS = ("plane-strain", "plane-stress")
+# The scene's formulations and whether the scene carries a penalty (the scene language
+# both solvers read: `paper` and `plane-strain` do, `plane-stress` does not).
+FORMULATIONS = {"paper": True, "plane-strain": True, "plane-stress": False}
 KEYS = ("cells_height", "cells_length", "aspect", "cell", "degree", "quadrature_degree",
         "incompressibility", "model")
 
@@ -54,10 +59,6 @@ class FemSettings:
     cell: str = DEFAULT_CELL
     degree: int = DEFAULT_DEGREE
     quadrature_degree: int = 4
-
-    @property
-    def has_pressure(self) -> bool:
-        return self.model == "plane-strain"
 
     def refined(self, factor: int) -> "FemSettings":
         """The same discretisation with every cell split ``factor`` times per direction."""
@@ -119,7 +120,7 @@ def fem_settings(scene: Scene) -> FemSettings:
             raise SceneError("fem.incompressibility: \"penalty\" needs material.penalty")
 
     cell = _choice("cell", t.get("cell", DEFAULT_CELL), CELLS)
-    degree = _int("degree", t.get("degree", DEFAULT_DEGREE), 2 if model == "plane-strain" else 1)
+    degree = _int("degree", t.get("degree", DEFAULT_DEGREE), get_model(model, incompressibility).min_degree)
     ny = _int("cells_height", t.get("cells_height", DEFAULT_CELLS_HEIGHT))
     if "cells_length" in t and "aspect" in t:
         raise SceneError("fem.cells_length: give either cells_length or aspect, not both")

@@ -13,11 +13,10 @@ from __future__ import annotations
 from .case import make_case
 from .continuum import scene as continuum_scene
 from .grid import cantilever_case
-from .reference import LAW_SHORT, MATCHING, continuum_references, describe, variant_of
-from .report import Section, Table, figure, pct, vec_error
+from .reference import short, MATCHING, continuum_references, describe, variant_of
+from .report import Section, Table, figure, marker, pct, vec_error
 
 STYLE = {(2, 2): ":", (3, 2): "-", (5, 3): "--", (3, 3): "-."}
-MARKERS = {"HB2n-12": "o", "HB3n-12": "s", "HB2n-16": "^", "LB2n-12": "x"}
 
 
 def cases(grid: dict, tiny: bool) -> list:
@@ -93,7 +92,7 @@ def report(ctx) -> Section:
                             label="continuum Q2 (levels)")
                     continue
                 el, q = ser[0]["element"], ser[0]["quadrature"]
-                ax.plot([p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], marker=MARKERS.get(el, "."),
+                ax.plot([p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], marker=marker(el, g["elements"]),
                         ls=STYLE.get(q, "-"), lw=1, ms=3.5, label=cfg)
             for a in g["accuracies"]:
                 ax.axhline(a, color="grey", lw=0.6, ls=":")
@@ -115,7 +114,7 @@ def report(ctx) -> Section:
             for a in g["accuracies"]:
                 best_a = cheapest(settled([p for p in sel if p["solver"] == "ancf"], a), a)
                 best_c = cheapest(settled([p for p in sel if p["solver"] == "fenicsx"], a), a)
-                rows.append([LAW_SHORT[law], f, f"{100 * a:g} %",
+                rows.append([short(law), f, f"{100 * a:g} %",
                              f"{best_a['config']} x {best_a['mesh']}" if best_a else "none",
                              best_a["time"] if best_a else None, pct(best_a["error"]) if best_a else None,
                              f"{best_c['mesh']} Q2" if best_c else "none",
@@ -137,7 +136,7 @@ def report(ctx) -> Section:
     failed = [p for p in pts if p["status"] != "converged"]
     if failed:
         sec.text += f"\n{len(failed)} of {len(pts)} static runs failed: " + "; ".join(
-            f"{LAW_SHORT[p['law']]} {p['model']} {p['config']} x {p['mesh']}" for p in failed[:12])
+            f"{short(p['law'])} {p['model']} {p['config']} x {p['mesh']}" for p in failed[:12])
     return sec
 
 
@@ -166,17 +165,20 @@ def pendulum_part(ctx, sec: Section) -> None:
     if not pts:
         return
     g = ctx.study.grid
-    cont = continuum_pendulum().get(("yeoh", "plane-stress"))
+    laws = sorted({r["scene"]["material"]["law"] for r in ctx.records("table4")})
+    law = laws[0] if len(laws) == 1 else None
+    cont = continuum_pendulum().get((law, "plane-stress"))
     forms = list(dict.fromkeys(p["formulation"] for p in pts))
     fig, axes = figure(1, len(forms), figsize=(5.2 * len(forms), 4.2), squeeze=False, sharey=True)
     for j, f in enumerate(forms):
         ax = axes[0][j]
-        for el in dict.fromkeys(p["element"] for p in pts):
+        els = list(dict.fromkeys(p["element"] for p in pts))
+        for el in els:
             for n in sorted({p["n"] for p in pts if p["element"] == el}):
                 ser = sorted([p for p in pts if (p["formulation"], p["element"], p["n"]) == (f, el, n)
                               and p["error"] is not None and p["time"]], key=lambda p: -p["dt"])
                 if ser:
-                    ax.plot([p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], marker=MARKERS.get(el, "."),
+                    ax.plot([p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], marker=marker(el, els),
                             lw=0.8, ms=3, label=f"{el} x {n}")
         if cont and cont.wall_s and cont.error_estimate:
             ax.plot([cont.wall_s], [cont.error_estimate / 0.350], "kD", ms=7,
@@ -187,7 +189,7 @@ def pendulum_part(ctx, sec: Section) -> None:
         ax.set_yscale("log")
         ax.grid(True, which="major", alpha=0.3)
         ax.set_xlabel("wall time, serial warm (s)")
-        ax.set_title(f"pendulum (Yeoh, 0.5 s): ANCF `{f}` vs continuum plane stress", fontsize=9)
+        ax.set_title(f"pendulum ({', '.join(laws)}): ANCF `{f}` vs continuum plane stress", fontsize=9)
         if j == 0:
             ax.set_ylabel("max over t of |r - r_ref| / L")
     axes[0][-1].legend(fontsize=5, ncol=2, loc="lower left")

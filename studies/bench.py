@@ -14,16 +14,19 @@ import statistics
 import sys
 import time
 
-import numpy as np
-
 from ancf.run import run_scene
-from ancf.scene import scene_from_dict
+from contract import paper
+from contract.scene import scene_from_dict
 
-from . import paper
+from .pendulum import LADDER, converged_rung, describe_dynamic, ladder, pendulum_dict
 
 # The setting that reproduces the paper's Table 3 (README, "Reproducing Table 3").
 PAPER_SETTING = {"quadrature": (2, 2), "clamp": "all"}
-LAWS = ("neo-hookean", "mooney-rivlin", "yeoh")
+
+
+def paper_cells() -> list[tuple[str, str]]:
+    """(element, law) of the paper's Table 3 ANCF cells, in its order."""
+    return [k for k in paper.table3() if k[0] != "ABAQUS"]
 
 
 def _timed(scene, repeats: int):
@@ -38,7 +41,7 @@ def table3(repeats: int = 5) -> float:
     print(f"{'element':8s} {'n':>4s} {'law':14s} {'ndof':>5s} {'steps':>5s} {'newton':>6s} "
           f"{'ux mm':>8s} {'paper':>8s} {'uy mm':>8s} {'paper':>8s} {'wall s':>7s}")
     total = 0.0
-    for element, law in itertools.product(("HB2n-12", "HB3n-12", "HB2n-16", "LB2n-12"), LAWS):
+    for element, law in paper_cells():
         ref = paper.table3()[(element, law)]
         s = scene_from_dict(paper.cantilever_scene(law, "paper", element, ref["elements"], **PAPER_SETTING))
         rec, wall = _timed(s, repeats)
@@ -60,7 +63,7 @@ def penalty(elements=(16, 160, 640), factors=(1e1, 1e2, 1e3, 1e4, 1e5)) -> bool:
     for form, n in itertools.product(("paper", "plane-strain"), elements):
         print(f"\n{form}, {n} elements")
         print(f"{'element':8s} {'law':14s} " + " ".join(f"{f'a={f:.0e}C10':>16s}" for f in factors))
-        for element, law in itertools.product(("HB2n-12", "HB3n-12", "HB2n-16", "LB2n-12"), LAWS):
+        for element, law in paper_cells():
             cells = []
             for f in factors:
                 alpha = f * paper.materials()[law]["C10"]
@@ -81,37 +84,17 @@ def penalty(elements=(16, 160, 640), factors=(1e1, 1e2, 1e3, 1e4, 1e5)) -> bool:
     return ok
 
 
-def pendulum_scene(element: str, n: int, formulation: str, dt: float, rho_inf: float = 0.5,
-                   law: str = "yeoh", penalty: float = paper.PENALTY) -> dict:
-    """The paper's pendulum as a scene dict (Yeoh unless ``law`` says otherwise)."""
-    return {
-        "name": f"pendulum-{law}-{formulation}-{element}-{n}",
-        "beam": dict(paper.PENDULUM),
-        "material": paper.material_table(law, formulation, penalty),
-        "ancf": {"element": element, "elements": n},
-        "supports": {"left": "pin"},
-        "loads": {"gravity": [0.0, -paper.GRAVITY]},
-        "analysis": {"kind": "dynamic", "t_end": 0.5, "dt": dt, "rho_inf": rho_inf,
-                     "output_times": [0.0, 0.1, 0.2, 0.3, 0.4, 0.5]},
-    }
-
-
-def tips(rec) -> np.ndarray:
-    return np.array([[h["x"], h["y"]] for h in rec["tip_history"]])
-
-
-def converged_step(element, n, formulation, rho_inf=0.5, dt0=8e-3, tol=1e-4, dt_floor=1e-4):
-    """The largest fixed dt (halving from dt0) whose tip positions at all output times
-    are within ``tol`` (0.1 mm) of the dt/2 run; returns (dt, difference in m)."""
-    dt = dt0
-    prev = run_scene(scene_from_dict(pendulum_scene(element, n, formulation, dt, rho_inf)))[0]
-    while dt / 2 >= dt_floor:
-        half = run_scene(scene_from_dict(pendulum_scene(element, n, formulation, dt / 2, rho_inf)))[0]
-        if prev["status"] == "converged" and half["status"] == "converged":
-            diff = float(np.abs(tips(prev) - tips(half)).max())
-            if diff <= tol:
-                return dt, diff
-        dt, prev = dt / 2, half
+def converged_step(element, n, formulation, rho_inf=0.5, dt0=LADDER["dt0"], tol=LADDER["tol"],
+                   dt_floor=LADDER["dt_floor"]):
+    """The converged step of Table 4's rule (:func:`studies.pendulum.converged_rung`),
+    running the ladder only as far as needed; returns (dt, difference in m)."""
+    rungs = []
+    for dt in ladder(dt0, dt_floor):
+        rec = run_scene(scene_from_dict(pendulum_dict(element, n, formulation, dt, rho_inf)))[0]
+        rungs.append(describe_dynamic(rec))
+        rung, diff = converged_rung(rungs[-2:], tol)
+        if rung is not None:
+            return rung["dt"], diff
     return None, None
 
 
@@ -124,13 +107,15 @@ def pendulum(repeats: int = 5, rho_inf: float = 0.5, formulations=("plane-stress
         print(f"\n{form}")
         print(f"{'element':8s} {'n':>3s} {'ndof':>5s} {'dt ms':>6s} {'steps':>6s} {'newton':>6s} "
               f"{'wall s':>7s} {'paper s':>8s} {'paper/ours':>10s}")
-        for element, n in itertools.product(("HB2n-12", "HB3n-12", "HB2n-16"), (4, 8, 16, 32)):
+        cells = paper.table4()
+        order = list(dict.fromkeys(el for el, _ in cells))
+        for element, n in sorted(cells, key=lambda k: (order.index(k[0]), k[1])):
             dt, _ = converged_step(element, n, form, rho_inf)
             paper_s = paper.table4()[(element, n)]
             if dt is None:
                 print(f"{element:8s} {n:3d}  no converged step above 0.1 ms")
                 continue
-            rec, wall = _timed(scene_from_dict(pendulum_scene(element, n, form, dt, rho_inf)), repeats)
+            rec, wall = _timed(scene_from_dict(pendulum_dict(element, n, form, dt, rho_inf)), repeats)
             print(f"{element:8s} {n:3d} {rec['ndof']:5d} {dt * 1e3:6.3f} {rec['steps']:6d} "
                   f"{rec['newton_iterations']:6d} {wall:7.3f} {paper_s:8.1f} {paper_s / wall:10.0f}")
             sys.stdout.flush()

@@ -51,7 +51,7 @@ def canonical(obj: Any) -> str:
 class Case:
     study: str
     solver: str         # a key of studies.solvers.SOLVERS
-    scene_json: str     # canonical JSON of the scene dict (ancf.scene format, SI)
+    scene_json: str     # canonical JSON of the scene dict (contract.scene format, SI)
     options_json: str   # canonical JSON of the options dict (e.g. {"timing": {...}})
 
     @property

@@ -1,7 +1,8 @@
 """The study list: ``studies/cases.toml`` read into :class:`Study` objects.
 
 A study is a name, a grid (its table of cases.toml, with the ``[NAME.tiny]`` overrides
-merged in tiny mode), the studies whose records it reads (``needs``), and a module
+merged in tiny mode, over the keys of the ``[common]`` table that every study shares),
+the studies whose records it reads (``needs``), and a module
 (``studies/<module>.py``) with two functions:
 
 - ``cases(grid: dict, tiny: bool) -> list[Case]``: the grid expanded into cases;
@@ -22,6 +23,7 @@ from types import ModuleType
 
 CASES_TOML = Path(__file__).with_name("cases.toml")
 META_KEYS = ("module", "title", "needs", "tiny")
+COMMON = "common"   # not a study: grid keys every study gets unless it sets its own
 
 
 @dataclass(frozen=True)
@@ -44,9 +46,10 @@ class Study:
 def load_catalog(tiny: bool = False, path: Path = CASES_TOML) -> dict[str, Study]:
     """{name: Study} in the order of the file."""
     data = tomllib.loads(Path(path).read_text())
+    common = data.pop(COMMON, {})
     out = {}
     for name, t in data.items():
-        grid = {k: v for k, v in t.items() if k not in META_KEYS}
+        grid = {**common, **{k: v for k, v in t.items() if k not in META_KEYS}}
         if tiny:
             grid.update(t.get("tiny", {}))
         needs = tuple(t.get("needs", ()))

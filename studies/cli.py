@@ -14,73 +14,13 @@ Clusters: ``mpiexec -n N python -m mpi4py.futures -m studies run all --executor 
 from __future__ import annotations
 
 import argparse
-import os
 import sys
-import tempfile
 import time
 from pathlib import Path
 
-from .catalog import CASES_TOML, get_study, load_catalog, with_needs
+from .catalog import CASES_TOML, get_study, load_catalog
 from .execute import DEFAULT_TIMEOUT_S
-
-REPORTS = Path(__file__).resolve().parent.parent / "reports"
-
-
-def resolve_out(out: str | None, tiny: bool) -> Path:
-    if out:
-        return Path(out)
-    if tiny:
-        return Path(tempfile.mkdtemp(prefix="studies-tiny-"))
-    return REPORTS
-
-
-def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = False,
-                executor: str | None = None, workers: int = 2, progress: bool = True,
-                log=print, catalog_path: Path = CASES_TOML, timeout_s: float | None = None) -> dict[str, float]:
-    """Run the named studies (``["all"]`` for every one) and their needs into ``out``,
-    then rebuild the reports; return {study: seconds}."""
-    from .runner import run_cases
-    from .store import store_for
-
-    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ.setdefault(var, "1")  # one thread per worker process
-    catalog = load_catalog(tiny, catalog_path)
-    explicit = list(catalog) if names == ["all"] else names
-    times = {}
-    for study in with_needs(catalog, explicit):
-        cases = study.cases()
-        s = run_cases(study.name, cases, store_for(out, study.name), executor, workers,
-                      force=force and study.name in explicit, progress=progress,
-                      timeout_s=timeout_s or DEFAULT_TIMEOUT_S)
-        times[study.name] = s.seconds
-        log(f"{study.name}: {s.cases} cases, {s.reused} reused, {s.computed} computed, "
-            f"{s.failed} failed, {s.seconds:.1f} s")
-        for f in s.failures[:20]:
-            log(f"  failed: {f}")
-    t0 = time.perf_counter()
-    build_reports(out, tiny, log, catalog_path)
-    times["(reports)"] = time.perf_counter() - t0
-    return times
-
-
-def build_reports(out: Path, tiny: bool = False, log=print, catalog_path: Path = CASES_TOML) -> Path:
-    """Tables, figures and README.md from the records in ``out``/data (no solver runs)."""
-    from .report import Context, write_readme
-    from .store import store_for
-
-    catalog = load_catalog(tiny, catalog_path)
-    sections = []
-    out.mkdir(parents=True, exist_ok=True)
-    for study in catalog.values():
-        if not store_for(out, study.name).path.exists():
-            continue
-        try:
-            sections.append(study.module.report(Context(study, out, catalog)))
-        except Exception as e:  # name the study, then fail loudly
-            log(f"{study.name}: report failed: {type(e).__name__}: {e}")
-            raise
-    return write_readme(out, sections, tiny)
-
+from .pipeline import build_reports, resolve_out, run_studies
 
 def _list(args) -> int:
     catalog = load_catalog(args.tiny, args.catalog)

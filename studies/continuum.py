@@ -9,8 +9,10 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from contract import paper
+
 from .case import make_case
-from .reference import LAW_SHORT, VARIANT_LABEL, abaqus, continuum_references, gold_references
+from .reference import short, VARIANT_LABEL, abaqus, continuum_references, gold_references
 from .report import Section, Table, mm, pct
 
 GOLD = Path(__file__).resolve().parent.parent / "tests" / "gold" / "fem_cantilever.json"
@@ -19,14 +21,13 @@ MODELS = {"plane-strain": ("plane-strain", "mixed"), "plane-strain-penalty": ("p
 
 
 def scene(law: str, variant: str, cells: tuple[int, int]) -> dict:
-    from reference_fem.cases import cantilever_dict
-
     model, inc = MODELS[variant]
     fem = {"cells_length": int(cells[0]), "cells_height": int(cells[1]), "cell": "quadrilateral",
            "degree": 2, "quadrature_degree": 4}
-    d = cantilever_dict(law, model, fem=fem, incompressibility=inc)
-    d["name"] = f"fem-cantilever-{law}-{variant}-{cells[0]}x{cells[1]}"
-    return d
+    if inc:
+        fem["incompressibility"] = inc
+    return paper.cantilever_scene(law, model, fem=fem, load_steps=10,
+                                  name=f"fem-cantilever-{law}-{variant}-{cells[0]}x{cells[1]}")
 
 
 def cases(grid: dict, tiny: bool) -> list:
@@ -88,5 +89,5 @@ def gold_values(ctx) -> dict:
     for (law, v), r in continuum_references(ctx.records()).items():
         if r.tip:
             for i, comp in enumerate(("ux", "uy")):
-                out[f"continuum/{LAW_SHORT[law]}/{v}/{comp}"] = (r.tip[i], 1e-6 * abs(r.tip[i]) + 1e-9)
+                out[f"continuum/{short(law)}/{v}/{comp}"] = (r.tip[i], 1e-6 * abs(r.tip[i]) + 1e-9)
     return out

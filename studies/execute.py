@@ -2,7 +2,7 @@
 
 :func:`execute` runs a case once and returns its record: the solver's record plus
 ``case_id``, ``case`` and ``versions``. A case that raises is recorded, not lost:
-status "failed" and the exception as the reason (:func:`ancf.record.sanitize` later
+status "failed" and the exception as the reason (:func:`contract.record.sanitize` later
 turns any NaN into null).
 
 :func:`execute_timed` is for cases with a ``timing`` option: one warm-up run (caches,
@@ -19,7 +19,7 @@ import statistics
 import time
 import traceback
 
-from ancf.record import new_record
+from contract.record import new_record
 
 from .case import Case, versions
 from .solvers import get_solver
@@ -44,7 +44,7 @@ def _failed(case: Case, exc: BaseException) -> dict:
     return rec
 
 
-def _annotate(rec: dict, case: Case, started: float) -> dict:
+def annotate(rec: dict, case: Case, started: float) -> dict:
     rec["case_id"] = case.id
     rec["case"] = case.to_dict()
     rec["versions"] = versions()
@@ -80,7 +80,7 @@ def execute(case: Case, timeout_s: float | None = DEFAULT_TIMEOUT_S) -> dict:
     """Run ``case`` once; return its record (never raises for a solver error)."""
     t0 = time.perf_counter()
     rec, _ = _run_once(case, timeout_s)
-    return _annotate(rec, case, t0)
+    return annotate(rec, case, t0)
 
 
 def execute_timed(case: Case, timeout_s: float | None = DEFAULT_TIMEOUT_S) -> dict:
@@ -103,4 +103,4 @@ def execute_timed(case: Case, timeout_s: float | None = DEFAULT_TIMEOUT_S) -> di
         "solve_median_s": statistics.median(solve) if solve and None not in solve else None,
         "serial": True,
     }
-    return _annotate(rec, case, t0)
+    return annotate(rec, case, t0)

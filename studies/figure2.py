@@ -10,11 +10,10 @@ smallest mesh whose tip lies within 1 % of the finest mesh's tip (|u - u_finest|
 from __future__ import annotations
 
 from .grid import cantilever_case
-from .reference import LAW_SHORT, VARIANT_LABEL, abaqus, continuum_references, describe
-from .report import Section, Table, figure, mm, vec_error
+from .reference import short, VARIANT_LABEL, abaqus, continuum_references, describe
+from .report import Section, Table, figure, marker, mm, vec_error
 
 CONVERGED = 0.01
-MARKERS = {"HB2n-12": "o", "HB3n-12": "s", "HB2n-16": "^", "LB2n-12": "x"}
 
 
 def configurations(grid: dict) -> list[tuple[str, tuple[int, int], str]]:
@@ -54,11 +53,11 @@ def report(ctx) -> Section:
                 ns = [n for n, tip in ser if tip]
                 finest = next((tip for n, tip in reversed(ser) if tip), None)
                 for i, comp in enumerate(("ux", "uy")):
-                    axes[i][j].plot(ns, [mm(tip[comp]) for n, tip in ser if tip], marker=MARKERS.get(el, "."),
-                                    ms=4, lw=1, label=el, ls="--" if el == "LB2n-12" else "-")
+                    axes[i][j].plot(ns, [mm(tip[comp]) for n, tip in ser if tip], marker=marker(el, g["elements"]),
+                                    ms=4, lw=1, label=el, ls="--" if el in g.get("low_order", ()) else "-")
                 first = next((n for n, tip in ser if tip and finest and vec_error(tip, (finest["ux"], finest["uy"])) <= CONVERGED), None)
                 failed = [n for n, tip in ser if tip is None]
-                rows.append([f"{f} q{q[0]}{q[1]} {c}", LAW_SHORT[law], el, first, max(ns) if ns else None,
+                rows.append([f"{f} q{q[0]}{q[1]} {c}", short(law), el, first, max(ns) if ns else None,
                              mm(finest["ux"]) if finest else None, mm(finest["uy"]) if finest else None,
                              ", ".join(map(str, failed)) or "-"])
             for i, comp in enumerate(("ux", "uy")):
@@ -70,9 +69,9 @@ def report(ctx) -> Section:
                 ab = abaqus(law)
                 if ab:
                     ax.plot([160], [mm(ab[i])], "k*", ms=8, label="paper ABAQUS [160]")
-                hi = [mm(t[comp]) for el in g["elements"] if el != "LB2n-12"
+                hi = [mm(t[comp]) for el in g["elements"] if el not in g.get("low_order", ())
                       for n, t in _series(recs, f, q, c, law, el) if t]
-                if hi:  # the locked LB2n-12 (|u| of a few mm) would flatten the others
+                if hi:  # a locked element (|u| of a few mm) would flatten the others
                     ref_vals = [mm(r.tip[i]) for v in lines if (r := refs.get((law, v))) and r.tip]
                     lo_, hi_ = min(hi + ref_vals), max(hi + ref_vals)
                     pad = 0.08 * (hi_ - lo_ or 1.0)
@@ -87,7 +86,7 @@ def report(ctx) -> Section:
         fig.suptitle(f"Tip displacement against elements: `{f}`, quadrature {q}, clamp {c}", fontsize=10)
         sec.figure(ctx, fig, f"figure2_{f}_q{q[0]}{q[1]}_{c}",
                    f"Tip ux, uy (mm) against the number of elements, `{f}` formulation, quadrature {q}, clamp {c}; "
-                   f"horizontal lines: converged continuum ({', '.join(lines)}). LB2n-12 (locked, a few mm) lies "
+                   f"horizontal lines: converged continuum ({', '.join(lines)}). {', '.join(g.get('low_order', ())) or 'A locked element'} (locked, a few mm) lies "
                    "below the axes where it is off scale; its values are in the table.")
     sec.table(ctx, Table("figure2_convergence", ["configuration", "law", "element", f"n within {100 * CONVERGED:.0f} %",
                                                  "finest n", "ux finest (mm)", "uy finest (mm)", "failed at n"],
@@ -101,9 +100,9 @@ def gold_values(ctx) -> dict:
     out = {}
     for r in ctx.records():
         d = describe(r)
-        if d["status"] == "converged" and d["stable"] is not False and d["element"] != "LB2n-12":
+        if d["status"] == "converged" and d["stable"] is not False and d["element"] not in ctx.study.grid.get("low_order", ()):
             for comp in ("ux", "uy"):
                 v = d["tip"][comp]
-                out[f"figure2/{d['formulation']}/{d['element']}/{d['elements']}/{LAW_SHORT[d['law']]}/{comp}"] = (
+                out[f"figure2/{d['formulation']}/{d['element']}/{d['elements']}/{short(d['law'])}/{comp}"] = (
                     v, 1e-6 * abs(v) + 1e-9)
     return out

@@ -12,17 +12,18 @@ The self-convergence (each element against its own finest mesh) is shown beside 
 """
 from __future__ import annotations
 
+from contract import paper
+
 from .pendulum import (LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case,
                        tip_errors)
-from .report import Section, Table, figure
+from .report import Section, Table, figure, marker
 
-MARKERS = {"HB2n-12": "o", "HB3n-12": "s", "HB2n-16": "^", "LB2n-12": "x"}
 CONVERGED_M = 1e-3   # "converged at n": within 1 mm of the element's finest mesh at every output time
 CONTINUUM_MODEL = {"plane-stress": "plane-stress", "paper": "plane-stress", "plane-strain": "plane-strain"}
 
 
 def _common(grid: dict) -> dict:
-    return {"rho_inf": grid["rho_inf"], "t_end": grid["t_end"], "law": grid.get("law", "yeoh")}
+    return {"rho_inf": grid["rho_inf"], "t_end": grid["t_end"], "law": grid.get("law", paper.PENDULUM_LAW)}
 
 
 def cases(grid: dict, tiny: bool) -> list:
@@ -39,7 +40,7 @@ def cases(grid: dict, tiny: bool) -> list:
 def reference_for(ctx, formulation: str, descs: list[dict]) -> tuple[dict | None, str, bool]:
     """(tips {t: (x, y)}, label, provisional) of the reference of ``formulation``."""
     g = ctx.study.grid
-    cont = continuum_pendulum().get((g.get("law", "yeoh"), CONTINUUM_MODEL[formulation]))
+    cont = continuum_pendulum().get((g.get("law", paper.PENDULUM_LAW), CONTINUUM_MODEL[formulation]))
     if cont and cont.tips:
         return cont.tips, cont.label + ("" if cont.converged else " (not converged to 0.1 mm)"), False
     ref = g["reference"]
@@ -61,7 +62,7 @@ def report(ctx) -> Section:
     descs = [describe_dynamic(r) for r in ctx.records()]
     t_end = round(g["t_end"], 9)
     sec = Section(ctx.study.title,
-                  f"The pendulum (Yeoh, {g['t_end']:g} s, generalized-alpha rho_inf = {g['rho_inf']}, dt = "
+                  f"The pendulum ({g.get('law', paper.PENDULUM_LAW)}, {g['t_end']:g} s, generalized-alpha rho_inf = {g['rho_inf']}, dt = "
                   f"{1e3 * g['dt']:g} ms) at 4 to {max(g['counts'])} elements: tip error |r - r_ref| / L (L = "
                   f"{1e3 * LENGTH:g} mm) at t = {g['t_end']:g} s and the maximum over the output times, against the "
                   "converged continuum plane-stress tip; dotted: each element against its own finest mesh.")
@@ -88,9 +89,9 @@ def report(ctx) -> Section:
             good = [(d, e, s) for d, e, s in pts if e]
             if good:
                 ax.plot([d["elements"] for d, _, _ in good], [max(e[t_end], 1e-9) for _, e, _ in good],
-                        marker=MARKERS.get(el, "."), ls="-", lw=1.2, label=f"{el} at {g['t_end']:g} s")
+                        marker=marker(el, g["elements"]), ls="-", lw=1.2, label=f"{el} at {g['t_end']:g} s")
                 ax.plot([d["elements"] for d, _, _ in good], [max(max(e.values()), 1e-9) for _, e, _ in good],
-                        marker=MARKERS.get(el, "."), ls="--", lw=0.8, ms=3, color=ax.lines[-1].get_color(),
+                        marker=marker(el, g["elements"]), ls="--", lw=0.8, ms=3, color=ax.lines[-1].get_color(),
                         label=f"{el} max over t")
                 selfc = [(d, s) for d, _, s in pts if s]
                 if selfc:

@@ -10,10 +10,9 @@ the continuum at each output time.
 from __future__ import annotations
 
 from .pendulum import LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case, tip_errors
-from .reference import LAW_SHORT
-from .report import Section, Table, figure
+from .reference import short
+from .report import Section, Table, figure, linestyle
 
-STYLES = {"HB2n-12": "-", "HB3n-12": "--", "HB2n-16": ":"}
 CONTINUUM_MODEL = {"plane-stress": "plane-stress", "paper": "plane-stress", "plane-strain": "plane-strain"}
 
 
@@ -50,10 +49,10 @@ def report(ctx) -> Section:
                         continue
                     for k in confs[r["case_id"]]:
                         t = round(k["t"], 9)
-                        ax.plot([1e3 * x for x in k["x"]], [1e3 * y for y in k["y"]], ls=STYLES.get(el, "-"),
+                        ax.plot([1e3 * x for x in k["x"]], [1e3 * y for y in k["y"]], ls=linestyle(el, g["elements"]),
                                 lw=1.1, color=colours.get(t, "k"), label=f"{el}" if t == ts[-1] else None)
                     e = tip_errors(d["tips"], c.tips) if c else {}
-                    rows.append([LAW_SHORT[law], f, el, d["elements"], d["status"]]
+                    rows.append([short(law), f, el, d["elements"], d["status"]]
                                 + [1e3 * LENGTH * e[t] if t in e else None for t in ts if t > 0]
                                 + [1e3 * LENGTH * max(e.values()) if e else None])
             if c:
@@ -94,5 +93,5 @@ def gold_values(ctx) -> dict:
     out = {}
     for r in ctx.records():
         d = describe_dynamic(r)
-        out.update(gold_tips(f"figure5/{LAW_SHORT[d['law']]}/{d['formulation']}/{d['element']}/{d['elements']}", d))
+        out.update(gold_tips(f"figure5/{short(d['law'])}/{d['formulation']}/{d['element']}/{d['elements']}", d))
     return out

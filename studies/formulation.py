@@ -12,7 +12,7 @@ import math
 
 from .grid import cantilever_case
 from .pendulum import LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case, tip_errors
-from .reference import LAW_SHORT, MATCHING, VARIANT_LABEL, abaqus, continuum_references, describe
+from .reference import short, MATCHING, VARIANT_LABEL, abaqus, continuum_references, describe
 from .report import Section, Table, mm, pct, vec_error
 
 VARIANTS = ("plane-strain", "plane-strain-penalty", "plane-stress")
@@ -55,7 +55,7 @@ def pendulum_part(ctx, sec: Section) -> list[str]:
                     continue
                 errs = {m: tip_errors(d["tips"], cont[(law, m)].tips) if (d["ok"] and (law, m) in cont) else {}
                         for m in models}
-                row = [LAW_SHORT[law], f, d["element"], d["elements"], d["status"]]
+                row = [short(law), f, d["element"], d["elements"], d["status"]]
                 for m in models:
                     e = errs[m]
                     row += [1e3 * LENGTH * e[max(e)] if e else None, 1e3 * LENGTH * max(e.values()) if e else None]
@@ -118,7 +118,7 @@ def report(ctx) -> Section:
         ab = abaqus(law)
         for label, tip, change in cands[law]:
             t = {"ux": tip[0], "uy": tip[1]}
-            rows.append([LAW_SHORT[law], label, mm(tip[0]), mm(tip[1]), pct(change)]
+            rows.append([short(law), label, mm(tip[0]), mm(tip[1]), pct(change)]
                         + [pct(vec_error(t, refs[(law, v)].tip)) if (law, v) in refs and refs[(law, v)].tip else None
                            for v in VARIANTS] + [pct(vec_error(t, ab))])
     sec.table(ctx, Table("formulation", hdr, rows, {2: ".2f", 3: ".2f", 4: ".3f", 5: ".2f", 6: ".2f", 7: ".2f", 8: ".2f"}),
@@ -133,7 +133,7 @@ def report(ctx) -> Section:
                         key=lambda p: p[0])
         comp = {lbl: tip for lbl, tip, _ in cands[law]}
         best_d, best = ranked[0]
-        rows.append([LAW_SHORT[law], best, pct(best_d), ranked[1][1] if len(ranked) > 1 else None,
+        rows.append([short(law), best, pct(best_d), ranked[1][1] if len(ranked) > 1 else None,
                      pct(ranked[1][0]) if len(ranked) > 1 else None,
                      pct((comp[best][0] - ab[0]) / abs(ab[0])), pct((comp[best][1] - ab[1]) / abs(ab[1]))])
         lines.append(f"- {law}: ABAQUS ({mm(ab[0]):.2f}, {mm(ab[1]):.2f}) mm is closest to {best} "
@@ -168,7 +168,7 @@ def _verdict(cands, laws) -> list[str]:
             votes[law] = (w, fam)
     if votes:
         winners = {w for w, _ in votes.values()}
-        detail = "; ".join(f"{LAW_SHORT[l]}: plane stress {100 * f['plane stress']:.2f} % vs plane strain "
+        detail = "; ".join(f"{short(l)}: plane stress {100 * f['plane stress']:.2f} % vs plane strain "
                            f"{100 * f['plane strain']:.2f} %" for l, (w, f) in votes.items())
         if len(winners) == 1:
             out.append(f"- Verdict: the ABAQUS column matches the continuum **{winners.pop()}** model for every "
@@ -187,10 +187,10 @@ def gold_values(ctx) -> dict:
             for comp in ("ux", "uy"):
                 v = d["tip"][comp]
                 out[f"formulation/{d['formulation']}/q{q[0]}{q[1]}/{d['clamp']}/{d['element']}/{d['elements']}/"
-                    f"{LAW_SHORT[d['law']]}/{comp}"] = (v, 1e-6 * abs(v) + 1e-9)
+                    f"{short(d['law'])}/{comp}"] = (v, 1e-6 * abs(v) + 1e-9)
     for r in ctx.records():
         if r["scene"]["analysis"]["kind"] == "dynamic":
             d = describe_dynamic(r)
             out.update(gold_tips(f"formulation/pendulum/{d['formulation']}/{d['element']}/{d['elements']}/"
-                                 f"{LAW_SHORT[d['law']]}", d))
+                                 f"{short(d['law'])}", d))
     return out

@@ -53,7 +53,7 @@ def load_gold(path: Path = FILE) -> dict[str, dict]:
 
 
 def _tiny_run(out: Path) -> None:
-    from .cli import run_studies
+    from .pipeline import run_studies
     run_studies(["all"], Path(out), tiny=True, progress=False, log=lambda *a: None)
 
 

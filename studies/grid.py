@@ -2,15 +2,15 @@
 from __future__ import annotations
 
 from .case import Case, make_case
-from .paper import ELEMENT_COUNTS, cantilever_scene
+from contract.paper import cantilever_scene, element_count
 
 
 def count_for(grid: dict, element: str) -> int:
     """The element count of ``element`` for grids with ``counts = "paper"`` (the paper's
-    counts, studies.paper.ELEMENT_COUNTS) or a table {element: count}."""
+    Table 3 counts, :func:`contract.paper.element_count`) or a table {element: count}."""
     counts = grid["counts"]
     if counts == "paper":
-        return ELEMENT_COUNTS[element]
+        return element_count(element)
     if isinstance(counts, dict):
         return int(counts[element])
     raise ValueError(f"counts: expected \"paper\" or a table {{element = count}}, got {counts!r}")

@@ -2,10 +2,12 @@
 dynamic halves of accuracy-cost and formulation).
 
 - :func:`pendulum_case`: one ANCF pendulum run as a case, built on
-  :func:`studies.bench.pendulum_scene` (the paper's Yeoh pendulum) with the law, the
+  :func:`contract.paper.pendulum_scene` (the paper's pendulum) with the law, the
   simulated time, the output times and the hard-case changes (penalty, stiffness
   scale, integrator) applied to that scene;
 - :func:`describe_dynamic`: the grid coordinates of a dynamic record;
+- the converged-step rule of Table 4 (:data:`LADDER`, :func:`ladder`,
+  :func:`converged_rung`), which ``studies.bench`` runs too;
 - :func:`continuum_pendulum`: the converged continuum tip histories of
   ``tests/gold/fem_pendulum.json`` (``reference_fem``'s gold file), when it exists;
 - :func:`tip_errors`: |r(t) - r_ref(t)| / L at the common output times.
@@ -17,41 +19,57 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from . import paper
-from .bench import pendulum_scene
+import numpy as np
+
+from contract import paper
+
 from .case import make_case
 
 ROOT = Path(__file__).resolve().parent.parent
 FEM_GOLD = ROOT / "tests" / "gold" / "fem_pendulum.json"
 LENGTH = paper.PENDULUM["length"]
-STEP_OUTPUT = 0.1  # s, the paper's output times 0, 0.1, ..., t_end
+# The converged-step rule: the largest fixed dt of the ladder dt0, dt0/2, ... (down to
+# dt_floor) whose tip positions at every output time are within tol (componentwise)
+# of the dt/2 run, both converged.
+LADDER = {"dt0": 8e-3, "tol": 1e-4, "dt_floor": 1e-4}
 
 
-def output_times(t_end: float, every: float = STEP_OUTPUT) -> list[float]:
-    n = int(round(t_end / every))
-    ts = [round(every * i, 10) for i in range(n + 1)]
-    if ts[-1] < t_end - 1e-12:
-        ts.append(t_end)
-    return ts
+def ladder(dt0: float = LADDER["dt0"], dt_floor: float = LADDER["dt_floor"], last: float | None = None) -> list[float]:
+    """dt0, dt0/2, ... while dt/2 >= dt_floor, cut at ``last``."""
+    out = [dt0]
+    while out[-1] / 2 >= dt_floor and (last is None or out[-1] / 2 >= last * (1 - 1e-9)):
+        out.append(out[-1] / 2)
+    return out
+
+
+def converged_rung(rungs: list[dict], tol: float = LADDER["tol"]) -> tuple[dict | None, float | None]:
+    """The rule on descriptions (:func:`describe_dynamic`) sorted by decreasing dt:
+    (the converged rung, its tip difference to the dt/2 rung in m) or (None, None)."""
+    for prev, half in zip(rungs, rungs[1:]):
+        if prev["ok"] and half["ok"]:
+            a = np.array([prev["tips"][t] for t in sorted(prev["tips"])])
+            b = np.array([half["tips"][t] for t in sorted(half["tips"])])
+            if a.shape == b.shape:
+                diff = float(np.abs(a - b).max())
+                if diff <= tol:
+                    return prev, diff
+    return None, None
 
 
 def pendulum_dict(element: str, n: int, formulation: str, dt: float, rho_inf: float = 0.5,
-                  law: str = "yeoh", t_end: float = 0.5, every: float = STEP_OUTPUT,
-                  integrator: str = "generalized-alpha", penalty_factor: float | None = None,
-                  stiffness_scale: float = 1.0, name: str | None = None) -> dict:
-    """The pendulum scene: :func:`studies.bench.pendulum_scene` with these changes.
+                  law: str = paper.PENDULUM_LAW, t_end: float = paper.PENDULUM_T_END,
+                  every: float = paper.OUTPUT_EVERY, integrator: str = "generalized-alpha",
+                  penalty_factor: float | None = None, stiffness_scale: float = 1.0,
+                  name: str | None = None) -> dict:
+    """The paper's pendulum scene (:func:`contract.paper.pendulum_scene`) with these changes.
 
     ``penalty_factor``: penalty alpha = factor x C10 (formulations with a penalty);
     ``stiffness_scale``: every law constant (and the penalty) times this factor."""
     penalty = paper.PENALTY if penalty_factor is None else penalty_factor * paper.materials()[law]["C10"]
-    s = pendulum_scene(element, int(n), formulation, float(dt), float(rho_inf), law=law, penalty=penalty)
-    if stiffness_scale != 1.0:
-        for k in list(s["material"]):
-            if k.startswith("C") or k == "penalty":
-                s["material"][k] *= stiffness_scale
-    s["analysis"].update(t_end=float(t_end), output_times=output_times(t_end, every), integrator=integrator)
-    s["name"] = name or f"pendulum-{law}-{formulation}-{element}-{n}-dt{dt:g}-{integrator}-rho{rho_inf:g}-t{t_end:g}"
-    return s
+    return paper.pendulum_scene(
+        law, formulation, float(dt), element, int(n), rho_inf=rho_inf, t_end=t_end, every=every,
+        integrator=integrator, penalty=penalty, stiffness_scale=stiffness_scale,
+        name=name or f"pendulum-{law}-{formulation}-{element}-{n}-dt{dt:g}-{integrator}-rho{rho_inf:g}-t{t_end:g}")
 
 
 def pendulum_case(study: str, *args, options: dict | None = None, **kw):

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from contract.paper import paper_tip
+
 # ANCF formulation -> continuum variant of the same model (``paper`` has no continuum
 # meaning; its energies are plane-strain-like, so plane strain with the penalty is shown).
 MATCHING = {"plane-strain": "plane-strain-penalty", "plane-stress": "plane-stress",
@@ -20,6 +22,11 @@ VARIANT_LABEL = {"plane-strain": "plane strain, exact (mixed)",
                  "plane-strain-penalty": "plane strain, penalty 1000 MPa",
                  "plane-stress": "plane stress (F33 = 1/J)"}
 LAW_SHORT = {"neo-hookean": "NH", "mooney-rivlin": "MR", "yeoh": "Yeoh"}
+
+
+def short(law: str) -> str:
+    """A law's short name in table headers (its own name for a law without one)."""
+    return LAW_SHORT.get(law, law)
 
 
 def variant_of(scene: dict) -> str:
@@ -83,14 +90,6 @@ def gold_references(path) -> dict[tuple[str, str], tuple[float, float]]:
     g = json.loads(open(path).read())
     return {(c["law"], k.split("/", 1)[1]): (c["tip"]["ux"], c["tip"]["uy"])
             for k, c in g["cases"].items() if c.get("tip")}
-
-
-def paper_tip(source: str, law: str) -> tuple[float, float] | None:
-    """(ux, uy) in m of the paper's Table 3 (source: an element name or "ABAQUS")."""
-    from .paper import table3
-
-    t = table3().get((source, law))
-    return (t["ux"], t["uy"]) if t else None
 
 
 def abaqus(law: str) -> tuple[float, float] | None:

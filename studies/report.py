@@ -96,6 +96,21 @@ def figure(nrows: int = 1, ncols: int = 1, **kw):
     return plt.subplots(nrows, ncols, **kw)
 
 
+MARKERS = "os^xDv<>p*"
+LINESTYLES = ("-", "--", ":", "-.")
+
+
+def marker(element: str, elements) -> str:
+    """The marker of ``element`` in figures: by its place in the grid's element list."""
+    elements = list(elements)
+    return MARKERS[elements.index(element) % len(MARKERS)] if element in elements else "."
+
+
+def linestyle(element: str, elements) -> str:
+    elements = list(elements)
+    return LINESTYLES[elements.index(element) % len(LINESTYLES)] if element in elements else "-"
+
+
 def mm(v: float | None) -> float | None:
     return None if v is None else v * 1e3
 

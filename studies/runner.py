@@ -70,11 +70,11 @@ def _progress(total: int, desc: str, enabled: bool):
 
 
 def _mark_worker_death(case: Case, exc: BaseException) -> dict:
-    from ancf.record import new_record
-    from .execute import _annotate
+    from contract.record import new_record
+    from .execute import annotate
     rec = new_record(case.solver, case.scene)
     rec.update(reason=f"worker process died: {type(exc).__name__}: {exc}", transient=True)
-    return _annotate(rec, case, time.perf_counter())
+    return annotate(rec, case, time.perf_counter())
 
 
 def pending(cases: Sequence[Case], store: RecordStore, force: bool = False) -> list[Case]:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 
 from .grid import cantilever_case, count_for
-from .reference import LAW_SHORT, describe, paper_tip, stability_mark
+from .reference import short, describe, paper_tip, stability_mark
 from .report import Section, Table, mm, pct, vec_error
 
 
@@ -42,7 +42,7 @@ def report(ctx) -> Section:
     for el in g["elements"]:
         for law in g["laws"]:
             ref = paper_tip(el, law)
-            row = [el, LAW_SHORT[law]]
+            row = [el, short(law)]
             for clamp, q in cols:
                 d, r = by.get((el, law, clamp, q), (None, None))
                 if d is None:
@@ -65,21 +65,21 @@ def report(ctx) -> Section:
               {6: ".2f", 7: ".2f", 8: ".2f", 9: ".2f", 10: ".2f"})
     t.write(ctx.out)
     sec.items.append(("link", t.name + ".md", "Every run's tip, status and failure reason."))
-    sec.text = _findings(long)
+    sec.text = _findings(long, g.get("low_order", ()))
     return sec
 
 
-def _findings(long: list) -> str:
+def _findings(long: list, low_order) -> str:
     lines = []
     failed = [r for r in long if not r[5].startswith("converged")]
     for r in failed:
-        lines.append(f"- {r[0]} {LAW_SHORT[r[1]]}, clamp {r[2]}, quadrature {r[3]} at {r[4]} elements: "
+        lines.append(f"- {r[0]} {short(r[1])}, clamp {r[2]}, quadrature {r[3]} at {r[4]} elements: "
                      f"{r[5]} ({r[11]}).")
-    odd = [r for r in long if r[5].startswith("converged (") and r[0] != "LB2n-12"]
+    odd = [r for r in long if r[5].startswith("converged (") and r[0] not in low_order]
     for r in odd:
-        lines.append(f"- {r[0]} {LAW_SHORT[r[1]]}, clamp {r[2]}, quadrature {r[3]}: converged to an equilibrium that is "
+        lines.append(f"- {r[0]} {short(r[1])}, clamp {r[2]}, quadrature {r[3]}: converged to an equilibrium that is "
                      f"not stable ({r[11]}).")
-    ho = [r for r in long if r[0] != "LB2n-12" and r[10] is not None]
+    ho = [r for r in long if r[0] not in low_order and r[10] is not None]
     best = {}
     for r in ho:
         key = (r[2], r[3])
@@ -95,10 +95,10 @@ def gold_values(ctx) -> dict:
     out = {}
     for r in ctx.records():
         d = describe(r)
-        if d["status"] == "converged" and d["stable"] is not False and d["element"] != "LB2n-12":
+        if d["status"] == "converged" and d["stable"] is not False and d["element"] not in ctx.study.grid.get("low_order", ()):
             q = d["quadrature"]
             for comp in ("ux", "uy"):
                 v = d["tip"][comp]
-                out[f"sensitivity/{d['element']}/{LAW_SHORT[d['law']]}/{d['clamp']}/q{q[0]}{q[1]}/{comp}"] = (
+                out[f"sensitivity/{d['element']}/{short(d['law'])}/{d['clamp']}/q{q[0]}{q[1]}/{comp}"] = (
                     v, 1e-6 * abs(v) + 1e-9)
     return out

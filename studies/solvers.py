@@ -1,12 +1,14 @@
 """The solvers a case can name: how to check a scene, run it, and hash the source.
 
 Each solver is one entry of :data:`SOLVERS`; ``run(scene_dict) -> record`` returns the
-solver's record (``ancf.record`` schema, SI units). The source hash covers the .py files
-of the package that solves the scene, so a change there invalidates its cases:
+solver's record (``contract.record`` schema, SI units) and ``check(scene_dict)`` raises a
+SceneError for a scene it cannot run. The source hash covers the .py files the solver
+runs, so a change there invalidates its cases:
 
-- ``ancf``: every module of ``ancf/``;
-- ``fenicsx``: every module of ``reference_fem/``, plus the three ``ancf`` modules it
-  imports (scene loading, records, errors).
+- ``ancf``: every module of ``ancf/`` and of ``contract/`` (scenes, records);
+- ``fenicsx``: every module of ``reference_fem/`` and of ``contract/``, and the three
+  ``ancf`` modules it runs (the time loop, the load-path rule, the integrators'
+  coefficients).
 
 Adding a solver (e.g. a dynamic integrator living in another package) is one entry here.
 """
@@ -23,32 +25,31 @@ ROOT = Path(__file__).resolve().parent.parent
 
 def _run_ancf(scene: dict) -> dict:
     from ancf.run import run_scene
-    from ancf.scene import scene_from_dict
+    from contract.scene import scene_from_dict
 
     rec, _ = run_scene(scene_from_dict(scene))
     return rec
 
 
 def _run_fenicsx(scene: dict) -> dict:
-    from ancf.scene import scene_from_dict
+    from contract.scene import scene_from_dict
     from reference_fem.run import run_scene
 
     return run_scene(scene_from_dict(scene))
 
 
 def _check_ancf(scene: dict) -> None:
-    from ancf.scene import scene_from_dict
+    from ancf.build import check
+    from contract.scene import scene_from_dict
 
-    if scene_from_dict(scene).ancf is None:
-        from ancf.errors import SceneError
-        raise SceneError("ancf: an ancf case needs the scene's [ancf] table")
+    check(scene_from_dict(scene))
 
 
 def _check_fenicsx(scene: dict) -> None:
-    from ancf.scene import scene_from_dict
-    from reference_fem.settings import fem_settings
+    from contract.scene import scene_from_dict
+    from reference_fem.run import check
 
-    fem_settings(scene_from_dict(scene))
+    check(scene_from_dict(scene))
 
 
 @dataclass(frozen=True)
@@ -61,9 +62,9 @@ class Solver:
 
 SOLVERS: dict[str, Solver] = {
     s.name: s for s in (
-        Solver("ancf", ("ancf/*.py",), _run_ancf, _check_ancf),
-        Solver("fenicsx", ("reference_fem/*.py", "ancf/scene.py", "ancf/record.py", "ancf/errors.py"),
-               _run_fenicsx, _check_fenicsx),
+        Solver("ancf", ("ancf/*.py", "contract/*.py"), _run_ancf, _check_ancf),
+        Solver("fenicsx", ("reference_fem/*.py", "contract/*.py", "ancf/timeloop.py", "ancf/loadpath.py",
+                           "ancf/integrators.py"), _run_fenicsx, _check_fenicsx),
     )
 }
 

@@ -19,6 +19,8 @@ serial warm runs (``timing``); for a failed run, its single (warm-up) run.
 """
 from __future__ import annotations
 
+from contract import paper
+
 from .pendulum import describe_dynamic, gold_tips, pendulum_dict
 from .case import make_case
 from .report import Section, Table
@@ -46,7 +48,7 @@ def hard_cases(grid: dict) -> list[tuple[str, str, dict]]:
 def scene_for(grid: dict, changes: dict, integrator: str) -> dict:
     b = dict(grid["base"])
     kw = {"element": b["element"], "n": b["elements"], "formulation": b["formulation"], "dt": b["dt"],
-          "rho_inf": b["rho_inf"], "law": b.get("law", "yeoh"), "t_end": b["t_end"], "every": grid["energy_every"]}
+          "rho_inf": b["rho_inf"], "law": b.get("law", paper.PENDULUM_LAW), "t_end": b["t_end"], "every": grid["energy_every"]}
     kw.update(changes)
     if integrator != "generalized-alpha":
         kw["rho_inf"] = b["rho_inf"]          # not used by the method: the same run as the base's

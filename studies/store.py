@@ -13,7 +13,7 @@ import os
 from pathlib import Path
 from typing import Iterable
 
-from ancf.record import sanitize
+from contract.record import sanitize
 
 
 class RecordStore:

@@ -1,57 +1,32 @@
 """Table 4 reproduced: time of the pendulum (Yeoh, 0.5 s) per element type and count,
 ours beside the paper's CPU time.
 
-Each (element, count, formulation) runs over the step ladder of
-:func:`studies.bench.converged_step` (dt0 halving, down to ``dt_floor``), every rung a
+Each (element, count, formulation) runs over the step ladder of the converged-step rule
+(:data:`studies.pendulum.LADDER`: dt0 halving, down to ``dt_floor``), every rung a
 timed case (serial warm runs: one warm-up, the median of up to ``repeats`` runs within
-``budget_s``; the ``timing`` grid key). The report picks the converged step with the
-same rule as ``converged_step`` (its defaults are read from its signature): the largest
-dt whose tip positions at all output times are within ``tol`` (0.1 mm, componentwise)
-of the dt/2 run, both converged; and shows that rung's median wall time, steps, Newton
-iterations and ndof beside the paper's CPU time (``studies.paper.table4()``) and the
-ratio paper / ours. Different machines: the paper's is an i5-5200U laptop.
+``budget_s``; the ``timing`` grid key). The report picks the converged step by the same
+rule as ``studies.bench.converged_step`` (:func:`studies.pendulum.converged_rung`): the
+largest dt whose tip positions at all output times are within ``tol`` (0.1 mm,
+componentwise) of the dt/2 run, both converged; and shows that rung's median wall time,
+steps, Newton iterations and ndof beside the paper's CPU time
+(``contract.paper.table4()``) and the ratio paper / ours. Different machines: the
+paper's is an i5-5200U laptop.
 """
 from __future__ import annotations
 
-import inspect
+from contract import paper
 
-import numpy as np
-
-from . import bench, paper
-from .pendulum import describe_dynamic, gold_tips, pendulum_case
+from .pendulum import LADDER, converged_rung, describe_dynamic, gold_tips, ladder, pendulum_case
 from .report import Section, Table, figure
 
-_CS = inspect.signature(bench.converged_step).parameters
-DT0, TOL, DT_FLOOR = _CS["dt0"].default, _CS["tol"].default, _CS["dt_floor"].default
-
-
-def ladder(dt0: float = DT0, dt_floor: float = DT_FLOOR, last: float | None = None) -> list[float]:
-    """dt0, dt0/2, ... while dt/2 >= dt_floor (converged_step's ladder), cut at ``last``."""
-    out = [dt0]
-    while out[-1] / 2 >= dt_floor and (last is None or out[-1] / 2 >= last * (1 - 1e-9)):
-        out.append(out[-1] / 2)
-    return out
+DT0, TOL = LADDER["dt0"], LADDER["tol"]
 
 
 def cases(grid: dict, tiny: bool) -> list:
     opts = {"timing": dict(grid["timing"])}
     return [pendulum_case("table4", el, n, f, dt, rho_inf=grid["rho_inf"], t_end=grid["t_end"], options=opts)
             for f in grid["formulations"] for el in grid["elements"] for n in grid["counts"]
-            for dt in ladder(grid.get("dt0", DT0), DT_FLOOR, grid.get("dt_last"))]
-
-
-def converged_rung(rungs: list[dict], tol: float = TOL) -> tuple[dict | None, float | None]:
-    """converged_step's rule on records: rungs sorted by decreasing dt; returns (the
-    converged rung, its tip difference to the dt/2 rung in m) or (None, None)."""
-    for prev, half in zip(rungs, rungs[1:]):
-        if prev["ok"] and half["ok"]:
-            a = np.array([prev["tips"][t] for t in sorted(prev["tips"])])
-            b = np.array([half["tips"][t] for t in sorted(half["tips"])])
-            if a.shape == b.shape:
-                diff = float(np.abs(a - b).max())
-                if diff <= tol:
-                    return prev, diff
-    return None, None
+            for dt in ladder(grid.get("dt0", DT0), last=grid.get("dt_last"))]
 
 
 def selected(ctx) -> list[dict]:
@@ -75,7 +50,7 @@ def report(ctx) -> Section:
     sel = selected(ctx)
     ptab = paper.table4()
     sec = Section(ctx.study.title,
-                  f"Time of the pendulum (Yeoh, {g['t_end']:g} s; generalized-alpha, rho_inf = {g['rho_inf']}) per "
+                  f"Time of the pendulum ({paper.PENDULUM_LAW}, {g['t_end']:g} s; generalized-alpha, rho_inf = {g['rho_inf']}) per "
                   f"element and count, each at its converged step (largest dt of the ladder {DT0 * 1e3:g} ms, halving, "
                   f"whose tip positions are within {TOL * 1e3:g} mm of the dt/2 run); wall time = median of serial warm "
                   f"runs in one process and one thread (compile time and warm-up apart). The paper's CPU time is from an "

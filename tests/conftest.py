@@ -5,8 +5,8 @@ from ancf.build import build_material
 from ancf.elements import ELEMENTS
 from ancf.formulations import FORMULATIONS
 from ancf.laws import LAWS
-from ancf.scene import MaterialSpec
-from studies import paper
+from contract.scene import MaterialSpec
+from contract import paper
 
 
 def material(law: str, formulation: str, penalty: float = paper.PENALTY):

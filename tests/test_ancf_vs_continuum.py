@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 
 from ancf.run import run_scene
-from ancf.scene import scene_from_dict
-from studies import paper
+from contract.scene import scene_from_dict
+from contract import paper
 
 GOLD = json.loads((Path(__file__).parent / "gold" / "fem_cantilever.json").read_text())["cases"]
 H_OVER_L = paper.CANTILEVER["height"] / paper.CANTILEVER["length"]
@@ -52,10 +52,7 @@ def test_converged_pendulum_matches_the_continuum_within_1mm(law, element):
     converged continuum plane-stress pendulum at every output time (measured at most
     0.41 mm; the continuum's own point-pin uncertainty for Mooney-Rivlin is 0.3 to
     0.7 mm, see the gold file)."""
-    from studies.bench import pendulum_scene
-
-    s = pendulum_scene(element, CONVERGED_COUNT[element], "plane-stress", 1e-3)
-    s["material"] = paper.material_table(law, "plane-stress")
+    s = paper.pendulum_scene(law, "plane-stress", 1e-3, element, CONVERGED_COUNT[element])
     rec, _ = run_scene(scene_from_dict(s))
     assert rec["status"] == "converged", rec["reason"]
     ref = {round(v["t"], 9): (v["x"], v["y"]) for v in PENDULUM_GOLD[f"{law}/plane-stress"]["values"]}

@@ -5,11 +5,11 @@ import pytest
 
 from ancf import beam_theory as bt
 from ancf.elements import ELEMENTS, KINDS, ElementSpec, get_element, register_element
-from ancf.errors import SceneError
+from contract.errors import SceneError
 from ancf.polynomial import parse
 from ancf.run import run_scene
-from ancf.scene import scene_from_dict
-from studies import paper
+from contract.scene import scene_from_dict
+from contract import paper
 
 from .conftest import ALL_ELEMENTS, material
 

@@ -3,7 +3,7 @@ the stress-free reference, closed-form uniaxial tension."""
 import numpy as np
 import pytest
 
-from ancf.errors import SceneError
+from contract.errors import SceneError
 from ancf.formulations import FORMULATIONS, get_formulation
 from ancf.jet import Jet
 from ancf.laws import get_law

@@ -10,9 +10,9 @@ from ancf.mesh import Mesh, fixed_dofs
 from ancf.model import BeamModel
 from ancf.quadrature import gauss
 from ancf.run import run_scene
-from ancf.scene import scene_from_dict
+from contract.scene import scene_from_dict
 from ancf.elements import ELEMENTS
-from studies import paper
+from contract import paper
 
 from .conftest import ALL_ELEMENTS, ALL_FORMULATIONS, ALL_LAWS, material
 

@@ -5,10 +5,11 @@ from pathlib import Path
 
 import pytest
 
-from ancf.errors import SceneError
-from reference_fem.cases import MATERIALS, cantilever, cantilever_dict
+from contract import paper
+from contract.errors import SceneError
+from contract.scene import scene_from_dict
 from reference_fem.convergence import refinement_study, richardson
-from reference_fem.gold import REGRESSION_RTOL, VARIANTS, base_settings
+from reference_fem.gold import REGRESSION_RTOL, VARIANTS, base_settings, cantilever
 
 pytestmark = pytest.mark.dolfinx
 
@@ -68,11 +69,11 @@ def test_small_load_against_euler_bernoulli(model, inc):
     from reference_fem.run import run_scene
 
     law = "neo-hookean"
-    scene = cantilever(law, model, fem={"cells_height": 4, "aspect": 2.0}, gravity_scale=1e-3,
-                       incompressibility=inc)
+    fem = {"cells_height": 4, "aspect": 2.0} | ({"incompressibility": inc} if inc else {})
+    scene = scene_from_dict(paper.cantilever_scene(law, model, fem=fem, gravity=9.81e-3))
     rec = run_scene(scene)
     assert rec["status"] == "converged", rec["reason"]
-    c = MATERIALS[law]
+    c = paper.materials()[law]
     mu = 2 * (c["C10"] + c.get("C01", 0.0))
     E = 3 * mu if model == "plane-stress" else 4 * mu
     L, h = scene.beam.length, scene.beam.height
@@ -157,12 +158,11 @@ cell = "triangle"
 def test_tip_force_resultant_scales_with_width(tmp_path):
     """The traction is F / (h w): the same force on half the width deflects twice as far
     (small load, linear range: 1e-3 of the bending stiffness scale)."""
-    from ancf.scene import scene_from_dict
     from reference_fem.run import run_scene
 
     tips = []
     for width in (0.007, 0.0035):
-        d = cantilever_dict("neo-hookean", "plane-stress", fem={"cells_height": 2, "aspect": 2.0})
+        d = paper.cantilever_scene("neo-hookean", "plane-stress", fem={"cells_height": 2, "aspect": 2.0})
         d["beam"]["width"] = width
         d["loads"] = {"tip_force": [0.0, -1e-5]}
         tips.append(run_scene(scene_from_dict(d))["tip"]["uy"])
@@ -171,17 +171,17 @@ def test_tip_force_resultant_scales_with_width(tmp_path):
 
 def test_pin_fixes_the_centre_node_and_needs_even_cells():
     from reference_fem import dolfinx_backend as backend
-    from reference_fem.problem import beam_supports
+    from reference_fem.models import PlaneStress
     from reference_fem.settings import fem_settings
-    from ancf.scene import scene_from_dict
+    from reference_fem.setup import supports
 
-    d = cantilever_dict("neo-hookean", "plane-stress", fem={"cells_height": 2, "cells_length": 8})
+    d = paper.cantilever_scene("neo-hookean", "plane-stress", fem={"cells_height": 2, "cells_length": 8})
     d["supports"] = {"left": "pin"}
     scene = scene_from_dict(d)
     s = fem_settings(scene)
     disc = backend.Discretisation(backend.rectangle_mesh(0.16, 0.005, 8, 2, s.cell), 2, False, 4)
-    bcs = beam_supports(disc, scene, s)
+    bcs = supports(disc, scene, s, PlaneStress())
     assert backend.fixed_dof_count(bcs) == 2  # x and y at one node
     d["fem"]["cells_height"] = 3
     with pytest.raises(SceneError, match=r"fem\.cells_height"):
-        beam_supports(disc, scene_from_dict(d), fem_settings(scene_from_dict(d)))
+        supports(disc, scene_from_dict(d), fem_settings(scene_from_dict(d)), PlaneStress())

@@ -7,17 +7,18 @@ from pathlib import Path
 
 import pytest
 
-from ancf.errors import SceneError
-from reference_fem.cases import cantilever, cantilever_dict
+from contract import paper
+from contract.errors import SceneError
+from contract.scene import scene_from_dict
+from reference_fem.gold import cantilever
 from reference_fem.run import check_static
 from reference_fem.settings import DEFAULT_ASPECT, DEFAULT_CELLS_HEIGHT, fem_settings
-from ancf.scene import scene_from_dict
 
 GOLD = Path(__file__).parent / "gold" / "fem_cantilever.json"
 
 
 def _settings(model="plane-stress", fem=None, formulation=None):
-    d = cantilever_dict("neo-hookean", model, fem=fem)
+    d = paper.cantilever_scene("neo-hookean", model, fem=fem)
     if formulation == "paper":
         d["material"]["formulation"] = "paper"
         d["material"]["penalty"] = 1e9
@@ -77,15 +78,16 @@ def test_paper_scenes_need_a_model():
 
 def test_refinement_studies_refuse_dynamic_scenes():
     """`converge` is static only (the pendulum has `python -m reference_fem pendulum`)."""
-    d = cantilever_dict("yeoh", "plane-stress")
+    d = paper.cantilever_scene("yeoh", "plane-stress")
     d["analysis"] = {"kind": "dynamic", "t_end": 0.5, "dt": 1e-3}
     with pytest.raises(SceneError, match=r"analysis\.kind.*static only"):
         check_static(scene_from_dict(d))
 
 
 def test_settings_and_run_modules_do_not_import_dolfinx():
-    code = ("import sys, reference_fem.settings, reference_fem.run, reference_fem.cases, "
-            "reference_fem.newton, reference_fem.convergence; print('dolfinx' in sys.modules)")
+    code = ("import sys, reference_fem.settings, reference_fem.run, reference_fem.gold, reference_fem.models, "
+            "reference_fem.newton, reference_fem.convergence, reference_fem.dynamics; "
+            "print('dolfinx' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
 

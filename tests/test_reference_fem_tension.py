@@ -17,8 +17,10 @@ import pytest
 from scipy.optimize import brentq
 
 from ancf.build import build_material
-from ancf.scene import MaterialSpec
-from reference_fem.cases import MATERIALS, PENALTY
+from contract import paper
+from contract.scene import MaterialSpec
+
+PENALTY = paper.PENALTY
 
 pytestmark = pytest.mark.dolfinx
 
@@ -54,17 +56,21 @@ def closed_form(law, c, model, inc, lam):
                                         ("plane-stress", "exact")])
 def test_uniaxial_tension(law, model, inc):
     from reference_fem import dolfinx_backend as backend
+    from reference_fem.energies import get_law_ufl
+    from reference_fem.models import get_model
     from reference_fem.newton import solve_static
-    from reference_fem.problem import build_problem
+    from reference_fem.setup import Setup, static_problem
 
-    c = {k: v for k, v in MATERIALS[law].items() if k != "density"}
+    c = {k: v for k, v in paper.materials()[law].items() if k != "density"}
     P11, lam2 = closed_form(law, c, model, inc, STRETCH)
     mesh = backend.rectangle_mesh(1.0, 1.0, 2, 2, "quadrilateral")
-    disc = backend.Discretisation(mesh, 2, model == "plane-strain", 4)
+    m = get_model(model, inc)
+    disc = backend.Discretisation(mesh, 2, m.has_pressure, 4)
     bcs = (disc.fix(lambda x: np.abs(x[0]) < 1e-12, components=(0,))
            + disc.fix(lambda x: np.abs(x[1] + 0.5) < 1e-12, components=(1,)))
-    prob = build_problem(disc, law, c, model, inc, bcs, penalty=PENALTY,
-                         traction=(P11, 0.0), traction_where=lambda x: np.abs(x[0] - 1.0) < 1e-12)
+    setup = Setup(m, get_law_ufl(law), disc, c, bcs, traction=np.array([P11, 0.0]),
+                  traction_where=lambda x: np.abs(x[0] - 1.0) < 1e-12, penalty=PENALTY)
+    prob = static_problem(setup)
     res = solve_static(prob.system, prob.set_load, 5, 1e-10, 25)
     assert res.status == "converged", res.reason
     u = disc.point_displacement(np.array([[1.0, 0.5], [0.5, 0.0], [0.25, -0.25]]))

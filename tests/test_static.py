@@ -7,15 +7,15 @@ import numpy as np
 import pytest
 
 from ancf import beam_theory as bt
-from ancf.build import build_material, build_model, external_force
+from ancf.build import build_material, build_model, external_loads
 from ancf.mesh import Mesh
 from ancf.model import BeamModel
 from ancf.quadrature import gauss
 from ancf.run import run_scene
-from ancf.scene import scene_from_dict
+from contract.scene import scene_from_dict
 from ancf.static import newton, solve_static
 from ancf.elements import ELEMENTS
-from studies import paper
+from contract import paper
 
 from .conftest import ALL_ELEMENTS, ALL_FORMULATIONS, ALL_LAWS, material
 
@@ -185,7 +185,7 @@ def test_newton_converges_quadratically():
     linearly (factor ~1e-2) and fails the same check."""
     s = scene_from_dict(paper.cantilever_scene("yeoh", "plane-stress", "HB2n-12", 16))
     model = build_model(s)
-    f = external_force(model, s)
+    f = sum(external_loads(model, s).values())
     u_star = solve_static(model, f, rtol=1e-12).u
     u_99 = solve_static(model, 0.99 * f).u
     assert is_quadratic(newton_errors(model, u_99, f, u_star))

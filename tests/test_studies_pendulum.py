@@ -11,10 +11,11 @@ import shutil
 
 import pytest
 
+from contract import paper
 from studies import figure4, pendulum, stability, table4
 from studies.bench import converged_step
 from studies.catalog import load_catalog
-from studies.cli import build_reports, run_studies
+from studies.pipeline import build_reports, run_studies
 from studies.report import Context
 
 PENDULUM = ["figure4", "figure5", "table4", "stability"]
@@ -111,7 +112,7 @@ def test_figure5_draws_every_law_from_the_records_configurations(tiny):
     for rec in ctx(out, cat, "figure5").records():
         assert rec["status"] == "converged"
         ts = [k["t"] for k in rec["configurations"]]
-        assert ts == pytest.approx(pendulum.output_times(g["t_end"]))
+        assert ts == pytest.approx(paper.output_times(g["t_end"]))
         last = rec["configurations"][-1]
         assert (last["x"][-1], last["y"][-1]) == pytest.approx((rec["tip_history"][-1]["x"], rec["tip_history"][-1]["y"]),
                                                                abs=1e-12)

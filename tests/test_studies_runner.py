@@ -120,7 +120,7 @@ def test_a_raising_case_is_recorded_as_failed_and_the_others_finish(tmp_path, fa
 
 
 def test_a_non_finite_result_is_stored_as_failed_never_as_nan(tmp_path, fake_solver):
-    from ancf.record import new_record
+    from contract.record import new_record
 
     def nan_tip(scene):
         rec = new_record("fake", scene)
@@ -138,7 +138,7 @@ def test_a_non_finite_result_is_stored_as_failed_never_as_nan(tmp_path, fake_sol
 
 
 def test_an_interrupted_run_keeps_finished_records_and_the_rerun_does_the_rest(tmp_path, fake_solver):
-    from ancf.record import new_record
+    from contract.record import new_record
 
     cases = [make_case("t", "fake", {**small_cases()[0].scene, "name": f"c{i}"}) for i in range(5)]
 

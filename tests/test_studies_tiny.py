@@ -11,7 +11,7 @@ import pytest
 
 from studies import solvers
 from studies.catalog import load_catalog
-from studies.cli import REPORTS, build_reports, resolve_out, run_studies
+from studies.pipeline import REPORTS, build_reports, resolve_out, run_studies
 from studies.gold import FILE as GOLD, collect, compare, load_gold
 from studies.store import store_for
 

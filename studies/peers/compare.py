@@ -44,7 +44,7 @@ def ours(dt: float, rho_inf: float, repeats: int = 5, scene_path: Path = SCENE) 
     """Time our pendulum: {'wall_s': [...], 'wall_median_s', 'first_run_s', 'setup_s',
     'steps', 'newton_iterations', 'ndof', 'elements', 'element', 'tip_history'}."""
     from ancf.run import run_scene
-    from ancf.scene import load_scene, scene_from_dict
+    from contract.scene import load_scene, scene_from_dict
 
     d = load_scene(scene_path).to_dict()
     d["analysis"].update(dt=dt, rho_inf=rho_inf)

@@ -1,4 +1,4 @@
-"""Errors a user sees: one message naming the field and the allowed values."""
+"""Errors a user sees: one message naming the field and the allowed values (exit status 2)."""
 from __future__ import annotations
 
 

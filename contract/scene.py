@@ -1,29 +1,29 @@
 """Scene files (TOML, SI units): load, validate, and describe one simulation.
 
-The one place where a scene's text is checked: unknown keys, unknown names, missing or
-misplaced constants and non-positive sizes stop with a :class:`SceneError` naming the
-field and the allowed values. Names are *checked* here against the registries; they
-become objects in :mod:`ancf.build`. Both solvers read scenes through this module; each
-ignores the other's table (``[ancf]``, ``[fem]``). Every key is documented in README.md.
+The contract both solvers read: the structure and types of a scene are checked here
+(unknown or missing keys, wrong types, non-finite or non-positive sizes stop with a
+:class:`SceneError` naming the field and the allowed values). The names a solver
+resolves (element, law and its constants, formulation, integrator) are kept as
+strings and checked by each solver's ``check`` against its own registries
+(:func:`ancf.build.check`, :func:`reference_fem.run.check`), so this module imports no
+solver. Each solver ignores the other's table (``[ancf]``, ``[fem]``). Every key is
+documented in README.md.
 """
 from __future__ import annotations
 
 import hashlib
 import json
+import re
 import tomllib
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Collection, Mapping
 
-from .elements import ELEMENTS
 from .errors import SceneError, UnknownName
-from .formulations import FORMULATIONS
-from .laws import LAWS
 
 SUPPORTS = ("clamp", "pin")
 CLAMPS = ("face", "all")
 ANALYSES = ("static", "dynamic")
-INTEGRATORS = ("generalized-alpha", "newmark", "discrete-gradient")  # ancf.dynamics.INTEGRATORS
 STATIC_KEYS = ("kind", "load_steps", "newton_rtol", "max_iterations")
 DYNAMIC_KEYS = ("kind", "t_end", "dt", "dt_min", "tolerance", "output_times", "integrator",
                 "rho_inf", "newton_rtol", "max_iterations", "energy_limit")
@@ -152,13 +152,13 @@ def _table(data, key) -> Mapping:
     return t
 
 
-def _keys(where, table, required=frozenset(), optional=frozenset()):
+def _keys(where, table, required=frozenset(), optional=frozenset(), allowed: str | None = None):
     missing = sorted(set(required) - set(table))
     if missing:
         raise SceneError(f"{where}: missing key(s) {missing}")
     unknown = sorted(set(table) - set(required) - set(optional))
     if unknown:
-        allowed = ", ".join(sorted(set(required) | set(optional)))
+        allowed = allowed or ", ".join(sorted(set(required) | set(optional)))
         raise SceneError(f"{where}: unknown key(s) {unknown}; allowed: {allowed}")
 
 
@@ -193,23 +193,30 @@ def _beam(t) -> Beam:
     return Beam(*(_positive(f"beam.{k}", t[k]) for k in ("length", "height", "width")))
 
 
+CONSTANT = re.compile(r"C\d\d")  # a law's constant: C10, C01, C20, C30, ...
+
+
+def _name(field_, value) -> str:
+    if not isinstance(value, str) or not value:
+        raise SceneError(f"{field_}: must be a name (a non-empty string), got {value!r}")
+    return value
+
+
 def _material(t) -> MaterialSpec:
-    law = _choice("material.law", t.get("law"), LAWS)
-    form = _choice("material.formulation", t.get("formulation"), FORMULATIONS)
-    names = LAWS[law].constants
-    penalised = FORMULATIONS[form].penalised
-    _keys("material", t, required={"law", "formulation", "density", *names}
-          | ({"penalty"} if penalised else set()))
-    constants = {k: _number(f"material.{k}", t[k]) for k in names}
+    _keys("material", t, required={"law", "formulation", "density"},
+          optional={"penalty", *(k for k in t if CONSTANT.fullmatch(str(k)))},
+          allowed="law, formulation, density, penalty and the law's constants (C10, C01, C20, ...)")
+    constants = {k: _number(f"material.{k}", v) for k, v in t.items() if CONSTANT.fullmatch(k)}
     if constants.get("C10", 1.0) <= 0:
         raise SceneError(f"material.C10: must be positive, got {constants['C10']!r}")
-    return MaterialSpec(law, form, _positive("material.density", t["density"]), constants,
-                        _positive("material.penalty", t["penalty"]) if penalised else None)
+    return MaterialSpec(_name("material.law", t["law"]), _name("material.formulation", t["formulation"]),
+                        _positive("material.density", t["density"]), constants,
+                        _positive("material.penalty", t["penalty"]) if "penalty" in t else None)
 
 
 def _ancf(t) -> AncfSettings:
     _keys("ancf", t, required={"element", "elements"}, optional={"quadrature"})
-    element = _choice("ancf.element", t["element"], ELEMENTS)
+    element = _name("ancf.element", t["element"])
     n = _positive("ancf.elements", t["elements"], int)
     q = t.get("quadrature", list(AncfSettings.quadrature))
     if not isinstance(q, list) or len(q) != 2:
@@ -272,9 +279,31 @@ def _analysis(t) -> Analysis:
         dt_min=_positive("analysis.dt_min", t["dt_min"]) if "dt_min" in t else None,
         tolerance=_positive("analysis.tolerance", t["tolerance"]) if "tolerance" in t else None,
         output_times=out,
-        integrator=_choice("analysis.integrator", t.get("integrator", Analysis.integrator), INTEGRATORS),
+        integrator=_name("analysis.integrator", t.get("integrator", Analysis.integrator)),
         rho_inf=rho_inf,
         energy_limit=_energy_limit(t),
         newton_rtol=_positive("analysis.newton_rtol", t.get("newton_rtol", Analysis.newton_rtol)),
         max_iterations=_positive("analysis.max_iterations", t.get("max_iterations", Analysis.max_iterations), int),
     )
+
+
+# ---------------------------------------------------------------------------------------
+def check_names(scene: Scene, laws: Mapping[str, tuple[str, ...]], formulations: Mapping[str, bool],
+                integrators: Collection[str], elements: Collection[str] | None = None) -> Scene:
+    """Check the names a solver resolves against that solver's vocabulary: ``laws``
+    {name: its constants}, ``formulations`` {name: the scene carries a penalty},
+    ``integrators`` (dynamic scenes), ``elements`` (the [ancf] table, if the solver
+    reads it). Raises a :class:`SceneError` naming the field and the allowed values;
+    returns the scene."""
+    m = scene.material
+    law = _choice("material.law", m.law, laws)
+    form = _choice("material.formulation", m.formulation, formulations)
+    need = set(laws[law]) | ({"penalty"} if formulations[form] else set())
+    have = set(m.constants) | ({"penalty"} if m.penalty is not None else set())
+    _keys("material", dict.fromkeys(have | {"law", "formulation", "density"}),
+          required=need | {"law", "formulation", "density"})
+    if elements is not None and scene.ancf is not None:
+        _choice("ancf.element", scene.ancf.element, elements)
+    if scene.analysis.kind == "dynamic":
+        _choice("analysis.integrator", scene.analysis.integrator, integrators)
+    return scene

@@ -1,0 +1,221 @@
+"""Implicit integrators of M a + f_int(u) = Q_K for the ANCF beam: one step each.
+
+:func:`ancf.timeloop.integrate` owns the loop (landing, rejection, energy check,
+counters); an integrator here is a stepper for it. To add a method:
+
+1. subclass :class:`Integrator` and give it a ``name``;
+2. give it ``coefficients(rho_inf)`` (a classmethod; tests check them directly; the
+   continuum solver reuses the generalized-alpha family's);
+3. implement ``step(state, dt) -> (State | None, iterations)`` (None when Newton
+   fails) and optionally ``error(state, new, dt)``, a local error estimate in m;
+4. list it in :data:`INTEGRATORS` (scenes name it; unknown names list these).
+
+The state holds displacements u (m and -), velocities v and accelerations a of the
+nodal coordinates.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .banded import Banded
+from .model import BeamModel, InadmissibleState
+from .timeloop import Energies, Output, State, acceleration_error
+
+
+class Integrator:
+    name = "base"
+    # the continuum solver steps every method of the generalized-alpha family
+    alpha_family = False
+    # Newton also stops when its correction is below utol of the state: in the quadratic
+    # regime the error after it is ~du^2 (measured on the pendulum: corrections 4e-4,
+    # then 1e-8 .. 5e-8, then 1e-15 of the state), so 1e-6 saves the confirming
+    # evaluation and leaves ~1e-12 of the state, far below the 0.1 mm step criterion.
+    utol = 1e-6
+
+    def __init__(self, model: BeamModel, M: Banded, loads: dict[str, np.ndarray], rho_inf: float = 0.5,
+                 newton_rtol: float = 1e-8, max_iterations: int = 25, line_points: int = 4):
+        """``loads``: the dead load vectors Q by effect ("gravity", "tip_force"), N."""
+        self.model, self.M, self.loads = model, M, loads
+        self.f_ext = sum(loads.values(), np.zeros(model.mesh.n_dof))
+        self.rho_inf = rho_inf
+        self.newton_rtol, self.max_iterations = newton_rtol, max_iterations
+        self.line_points = line_points
+        self.free = np.ones(model.mesh.n_dof, bool)
+        self.free[model.fixed] = False
+        for k, v in self.coefficients(rho_inf).items():
+            setattr(self, k, v)
+        m = model.mesh
+        self.position_dofs = np.concatenate([m.dofs(n, ["r"]) for n in range(m.n_nodes)])
+
+    @classmethod
+    def coefficients(cls, rho_inf: float) -> dict:
+        """{alpha_m, alpha_f, gamma, beta} of the method (at rho_inf where it applies)."""
+        raise NotImplementedError
+
+    def describe(self) -> dict:
+        """The record's ``integrator`` entry."""
+        return {"name": self.name, "rho_inf": self.rho_inf, **self.coefficients(self.rho_inf)}
+
+    # -- one step: subclasses ----------------------------------------------------------
+    def step(self, s: State, dt: float) -> tuple[State | None, int]:
+        raise NotImplementedError
+
+    def error(self, s: State, new: State, dt: float) -> float:
+        """Local error estimate (m) of the step s -> new; 0 without an estimator."""
+        return 0.0
+
+    # -- what the loop asks for ----------------------------------------------------------
+    def initial_state(self, u0: np.ndarray) -> State:
+        """At rest at u0; a0 from M a0 = Q_K - f_int(u0) on the free dofs."""
+        r = np.where(self.free, self.f_ext - self.model.internal_force(u0), 0.0)
+        a0 = self.M_constrained().solve(r)
+        return State(0.0, u0.copy(), np.zeros_like(u0), a0)
+
+    def M_constrained(self) -> Banded:
+        return Banded(self.M.ab.copy(), self.M.b).constrain(self.model.fixed)
+
+    def energies(self, s: State) -> Energies:
+        """Kinetic, strain, and the potential -Q . (q_ref + u) of each dead load."""
+        r = self.model.mesh.reference + s.u
+        pot = {k: -float(q @ r) for k, q in self.loads.items()}
+        return Energies(0.5 * float(s.v @ self.M.matvec(s.v)), self.model.strain_energy(s.u),
+                        pot.get("gravity", 0.0), pot.get("tip_force"))
+
+    def output(self, s: State) -> Output:
+        m = self.model
+        tip = np.array([m.mesh.length, 0.0]) + m.tip_displacement(s.u)
+        return Output(s.t, (float(tip[0]), float(tip[1])), self.energies(s),
+                      m.centre_line(s.u, per_element=self.line_points), s)
+
+    def _scale(self, s: State) -> float:
+        """Newton's force scale: ||Q_K|| + ||M a_n|| on the free dofs."""
+        return max(np.linalg.norm(np.where(self.free, self.f_ext, 0.0))
+                   + np.linalg.norm(np.where(self.free, self.M.matvec(s.a), 0.0)), 1e-30)
+
+    @staticmethod
+    def _finite(s: State | None) -> State | None:
+        if s is not None and not all(np.all(np.isfinite(x)) for x in (s.u, s.v, s.a)):
+            return None
+        return s
+
+
+class GeneralizedAlpha(Integrator):
+    """Chung-Hulbert generalized-alpha: alpha_m = (2 rho_inf - 1)/(rho_inf + 1),
+    alpha_f = rho_inf/(rho_inf + 1), gamma = 1/2 - alpha_m + alpha_f,
+    beta = (1 - alpha_m + alpha_f)^2 / 4; solves
+    M a_(n+1-alpha_m) + f_int(u_(n+1-alpha_f)) = Q_K with x_(n+1-alpha) = (1 - alpha) x_(n+1) + alpha x_n
+    by Newton on u_(n+1) with the consistent Jacobian
+    (1 - alpha_m) / (beta dt^2) M + (1 - alpha_f) K."""
+
+    name = "generalized-alpha"
+    alpha_family = True
+
+    @classmethod
+    def coefficients(cls, rho_inf: float) -> dict:
+        am = (2 * rho_inf - 1) / (rho_inf + 1)
+        af = rho_inf / (rho_inf + 1)
+        return {"alpha_m": am, "alpha_f": af, "gamma": 0.5 - am + af, "beta": 0.25 * (1 - am + af) ** 2}
+
+    def step(self, s: State, dt: float) -> tuple[State | None, int]:
+        am, af, g, b = self.alpha_m, self.alpha_f, self.gamma, self.beta
+        M, fixed = self.M, self.model.fixed
+        # predictor: a_(n+1) = a_n
+        u_pred = s.u + dt * s.v + dt * dt * 0.5 * s.a
+        u = u_pred.copy()
+        atol = self.newton_rtol * self._scale(s)
+        c = (1 - am) / (b * dt * dt)
+        it = 0
+        try:
+            for it in range(self.max_iterations + 1):
+                a = (u - u_pred) / (b * dt * dt) + s.a
+                f, K = self.model.internal_force_and_tangent((1 - af) * u + af * s.u)
+                R = M.matvec((1 - am) * a + am * s.a) + f - self.f_ext
+                R[fixed] = 0.0
+                if np.linalg.norm(R) <= atol:
+                    return self._finite(self._state(s, dt, u, u_pred)), it
+                if it == self.max_iterations:
+                    return None, it
+                du = Banded((1 - af) * K.ab + c * M.ab, K.b).constrain(fixed).solve(-R)
+                u = u + du
+                if np.abs(du).max() <= self.utol * max(np.abs(u).max(), self.model.mesh.height):
+                    return self._finite(self._state(s, dt, u, u_pred)), it + 1
+        except (InadmissibleState, np.linalg.LinAlgError):
+            return None, it                  # a rejected step, retried smaller
+        return None, it
+
+    def _state(self, s: State, dt: float, u, u_pred) -> State:
+        a = (u - u_pred) / (self.beta * dt * dt) + s.a
+        v = s.v + dt * ((1 - self.gamma) * s.a + self.gamma * a)
+        return State(s.t + dt, u, v, a)
+
+    def error(self, s: State, new: State, dt: float) -> float:
+        """Zienkiewicz-Xie estimate over the position dofs."""
+        p = self.position_dofs
+        return acceleration_error(self.beta, dt, s.a[p], new.a[p])
+
+
+class Newmark(GeneralizedAlpha):
+    """Newmark's average acceleration: gamma = 1/2, beta = 1/4, no alpha terms
+    (energy-conserving for linear problems; no numerical dissipation)."""
+
+    name = "newmark"
+
+    @classmethod
+    def coefficients(cls, rho_inf: float) -> dict:
+        return {"alpha_m": 0.0, "alpha_f": 0.0, "gamma": 0.5, "beta": 0.25}
+
+
+class DiscreteGradient(Integrator):
+    """Energy-conserving midpoint scheme with a discrete gradient of the strain energy.
+
+        u_(n+1) - u_n = dt (v_n + v_(n+1)) / 2
+        M (v_(n+1) - v_n) / dt + f_dg(u_n, u_(n+1)) = Q_K
+
+    In 2D both invariants are quadratic in F, so with F_m = (F_n + F_(n+1)) / 2 exactly
+    a_(n+1) - a_n = 2 F_m : dF and J_(n+1) - J_n = cof(F_m) : dF. The symmetric discrete
+    gradient in (a, J),
+
+        W^_a = [W(a1, J0) - W(a0, J0) + W(a1, J1) - W(a0, J1)] / (2 da)
+        W^_J = [W(a0, J1) - W(a0, J0) + W(a1, J1) - W(a1, J0)] / (2 dJ)
+
+    (evaluated by the model: :meth:`BeamModel.discrete_gradient_force_and_tangent`),
+    gives P = 2 W^_a F_m + W^_J cof F_m and f_dg = sum w B^T P with
+    W^_a da + W^_J dJ = W(a1, J1) - W(a0, J0):
+    strain plus kinetic energy minus the work of constant loads is conserved to the
+    Newton tolerance, whatever the law and however stiff the penalty. Second order;
+    no numerical dissipation (rho_inf does not apply). Newton uses the midpoint tangent
+    K(u_m) / 2 + 2 M / dt^2 (exact as du -> 0)."""
+
+    name = "discrete-gradient"
+
+    @classmethod
+    def coefficients(cls, rho_inf: float) -> dict:
+        return {"alpha_m": 0.0, "alpha_f": 0.0, "gamma": 0.5, "beta": 0.25}
+
+    def step(self, s: State, dt: float) -> tuple[State | None, int]:
+        M, fixed = self.M, self.model.fixed
+        u = s.u + dt * s.v + 0.5 * dt * dt * s.a         # predictor
+        atol = self.newton_rtol * self._scale(s)
+        c = 2.0 / (dt * dt)
+        it = 0
+        try:
+            for it in range(self.max_iterations + 1):
+                f, K = self.model.discrete_gradient_force_and_tangent(s.u, u)
+                R = M.matvec(c * (u - s.u) - 2.0 / dt * s.v) + f - self.f_ext
+                R[fixed] = 0.0
+                if np.linalg.norm(R) <= atol:
+                    break
+                if it == self.max_iterations:
+                    return None, it
+                du = Banded(K.ab + c * M.ab, K.b).constrain(fixed).solve(-R)
+                u = u + du
+                if np.abs(du).max() <= 1e-3 * self.utol * max(np.abs(u).max(), self.model.mesh.height):
+                    break                    # quasi-Newton (linear rate): a tighter stop
+        except (InadmissibleState, np.linalg.LinAlgError):
+            return None, it
+        v = 2.0 / dt * (u - s.u) - s.v
+        a = (v - s.v) / dt
+        return self._finite(State(s.t + dt, u, v, a)), it + 1
+
+
+INTEGRATORS: dict[str, type[Integrator]] = {cls.name: cls for cls in (GeneralizedAlpha, Newmark, DiscreteGradient)}
