@@ -7,7 +7,9 @@
   every table, figure and the README from the records; prints the time per study;
 - ``report``: rebuild tables, figures and README from the records only;
 - ``gold [--refresh]``: run every study in tiny mode and compare its named values with
-  tests/gold/studies_tiny.json (``--refresh`` rewrites that file instead).
+  tests/gold/studies_tiny.json (``--refresh`` rewrites that file instead);
+- ``diff OLD NEW``: the records of two output directories compared case by case
+  (:mod:`studies.diff`): which results changed, and by how much.
 
 Clusters: ``mpiexec -n N python -m mpi4py.futures -m studies run all --executor mpi``.
 """
@@ -57,6 +59,18 @@ def _report(args) -> int:
     return 0
 
 
+def _diff(args) -> int:
+    from .diff import diff
+
+    changes, summary = diff(Path(args.old), Path(args.new), args.rtol, args.atol)
+    for c in changes:
+        print(c)
+    print(f"{'study':15s} {'matched':>8s} {'only old':>9s} {'only new':>9s} {'changed':>8s}")
+    for study, (m, a, b, c) in summary.items():
+        print(f"{study:15s} {m:8d} {a:9d} {b:9d} {c:8d}")
+    return 1 if changes else 0
+
+
 def _gold(args) -> int:
     from .gold import check_gold, refresh_gold
 
@@ -91,6 +105,11 @@ def main(argv: list[str] | None = None) -> int:
     rp = sub.add_parser("report", help="rebuild tables, figures and README from records")
     rp.add_argument("--tiny", action="store_true")
     rp.add_argument("--out")
+    df = sub.add_parser("diff", help="compare the records of two output directories case by case")
+    df.add_argument("old")
+    df.add_argument("new")
+    df.add_argument("--rtol", type=float, default=1e-6, help="relative tolerance of tips and energies")
+    df.add_argument("--atol", type=float, default=1e-9, help="absolute tolerance (m, J)")
     g = sub.add_parser("gold", help="tiny-mode golden values: check, or --refresh")
     g.add_argument("--refresh", action="store_true", help="rewrite tests/gold/studies_tiny.json")
     g.add_argument("--out", help="directory for the tiny run (default: a temp dir)")
@@ -98,7 +117,7 @@ def main(argv: list[str] | None = None) -> int:
         sp.add_argument("--catalog", type=Path, default=CASES_TOML, help="the case list (default studies/cases.toml)")
     args = p.parse_args(argv)
     try:
-        return {"list": _list, "run": _run, "report": _report, "gold": _gold}[args.command](args)
+        return {"list": _list, "run": _run, "report": _report, "gold": _gold, "diff": _diff}[args.command](args)
     except ValueError as e:
         print(f"studies: error: {e}", file=sys.stderr)
         return 2
