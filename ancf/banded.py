@@ -63,19 +63,37 @@ class Banded:
             raise ValueError(f"gbsv: illegal argument {-info}")
         return x
 
-    def scaled_cholesky(self, shift: float = 0.0):
-        """Banded Cholesky factor of D^-1/2 K D^-1/2 + shift I, or None if that is not
-        positive definite. The Jacobi scaling keeps K's inertia and removes the spread
-        between position and gradient dofs that would otherwise make the factorisation
-        fail on round-off alone."""
-        d = self.ab[self.b]
-        if np.any(d <= 0):
-            return None, None
-        s = 1.0 / np.sqrt(d)
+    def scaled_upper(self) -> tuple[np.ndarray, np.ndarray]:
+        """The upper band (b + 1, n) of S = D^-1/2 K D^-1/2 with D = |diag K| (a zero
+        diagonal entry counts as the smallest nonzero one), and s = D^-1/2. A congruence
+        with a positive diagonal: S has K's inertia, and the spread between position and
+        gradient dofs, which would make a factorisation fail on round-off alone, is gone."""
+        d = np.abs(self.ab[self.b])
+        floor = d[d > 0].min() if np.any(d > 0) else 1.0
+        s = 1.0 / np.sqrt(np.maximum(d, floor))
         upper = self.ab[: self.b + 1].copy()
         for k in range(self.b + 1):          # row k holds entries (j - (b - k), j)
             off = self.b - k
             upper[k, off:] *= s[: self.n - off] * s[off:]
+        return upper, s
+
+    def scaled_norm(self) -> float:
+        """||S||_inf, a bound of |lambda| of S: S + sigma I is positive definite for
+        any sigma above it."""
+        upper, _ = self.scaled_upper()
+        rows = np.zeros(self.n)
+        for k in range(self.b + 1):
+            off = self.b - k
+            a = np.abs(upper[k, off:])
+            rows[off:] += a                   # entry (j - off, j) in row j ...
+            if off:
+                rows[: self.n - off] += a     # ... and, by symmetry, in row j - off
+        return float(rows.max())
+
+    def scaled_cholesky(self, shift: float = 0.0):
+        """Banded Cholesky factor of S + shift I (:meth:`scaled_upper`) and s, or
+        (None, None) if that is not positive definite."""
+        upper, s = self.scaled_upper()
         upper[self.b] += shift
         try:
             return cholesky_banded(upper, lower=False, check_finite=False), s
@@ -87,7 +105,7 @@ class Banded:
         return self.scaled_cholesky(shift)[0] is not None
 
     def solve_shifted(self, rhs: np.ndarray, shift: float):
-        """x = (K + shift D)^-1 rhs with D = diag K, if K + shift D is positive definite
+        """x = (K + shift D)^-1 rhs with D = |diag K|, if K + shift D is positive definite
         (else None): the step of a shifted (Levenberg-Marquardt) Newton method."""
         c, s = self.scaled_cholesky(shift)
         if c is None:

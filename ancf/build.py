@@ -3,8 +3,11 @@ formulations, quadrature rules, supports and integrators; :func:`check` first ch
 those names against ancf's registries."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from contract.budget import Estimate, check_budget
 from contract.errors import SceneError
 from contract.scene import MaterialSpec, Scene, check_names
 
@@ -26,6 +29,30 @@ def check(scene: Scene) -> Scene:
     return check_names(scene, laws={k: v.constants for k, v in LAWS.items()},
                        formulations={k: v.penalised for k, v in FORMULATIONS.items()},
                        integrators=INTEGRATORS, elements=ELEMENTS)
+
+
+def estimate(scene: Scene) -> Estimate:
+    """Unknowns, peak memory and time steps of the scene's ANCF run, without building it.
+    Memory (8-byte floats): the band matrices (tangent, mass, step matrix and the band LU
+    workspace: (9 b + 4) n), some 30 vectors of n, the per-point arrays (F, the law's
+    jets, stresses: 26 per point) and the gathered element displacements, and a dense
+    eigen solve (3 n^2) below 3000 unknowns; n the unknowns, b the half-bandwidth."""
+    s = check(scene).ancf
+    el = get_element(s.element)
+    nn, nk = len(el.nodes), len(el.kinds)
+    nodes = s.elements * (nn - 1) + 1
+    n = 2 * nk * nodes
+    b = 2 * nk * nn - 1
+    nq = s.quadrature[0] * s.quadrature[1]
+    words = (9 * b + 34) * n + s.elements * (26 * nq + 2 * el.dof) + (3 * n * n if n < 3000 else 0)
+    a = scene.analysis
+    steps = math.ceil(a.t_end / a.dt) if a.kind == "dynamic" else None
+    return Estimate(n, 8.0 * words, steps, "ancf.elements")
+
+
+def budget(scene: Scene) -> list[str]:
+    """Refuse a scene that cannot fit in this machine's memory (SceneError); warnings."""
+    return check_budget(estimate(scene), "ancf")
 
 
 def build_material(spec: MaterialSpec) -> Material:

@@ -1,5 +1,8 @@
-"""``ancf`` command line: ``ancf run SCENE.toml [--json OUT.json]``, ``ancf elements``,
-``ancf laws``."""
+"""``ancf`` command line: ``ancf run SCENE.toml [--json OUT.json] [--vtk DIR] [--quiet]``,
+``ancf elements``, ``ancf laws``, ``ancf formulations``.
+
+Exit status: 0 converged, 1 the run failed (the record says why), 2 a bad scene or
+option (one line naming the field), 130 interrupted."""
 from __future__ import annotations
 
 import argparse
@@ -9,45 +12,66 @@ import time
 T_IMPORT = time.perf_counter()
 
 
+def _s(v, fmt: str = ".3f") -> str:
+    return "-" if v is None else format(v, fmt)
+
+
 def _run(args) -> int:
+    from contract.cli import Progress, check_output_dir, check_output_file, safe_name
     from contract.record import sanitize, write_record
     from contract.scene import load_scene
 
+    from .build import budget
     from .run import run_scene
 
     scene = load_scene(args.scene)
-    rec, (model, res) = run_scene(scene)
+    json_out = check_output_file(args.json, "--json")
+    vtk_dir = check_output_dir(args.vtk, "--vtk")
+    for w in budget(scene):
+        print(f"ancf: warning: {w}", file=sys.stderr)
+    progress = Progress(scene.analysis.t_end, enabled=not args.quiet) if scene.analysis.kind == "dynamic" else None
+    try:
+        rec, (model, res) = run_scene(scene, progress=progress)
+    finally:
+        if progress:
+            progress.close()
     rec = sanitize(rec)
-    if args.json:
-        write_record(rec, args.json)
-    if args.vtk and res is not None and getattr(res, "u", True) is not None:
+    if json_out:
+        write_record(rec, json_out)
+    if vtk_dir and res is not None and getattr(res, "u", True) is not None:
         from .output import frame_strip, write_vtk
+        name = safe_name(scene.name)
         states = ([(o.t, o.state.u) for o in res.outputs] if scene.analysis.kind == "dynamic"
                   else [(0.0, res.u)])
-        pvd = write_vtk(model, states, args.vtk, scene.name)
+        pvd = write_vtk(model, states, vtk_dir, name)
         extra = ""
         if rec.get("configurations"):
-            extra = f" and {frame_strip(rec['configurations'], pvd.with_name(scene.name + '-frames.png'), scene.name)}"
-        print(f"vtk         {pvd}{extra}")
+            extra = f" and {frame_strip(rec['configurations'], vtk_dir / f'{name}-frames.png', scene.name)}"
+        print(f"vtk         {pvd}{extra} (reference geometry with the displacement: Warp By Vector)")
     print(f"scene       {scene.name}  ({scene.ancf.element} x {scene.ancf.elements}, "
           f"{scene.material.law}, {scene.material.formulation}, ndof {rec['ndof']})")
     print(f"status      {rec['status']}" + (f"  ({rec['reason']})" if rec["reason"] else ""))
     if rec["tip"]:
         print(f"tip         ux = {rec['tip']['ux'] * 1e3:.4f} mm   uy = {rec['tip']['uy'] * 1e3:.4f} mm")
+    if rec.get("note"):
+        print(f"note        {rec['note']}")
     if scene.analysis.kind == "static":
         print(f"newton      {rec['newton_iterations']} iterations, {rec['load_steps']} load steps "
-              f"({rec['relax_steps']} relaxation), {rec['rejected_steps']} rejected")
+              f"({rec.get('relax_steps')} relaxation), {rec['rejected_steps']} rejected")
         print(f"stable      {rec['stable']}" + (f"  ({rec['stability']})" if rec.get("stability") else ""))
     else:
-        print(f"steps       {rec['steps']} accepted, {rec['rejected_steps']} rejected, "
+        print(f"steps       {rec.get('steps')} accepted, {rec['rejected_steps']} rejected, "
               f"{rec['newton_iterations']} Newton iterations ({scene.analysis.integrator}, "
               f"rho_inf {scene.analysis.rho_inf})")
         for h, e in zip(rec.get("tip_history") or [], rec.get("energy") or []):
             print(f"  t = {h['t']:.4f} s   tip ({h['x'] * 1e3:9.3f}, {h['y'] * 1e3:9.3f}) mm   "
-                  f"E = {e['total']:+.3e} J (kinetic {e['kinetic']:.3e}, strain {e['strain']:.3e})")
-    print(f"time        solve {rec['wall_s']:.3f} s wall, {rec['cpu_s']:.3f} s cpu; set-up {rec['setup_s']:.3f} s "
-          f"(plus {time.perf_counter() - T_IMPORT - rec['wall_s'] - rec['setup_s']:.2f} s imports and output)")
-    print(f"effects     {', '.join(rec['effects'])}")
+                  f"E = {_s(e['total'], '+.3e')} J (kinetic {_s(e['kinetic'], '.3e')}, strain {_s(e['strain'], '.3e')})")
+    rest = time.perf_counter() - T_IMPORT - (rec["wall_s"] or 0.0) - (rec["setup_s"] or 0.0)
+    print(f"time        solve {_s(rec['wall_s'])} s wall, {_s(rec['cpu_s'])} s cpu; set-up {_s(rec['setup_s'])} s "
+          f"(plus {rest:.2f} s imports and output)")
+    print(f"effects     {', '.join(rec['effects'] or [])}")
+    if json_out:
+        print(f"record      {json_out}")
     return 0 if rec["status"] == "converged" else 1
 
 
@@ -58,6 +82,7 @@ def _list(registry: dict) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
+    from contract.cli import interrupted
     from contract.errors import SceneError
 
     p = argparse.ArgumentParser(prog="ancf", description="2D ANCF beams with hyperelastic laws")
@@ -65,8 +90,10 @@ def main(argv: list[str] | None = None) -> int:
     r = sub.add_parser("run", help="solve one scene file")
     r.add_argument("scene", help="scene file (TOML)")
     r.add_argument("--json", metavar="OUT", help="write the result record here")
-    r.add_argument("--vtk", metavar="DIR", help="write the deformed beam (.vtu per output time, .pvd) "
-                                                  "and, for dynamics, a frame strip PNG here")
+    r.add_argument("--vtk", metavar="DIR", help="write the beam (reference geometry with the displacement as point "
+                                                  "data: ParaView's Warp By Vector shows the deformed beam; .vtu per "
+                                                  "output time, .pvd) and, for dynamics, a frame strip PNG here")
+    r.add_argument("--quiet", action="store_true", help="no progress bar")
     sub.add_parser("elements", help="list the registered elements")
     sub.add_parser("laws", help="list the registered laws")
     sub.add_parser("formulations", help="list the 2D formulations")
@@ -81,6 +108,8 @@ def main(argv: list[str] | None = None) -> int:
     except SceneError as e:
         print(f"ancf: error: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        return interrupted("ancf")
 
 
 if __name__ == "__main__":

@@ -11,10 +11,12 @@ accepted state when the attempt fails). :func:`follow` owns the rule:
 - an increment that converged within ``EASY`` Newton iterations grows the next one
   (x ``GROW``).
 
-The loop is bounded: every attempt either advances t or halves the increment.
+The loop is bounded: every attempt either advances t or halves the increment; with a
+``wall_time`` (s) the path also fails once that much time has passed.
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from typing import Callable, Iterator
 
@@ -45,10 +47,14 @@ class PathFailure(Exception):
 
 
 def follow(solve: Callable[[float, float], Attempt], steps: int, counts: PathCounts,
-           phase: str = "load", min_step: float = MIN_STEP) -> Iterator[tuple[float, Attempt]]:
-    """Yield (t, attempt) for every accepted increment, up to t = 1."""
+           phase: str = "load", min_step: float = MIN_STEP,
+           deadline: float | None = None) -> Iterator[tuple[float, Attempt]]:
+    """Yield (t, attempt) for every accepted increment, up to t = 1; ``deadline``: a
+    time.perf_counter() value after which the path fails."""
     t, dt = 0.0, 1.0 / steps
     while t < 1.0 - 1e-14:
+        if deadline is not None and time.perf_counter() > deadline:
+            raise PathFailure(phase, t, f"wall time reached at t = {t:.6g} ({phase}) (analysis.wall_time)")
         dt = min(dt, 1.0 - t)
         attempt = solve(t, t + dt)
         counts.newton_iterations += attempt.iterations

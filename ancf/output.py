@@ -1,8 +1,10 @@
 """Deformed shapes for people: VTK files for ParaView and a frame strip (PNG).
 
 ``write_vtk`` samples every element on a small grid in (xi, eta), maps it through the
-shape functions and writes one XML UnstructuredGrid (.vtu) of quadrilaterals per state,
-with the displacement as point data, plus a .pvd collection indexed by time.
+shape functions and writes one XML UnstructuredGrid (.vtu) of quadrilaterals per state:
+the reference geometry with the displacement as point data (the convention of
+reference_fem and of FE codes: ParaView's Warp By Vector, scale 1, shows the deformed
+beam), plus a .pvd collection indexed by time.
 """
 from __future__ import annotations
 
@@ -54,7 +56,8 @@ def write_vtk(model: BeamModel, states, directory, name: str = "beam") -> Path:
     entries = []
     for i, (t, u) in enumerate(states):
         f = d / f"{name}_{i:04d}.vtu"
-        _vtu(f, *deformed_grid(model, u))
+        pts, disp, cells = deformed_grid(model, u)
+        _vtu(f, pts - disp, disp, cells)
         entries.append(f'<DataSet timestep="{t:.9g}" part="0" file="{f.name}"/>')
     pvd = d / f"{name}.pvd"
     pvd.write_text('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n'

@@ -8,26 +8,30 @@ import numpy as np
 from contract.record import new_record
 from contract.scene import Scene
 
-from .build import build_integrator, build_model, external_loads
+from .build import budget, build_integrator, build_model, external_loads
 from .static import relax, solve_static
 from .timeloop import energy_limit, integrate, record_keys
 
 
-def run_scene(scene: Scene) -> tuple[dict, object]:
+def run_scene(scene: Scene, progress=None) -> tuple[dict, object]:
     """Solve ``scene``; return (record, (model, solver result)). The record follows
-    :mod:`contract.record`: SI units, nulls (never NaN) where a run failed."""
+    :mod:`contract.record`: SI units, nulls (never NaN) where a run failed.
+    ``progress(t, result)``: called after every accepted time step (dynamics)."""
     rec = new_record("ancf", scene.to_dict())
+    warnings = budget(scene)
+    if warnings:
+        rec["warnings"] = warnings
     t0 = time.perf_counter()
     model = build_model(scene)
     loads = external_loads(model, scene)
     effects = model.elastic_effects + list(loads)
     if scene.analysis.kind == "dynamic":
-        return _run_dynamic(scene, model, loads, effects + ["inertia"], rec, t0)
+        return _run_dynamic(scene, model, loads, effects + ["inertia"], rec, t0, progress)
     f_ext = sum(loads.values(), np.zeros(model.mesh.n_dof))
     model.internal_force_and_tangent(np.zeros(model.mesh.n_dof))  # tabulate, warm caches
     rec["setup_s"] = time.perf_counter() - t0
     a = scene.analysis
-    res = solve_static(model, f_ext, a.load_steps, a.newton_rtol, a.max_iterations)
+    res = solve_static(model, f_ext, a.load_steps, a.newton_rtol, a.max_iterations, a.wall_time)
     rec.update(
         status=res.status, reason=res.reason, ndof=model.n_free,
         newton_iterations=res.newton_iterations, load_steps=res.load_steps,
@@ -38,16 +42,19 @@ def run_scene(scene: Scene) -> tuple[dict, object]:
     if res.u is not None:
         ux, uy = model.tip_displacement(res.u)
         rec["tip"] = {"ux": float(ux), "uy": float(uy)}
+    if not np.any(f_ext[np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)]):
+        rec["note"] = ("no load: an unloaded static scene is valid, its answer is the "
+                       + ("reference state" if model.material.formulation.stress_free else "relaxed state"))
     return rec, (model, res)
 
 
-def _run_dynamic(scene: Scene, model, loads: dict, effects: list[str], rec: dict, t0: float):
+def _run_dynamic(scene: Scene, model, loads: dict, effects: list[str], rec: dict, t0: float, progress=None):
     a = scene.analysis
     M = model.mass_matrix()
     u0 = np.zeros(model.mesh.n_dof)
     rec.update(effects=sorted(effects), ndof=model.n_free)
     if not model.material.formulation.stress_free:
-        relaxed = relax(model, a.newton_rtol, a.max_iterations)
+        relaxed = relax(model, a.newton_rtol, a.max_iterations, a.wall_time)
         if relaxed.u is None or relaxed.status != "converged":
             rec.update(status="failed", reason=f"relaxation: {relaxed.reason}")
             return rec, (model, None)
@@ -57,6 +64,7 @@ def _run_dynamic(scene: Scene, model, loads: dict, effects: list[str], rec: dict
     rec["setup_s"] = time.perf_counter() - t0
     limit = energy_limit(scene)
     res = integrate(integrator, u0, a.t_end, a.dt, a.output_times, a.dt_min, a.tolerance,
-                    energy_limit=None if limit == float("inf") else limit)
+                    energy_limit=None if limit == float("inf") else limit, max_steps=a.max_steps,
+                    wall_time=a.wall_time, progress=progress)
     rec.update(record_keys(res, integrator.describe(), limit, scene.beam.length))
     return rec, (model, res)

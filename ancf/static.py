@@ -166,8 +166,9 @@ class StaticResult:
 
 
 def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
-                 rtol: float = 1e-8, max_iterations: int = 25) -> StaticResult:
+                 rtol: float = 1e-8, max_iterations: int = 25, wall_time: float | None = None) -> StaticResult:
     wall0, cpu0 = time.perf_counter(), time.process_time()
+    deadline = None if wall_time is None else wall0 + wall_time
     free = np.ones(model.mesh.n_dof, bool)
     free[model.fixed] = False
     u = np.zeros(model.mesh.n_dof)
@@ -190,7 +191,7 @@ def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
     try:
         for phase, target, steps in phases:
             solve, state = increment_solver(model, target, u, atol, max_iterations)
-            for _ in follow(solve, steps, counts, phase):
+            for _ in follow(solve, steps, counts, phase, deadline=deadline):
                 n_relax += phase == "relax"
             u = state["u"]
     except PathFailure as e:
@@ -211,7 +212,8 @@ def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
     return finish("converged", None, u, verdict.stable, note)
 
 
-def relax(model: BeamModel, rtol: float = 1e-8, max_iterations: int = 25) -> StaticResult:
+def relax(model: BeamModel, rtol: float = 1e-8, max_iterations: int = 25,
+          wall_time: float | None = None) -> StaticResult:
     """The unloaded equilibrium of a formulation that is not stress-free.
 
     A pinned beam's relaxation is singular (rigid rotation about the pin), so the tip's
@@ -221,7 +223,7 @@ def relax(model: BeamModel, rtol: float = 1e-8, max_iterations: int = 25) -> Sta
     m = model.mesh
     hold = m.dofs(m.n_nodes - 1, ["r"])[1:2]
     held = BeamModel(m, model.material, model.rule, np.union1d(model.fixed, hold))
-    res = solve_static(held, np.zeros(m.n_dof), rtol=rtol, max_iterations=max_iterations)
+    res = solve_static(held, np.zeros(m.n_dof), rtol=rtol, max_iterations=max_iterations, wall_time=wall_time)
     if res.u is not None:
         reaction = abs(held.internal_force(res.u)[hold[0]])
         scale = np.abs(held.internal_force(np.zeros(m.n_dof))).max()
@@ -283,12 +285,14 @@ def _escape(model, u, mode, f_ext, atol, max_iterations, counts: PathCounts) -> 
 
 
 def _descend(model, v, f_ext, atol, max_iterations) -> NewtonResult:
-    """Shifted Newton descent to a minimum of the potential: (K + sigma diag K) du = -R
-    with sigma raised until the matrix is positive definite (and lowered 10x each
-    iteration), and a backtracking line search whose decrease is measured from slopes
-    as s/2 (g(0) + g(s)) (energy differences would drown in round-off). Converges from
-    where plain Newton diverges, e.g. where the tangent is indefinite; near a minimum
-    sigma falls to 0 and the convergence is Newton's again."""
+    """Shifted Newton descent to a minimum of the potential: (K + sigma |diag K|) du = -R
+    with sigma raised (x 10 from 1e-12) until the matrix is positive definite, and lowered
+    10x each iteration, and a backtracking line search whose decrease is measured from
+    slopes as s/2 (g(0) + g(s)) (energy differences would drown in round-off). Converges
+    from where plain Newton diverges, e.g. where the tangent is indefinite; near a minimum
+    sigma falls to 0 and the convergence is Newton's again. Bounded: any sigma above
+    ||D^-1/2 K D^-1/2||_inf gives a positive definite matrix, so at most ~20 raises are
+    ever tried; the line search halves at most 27 times."""
     free = np.ones(model.mesh.n_dof, bool)
     free[model.fixed] = False
 
@@ -304,11 +308,15 @@ def _descend(model, v, f_ext, atol, max_iterations) -> NewtonResult:
             if residuals[-1] <= atol:
                 return NewtonResult(v, True, it, residuals)
             K = K.constrain(model.fixed)
+            top = 2.0 * K.scaled_norm()           # positive definite for any shift above half of it
             sigma = sigma / 10 if sigma > 1e-12 else 0.0
             du = K.solve_shifted(-R, sigma)
-            while du is None:
-                sigma = max(10 * sigma, 1e-12)
+            while du is None and sigma < top:
+                sigma = min(max(10 * sigma, 1e-12), top)
                 du = K.solve_shifted(-R, sigma)
+            if du is None or not np.all(np.isfinite(du)):
+                return NewtonResult(v, False, it, residuals, "descent: no positive definite shift "
+                                                             "(non-finite tangent)")
             g0, step = float(R @ du), 1.0
             while step > 1e-8:
                 try:

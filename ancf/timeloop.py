@@ -16,8 +16,12 @@ every solver:
   ``ENERGY_CHECK_EVERY`` steps and at every output time (a growth is caught at most
   that many steps late); rising above E(0) + limit ends the run, status "failed",
   reason "energy-growth: ...";
+- the bounds: at most ``max_steps`` accepted steps and ``wall_time`` seconds (a run
+  that reaches either fails with the reason); every loop inside a stepper is bounded
+  by its own iteration count;
 - the counters (accepted and rejected steps, Newton iterations of both) and the
-  dynamic keys of the record (:func:`record_keys`).
+  dynamic keys of the record (:func:`record_keys`);
+- progress: ``progress(t, result)`` after every accepted step (the caller throttles).
 
 The states hold displacements u, velocities v and accelerations a of the unknowns.
 """
@@ -143,11 +147,15 @@ def acceleration_error(beta: float, dt: float, a_old: np.ndarray, a_new: np.ndar
 def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_times=None,
               dt_min: float | None = None, tolerance: float | None = None,
               energy_limit: float | None = None, energy_every_step: bool = False,
-              progress: Callable[[Output, DynamicResult], None] | None = None) -> DynamicResult:
+              max_steps: int | None = None, wall_time: float | None = None,
+              progress: Callable[[float, DynamicResult], None] | None = None) -> DynamicResult:
     """Integrate from rest at u0 to t_end (see the module doc for the rules).
-    ``dt_min`` defaults to dt / 1024; ``energy_every_step`` records E at every step;
-    ``progress(output, result)`` is called at every output time."""
+    ``dt_min`` defaults to dt / 1024, ``max_steps`` to MAX_STEPS; ``energy_every_step``
+    records E at every step."""
+    from contract.scene import MAX_STEPS
+
     wall0, cpu0 = time.perf_counter(), time.process_time()
+    max_steps = max_steps or MAX_STEPS
     outs = sorted(set(output_times or [t_end]) | {t_end})
     dt_min = dt_min if dt_min is not None else dt / 1024
     res = DynamicResult()
@@ -162,6 +170,14 @@ def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_
         res.outputs.append(stepper.output(s))
     h, k = dt, 0
     while s.t < t_end * (1 - 1e-12):
+        if res.steps >= max_steps:
+            res.status, res.reason = "failed", (f"step limit: {res.steps} accepted steps at t = {s.t:.6g} s "
+                                                f"(analysis.max_steps)")
+            break
+        if wall_time is not None and time.perf_counter() - wall0 > wall_time:
+            res.status, res.reason = "failed", (f"wall time: {wall_time:g} s reached at t = {s.t:.6g} s "
+                                                f"(analysis.wall_time)")
+            break
         while outs[k] <= s.t * (1 + 1e-12):
             k += 1
         step_h, land = next_step(s.t, h, outs[k])
@@ -185,8 +201,6 @@ def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_
             out = stepper.output(s)
             res.outputs.append(out)
             energy = out.energy
-            if progress:
-                progress(out, res)
         if energy_every_step or (energy_limit is not None and (land or res.steps % ENERGY_CHECK_EVERY == 0)):
             energy = energy or stepper.energies(s)
             res.energy_steps.append((s.t, energy))
@@ -200,6 +214,8 @@ def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_
                               f"at t = {s.t:.6g} s (limit {energy_limit:.3g} J)")
                 break
         h = after_acceptance(h, step_h, err, tolerance, dt, land)
+        if progress:
+            progress(s.t, res)
     res.final = s
     res.cpu_s, res.wall_s = time.process_time() - cpu0, time.perf_counter() - wall0
     return res
@@ -219,13 +235,14 @@ def energy_limit(scene) -> float:
 
 def record_keys(res: DynamicResult, integrator: dict, energy_limit: float, length: float) -> dict:
     """The dynamic keys of a record (both solvers): counters, ``integrator`` (name,
-    rho_inf, coefficients), ``energy_limit`` (J, inf: no check), ``tip_history``
+    rho_inf, coefficients), ``energy_limit`` (J; null: no check), ``tip_history``
     [{t, x, y}], ``configurations`` [{t, x: [...], y: [...]}] and ``energy``
     [{t, kinetic, strain, gravity, (tip_force,) total}] at the output times, and ``tip``
     (displacement of the free-end centre point at the last output time) when converged."""
     d = {"status": res.status, "reason": res.reason, "newton_iterations": res.newton_iterations,
          "steps": res.steps, "rejected_steps": res.rejected_steps, "cpu_s": res.cpu_s,
-         "wall_s": res.wall_s, "integrator": integrator, "energy_limit": energy_limit,
+         "wall_s": res.wall_s, "integrator": integrator,
+         "energy_limit": energy_limit if math.isfinite(energy_limit) else None,
          "tip_history": [{"t": o.t, "x": o.tip[0], "y": o.tip[1]} for o in res.outputs],
          "configurations": [{"t": o.t, "x": o.line[:, 0].tolist(), "y": o.line[:, 1].tolist()}
                             for o in res.outputs if o.line is not None],

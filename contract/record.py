@@ -62,8 +62,13 @@ def sanitize(rec: dict) -> dict:
 
 
 def write_record(rec: dict, path: str | Path) -> None:
+    """Write the record atomically (a temporary file beside it, then a rename; the
+    temporary file never stays behind)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_suffix(path.suffix + ".tmp")
-    tmp.write_text(json.dumps(sanitize(rec), indent=2, allow_nan=False) + "\n")
-    os.replace(tmp, path)
+    try:
+        tmp.write_text(json.dumps(sanitize(rec), indent=2, allow_nan=False) + "\n")
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)

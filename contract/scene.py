@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import re
 import tomllib
 from dataclasses import asdict, dataclass, field
@@ -24,9 +25,16 @@ from .errors import SceneError, UnknownName
 SUPPORTS = ("clamp", "pin")
 CLAMPS = ("face", "all")
 ANALYSES = ("static", "dynamic")
-STATIC_KEYS = ("kind", "load_steps", "newton_rtol", "max_iterations")
+STATIC_KEYS = ("kind", "load_steps", "newton_rtol", "max_iterations", "wall_time")
 DYNAMIC_KEYS = ("kind", "t_end", "dt", "dt_min", "tolerance", "output_times", "integrator",
-                "rho_inf", "newton_rtol", "max_iterations", "energy_limit")
+                "rho_inf", "newton_rtol", "max_iterations", "energy_limit", "max_steps", "wall_time")
+# Sane ranges: a tolerance outside them answers a different question (1e10 "converges"
+# at the first residual) or none (below round-off Newton never stops).
+NEWTON_RTOL = (1e-15, 1e-3)
+MAX_ITERATIONS = 1000
+MAX_LOAD_STEPS = 10 ** 6
+MAX_STEPS = 10 ** 7          # default bound of a dynamic run's accepted steps
+MAX_GAUSS = 64               # Gauss points per direction (exact to degree 127)
 
 
 @dataclass(frozen=True)
@@ -80,6 +88,9 @@ class Analysis:
     integrator: str = "generalized-alpha"
     rho_inf: float = 0.5               # see README: 0.8 gains energy with the paper's penalty
     energy_limit: float | None = None  # J; None: 1e-3 m |g| L / 2 (with gravity); inf: no check
+    max_steps: int | None = None       # None: MAX_STEPS
+    # both
+    wall_time: float | None = None     # s; a run still going then stops, status "failed"
 
 
 @dataclass(frozen=True)
@@ -107,6 +118,8 @@ class Scene:
         out["material"] = {k: v for k, v in material.items() if v is not None}
         out["analysis"] = {k: v for k, v in analysis.items() if v is not None}
         out["loads"] = {k: v for k, v in d["loads"].items() if v is not None}
+        if out["analysis"].get("energy_limit") == math.inf:
+            out["analysis"]["energy_limit"] = "inf"       # JSON has no infinity; the loader takes "inf"
         return json.loads(json.dumps(out))  # tuples -> lists, plain JSON types
 
     def digest(self) -> str:
@@ -118,20 +131,32 @@ class Scene:
 def load_scene(path: str | Path) -> Scene:
     path = Path(path)
     try:
-        data = tomllib.loads(path.read_text())
+        data = tomllib.loads(path.read_bytes().decode("utf-8"))
     except FileNotFoundError:
         raise SceneError(f"scene file not found: {path}") from None
+    except IsADirectoryError:
+        raise SceneError(f"{path}: is a directory, not a scene file") from None
+    except PermissionError:
+        raise SceneError(f"{path}: not readable (permission denied)") from None
+    except OSError as e:
+        raise SceneError(f"{path}: cannot be read ({e.strerror or e})") from None
+    except UnicodeDecodeError as e:
+        raise SceneError(f"{path}: not UTF-8 text (byte {e.start}); a scene file is TOML in UTF-8") from None
     except tomllib.TOMLDecodeError as e:
         raise SceneError(f"{path}: not valid TOML: {e}") from None
     return scene_from_dict(data)
 
 
 def scene_from_dict(data: Mapping[str, Any]) -> Scene:
+    if not isinstance(data, Mapping):
+        raise SceneError(f"scene: must be a table of keys, got {type(data).__name__}")
     _keys("scene", data, required={"name", "beam", "material", "supports", "analysis"},
           optional={"ancf", "loads", "fem", "description"})
     name = data["name"]
-    if not isinstance(name, str) or not name:
-        raise SceneError("name: must be a non-empty string")
+    if not isinstance(name, str) or not name.strip():
+        raise SceneError(f"name: must be a non-empty string, got {name!r}")
+    if "description" in data and not isinstance(data["description"], str):
+        raise SceneError(f"description: must be a string (free text), got {data['description']!r}")
     analysis = _analysis(_table(data, "analysis"))
     return Scene(
         name=name,
@@ -221,7 +246,7 @@ def _ancf(t) -> AncfSettings:
     q = t.get("quadrature", list(AncfSettings.quadrature))
     if not isinstance(q, list) or len(q) != 2:
         raise SceneError(f"ancf.quadrature: must be [points along x, points across the thickness], got {q!r}")
-    q = tuple(_positive(f"ancf.quadrature[{i}]", v, int) for i, v in enumerate(q))
+    q = tuple(_ranged(f"ancf.quadrature[{i}]", v, 1, MAX_GAUSS, int) for i, v in enumerate(q))
     return AncfSettings(element, n, q)
 
 
@@ -245,25 +270,48 @@ def _energy_limit(t):
     if "energy_limit" not in t:
         return None
     v = t["energy_limit"]
+    if v == "inf":
+        return math.inf
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not v > 0:
         raise SceneError(f"analysis.energy_limit: must be a positive number of J (inf: no check), got {v!r}")
     return float(v)
+
+
+def _ranged(field_, value, lo, hi, kind=float):
+    v = _positive(field_, value, kind)
+    if not lo <= v <= hi:
+        raise SceneError(f"{field_}: must lie in [{lo:g}, {hi:g}], got {value!r}")
+    return v
+
+
+def _common(t) -> dict:
+    """The keys of both kinds of analysis."""
+    d = Analysis.__dataclass_fields__
+    return dict(
+        newton_rtol=_ranged("analysis.newton_rtol", t.get("newton_rtol", d["newton_rtol"].default), *NEWTON_RTOL),
+        max_iterations=_ranged("analysis.max_iterations", t.get("max_iterations", d["max_iterations"].default),
+                               1, MAX_ITERATIONS, int),
+        wall_time=_positive("analysis.wall_time", t["wall_time"]) if "wall_time" in t else None)
 
 
 def _analysis(t) -> Analysis:
     kind = _choice("analysis.kind", t.get("kind"), ANALYSES)
     if kind == "static":
         _keys("analysis", t, required={"kind"}, optional=set(STATIC_KEYS))
-        d = Analysis.__dataclass_fields__
-        return Analysis(
-            kind,
-            load_steps=_positive("analysis.load_steps", t.get("load_steps", d["load_steps"].default), int),
-            newton_rtol=_positive("analysis.newton_rtol", t.get("newton_rtol", d["newton_rtol"].default)),
-            max_iterations=_positive("analysis.max_iterations", t.get("max_iterations", d["max_iterations"].default), int),
-        )
+        return Analysis(kind, load_steps=_ranged("analysis.load_steps", t.get("load_steps", Analysis.load_steps),
+                                                 1, MAX_LOAD_STEPS, int), **_common(t))
     _keys("analysis", t, required={"kind", "t_end", "dt"}, optional=set(DYNAMIC_KEYS))
     t_end = _positive("analysis.t_end", t["t_end"])
     dt = _positive("analysis.dt", t["dt"])
+    if dt > t_end:
+        raise SceneError(f"analysis.dt: must not exceed t_end = {t_end:g} s, got {dt!r}")
+    dt_min = _positive("analysis.dt_min", t["dt_min"]) if "dt_min" in t else None
+    if dt_min is not None and dt_min > dt:
+        raise SceneError(f"analysis.dt_min: must not exceed dt = {dt:g} s, got {dt_min!r}")
+    max_steps = _positive("analysis.max_steps", t["max_steps"], int) if "max_steps" in t else None
+    if t_end / dt > (max_steps or MAX_STEPS) * (1 + 1e-9):
+        raise SceneError(f"analysis.dt: t_end / dt = {t_end / dt:.3g} steps exceeds analysis.max_steps = "
+                         f"{max_steps or MAX_STEPS:g}; raise max_steps to run it")
     rho_inf = _number("analysis.rho_inf", t.get("rho_inf", Analysis.rho_inf))
     if not 0.0 <= rho_inf <= 1.0:
         raise SceneError(f"analysis.rho_inf: must lie in [0, 1], got {rho_inf!r}")
@@ -275,16 +323,11 @@ def _analysis(t) -> Analysis:
         if any(v < 0 or v > t_end for v in out) or list(out) != sorted(out):
             raise SceneError(f"analysis.output_times: must rise within [0, t_end = {t_end}]")
     return Analysis(
-        kind, t_end=t_end, dt=dt,
-        dt_min=_positive("analysis.dt_min", t["dt_min"]) if "dt_min" in t else None,
+        kind, t_end=t_end, dt=dt, dt_min=dt_min,
         tolerance=_positive("analysis.tolerance", t["tolerance"]) if "tolerance" in t else None,
         output_times=out,
         integrator=_name("analysis.integrator", t.get("integrator", Analysis.integrator)),
-        rho_inf=rho_inf,
-        energy_limit=_energy_limit(t),
-        newton_rtol=_positive("analysis.newton_rtol", t.get("newton_rtol", Analysis.newton_rtol)),
-        max_iterations=_positive("analysis.max_iterations", t.get("max_iterations", Analysis.max_iterations), int),
-    )
+        rho_inf=rho_inf, energy_limit=_energy_limit(t), max_steps=max_steps, **_common(t))
 
 
 # ---------------------------------------------------------------------------------------

@@ -24,17 +24,32 @@ from pathlib import Path
 T_IMPORT = time.perf_counter()
 
 
+def _s(v, fmt: str = ".3f") -> str:
+    return "-" if v is None else format(v, fmt)
+
+
 def _run(args) -> int:
+    from contract.cli import Progress, check_output_dir, check_output_file
     from contract.record import sanitize, write_record
     from contract.scene import load_scene
 
-    from .run import run_scene
+    from .run import budget, check, run_scene
 
     scene = load_scene(args.scene)
+    settings = check(scene)
+    json_out = check_output_file(args.json, "--json")
     out, fmt = (args.vtk, "vtk") if args.vtk else (args.xdmf, "xdmf") if args.xdmf else (None, None)
-    rec = sanitize(run_scene(scene, output=out, output_format=fmt or "vtk"))
-    if args.json:
-        write_record(rec, args.json)
+    out = check_output_dir(out, f"--{fmt}")
+    for w in budget(scene, settings):
+        print(f"reference_fem: warning: {w}", file=sys.stderr)
+    progress = Progress(scene.analysis.t_end, enabled=not args.quiet) if scene.analysis.kind == "dynamic" else None
+    try:
+        rec = sanitize(run_scene(scene, output=out, output_format=fmt or "vtk", progress=progress))
+    finally:
+        if progress:
+            progress.close()
+    if json_out:
+        write_record(rec, json_out)
     f = rec["fem"]
     print(f"scene       {scene.name}  ({rec['continuum_model']}, {rec['incompressibility']}, "
           f"{f['cells_length']} x {f['cells_height']} {f['cell']}, degree {f['degree']}, "
@@ -45,14 +60,16 @@ def _run(args) -> int:
     if rec.get("tip_history") is not None:
         for h, e in zip(rec["tip_history"], rec["energy"]):
             print(f"t = {h['t']:.4f} s  x = {h['x'] * 1e3:10.4f} mm  y = {h['y'] * 1e3:10.4f} mm  "
-                  f"E = {e['total']:.4e} J")
+                  f"E = {_s(e['total'], '.4e')} J")
         print(f"newton      {rec['newton_iterations']} iterations, {rec['steps']} steps, "
               f"{rec['rejected_steps']} rejected")
     else:
         print(f"newton      {rec['newton_iterations']} iterations, {rec['load_steps']} load steps, "
               f"{rec['rejected_steps']} rejected")
-    print(f"time        solve {rec['wall_s']:.3f} s wall, {rec['cpu_s']:.3f} s cpu; "
-          f"set-up {rec['setup_s']:.3f} s (meshing + JIT)")
+    if rec.get("note"):
+        print(f"note        {rec['note']}")
+    print(f"time        solve {_s(rec['wall_s'])} s wall, {_s(rec['cpu_s'])} s cpu; "
+          f"set-up {_s(rec['setup_s'])} s (meshing + JIT)")
     print(f"effects     {', '.join(rec['effects'] or [])}")
     if rec.get("output"):
         print(f"output      {rec['output']}")
@@ -144,6 +161,7 @@ def _report(args) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
+    from contract.cli import interrupted
     from contract.errors import SceneError
 
     p = argparse.ArgumentParser(prog="python -m reference_fem",
@@ -153,8 +171,11 @@ def main(argv: list[str] | None = None) -> int:
     r.add_argument("scene")
     r.add_argument("--json", metavar="OUT", help="write the result record here")
     g = r.add_mutually_exclusive_group()
-    g.add_argument("--vtk", metavar="DIR", help="write the deformed mesh (VTK .pvd) here")
-    g.add_argument("--xdmf", metavar="DIR", help="write the deformed mesh (XDMF) here")
+    g.add_argument("--vtk", metavar="DIR", help="write the mesh (reference geometry) with the displacement and "
+                                                "pressure as point data (VTK .pvd) here: ParaView's Warp By Vector "
+                                                "shows the deformed beam")
+    g.add_argument("--xdmf", metavar="DIR", help="the same as XDMF")
+    r.add_argument("--quiet", action="store_true", help="no progress bar")
     c = sub.add_parser("converge", help="mesh refinement study of one scene")
     c.add_argument("scene")
     c.add_argument("--levels", type=int, default=4, help="number of meshes (>= 3, default 4)")
@@ -188,6 +209,8 @@ def main(argv: list[str] | None = None) -> int:
     except (SceneError, ValueError) as e:
         print(f"reference_fem: error: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        return interrupted("reference_fem")
 
 
 if __name__ == "__main__":

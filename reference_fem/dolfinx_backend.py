@@ -164,8 +164,10 @@ class Discretisation:
         return points + d
 
     def write(self, path: Path, fmt: str, scale: float = 1.0, t: float = 0.0) -> Path:
-        """Write the mesh with the displacement (and pressure p = scale * phat)
-        interpolated to degree 1, for ParaView ("Warp By Vector")."""
+        """Write the mesh (its reference geometry) with the displacement (and the pressure
+        p = scale * phat) interpolated to degree 1 as point data: ParaView's "Warp By
+        Vector" (displacement, scale 1) shows the deformed beam. ANCF's --vtk writes
+        the same."""
         V1 = dolfinx.fem.VectorFunctionSpace(self.mesh, ("Lagrange", 1))
         u1 = dolfinx.fem.Function(V1, name="displacement")
         u1.interpolate(self.displacement())
@@ -211,11 +213,16 @@ class NonlinearSystem:
         self.b = dolfinx.fem.petsc.create_vector(self.R)
         self.A = dolfinx.fem.petsc.create_matrix(self.K)
         self.dx = self.b.duplicate()
-        self.ksp = PETSc.KSP().create(COMM)
-        self.ksp.setType("preonly")
-        pc = self.ksp.getPC()
+        self.ksp = self._lu()
+
+    @staticmethod
+    def _lu():
+        ksp = PETSc.KSP().create(COMM)
+        ksp.setType("preonly")
+        pc = ksp.getPC()
         pc.setType("lu")
         pc.setFactorSolverType("mumps")
+        return ksp
 
     @property
     def x(self):
@@ -238,8 +245,13 @@ class NonlinearSystem:
         self.A.assemble()
         self.ksp.setOperators(self.A)
         self.ksp.solve(self.b, self.dx)
-        if self.ksp.getConvergedReason() < 0:
-            raise ArithmeticError(f"linear solve failed (PETSc reason {self.ksp.getConvergedReason()})")
+        reason = self.ksp.getConvergedReason()
+        if reason < 0:
+            # a failed factorisation sticks to the PC (every later solve fails at once,
+            # however small the next load increment): start from a fresh one
+            self.ksp.destroy()
+            self.ksp = self._lu()
+            raise ArithmeticError(f"linear solve failed (PETSc reason {reason})")
         self.x.axpy(-1.0, self.dx)
         self.x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
         return float(self.dx.norm())

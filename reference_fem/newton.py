@@ -72,6 +72,7 @@ class StaticResult:
     cpu_s: float = 0.0
     wall_s: float = 0.0
     history: list = field(default_factory=list)   # (t, iterations) of the accepted increments
+    unloaded: bool = False                        # no load: the answer is the reference state
 
 
 def reference_residual(system, set_load: Callable[[float], None]) -> float:
@@ -85,7 +86,8 @@ def reference_residual(system, set_load: Callable[[float], None]) -> float:
     return r
 
 
-def solve_static(system, set_load, steps: int, rtol: float, max_iterations: int) -> StaticResult:
+def solve_static(system, set_load, steps: int, rtol: float, max_iterations: int,
+                 wall_time: float | None = None) -> StaticResult:
     """Follow the load from t = 0 to 1. An unloaded scene (zero load vector) is
     valid: its answer is the reference state (no increment is taken)."""
     result = StaticResult()
@@ -106,12 +108,13 @@ def solve_static(system, set_load, steps: int, rtol: float, max_iterations: int)
 
     try:
         if r_ref > 0:
-            for t, attempt in follow(solve, steps, counts):
+            deadline = None if wall_time is None else w0 + wall_time
+            for t, attempt in follow(solve, steps, counts, deadline=deadline):
                 result.t_reached = t
                 result.history.append((t, attempt.iterations))
         else:
             set_load(1.0)
-            result.t_reached = 1.0
+            result.t_reached, result.unloaded = 1.0, True
         result.status = "converged"
     except PathFailure as e:
         result.reason = e.reason

@@ -22,6 +22,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
+from contract.cli import safe_name
 from contract.errors import SceneError
 from contract.record import new_record
 from contract.scene import Scene, check_names
@@ -40,6 +41,46 @@ def check(scene: Scene) -> FemSettings:
     return fem_settings(scene)
 
 
+# Peak memory of a run: the interpreter with dolfinx (~170 MB), plus MUMPS's LU of the
+# N unknowns: ~2.6 kB per unknown measured in 2D (256 x 16 Q2/Q1: 38161 unknowns,
+# 259 MB peak; 64 x 4: 168 MB); the model takes 4 kB x N x max(1, log2(N / 1e4)) in 2D
+# (nested dissection fill ~ N log N) and BYTES_3D x N^(4/3) in 3D.
+BASE_BYTES = 170e6
+BYTES_2D = 4e3
+BYTES_3D = 400.0
+
+
+def estimate(scene: Scene, settings: FemSettings | None = None):
+    """Unknowns, peak memory and time steps of the scene's continuum run, without
+    building it (see the constants above)."""
+    import math
+
+    from contract.budget import Estimate
+
+    from .models import get_model
+
+    s = settings or check(scene)
+    model = get_model(s.model, s.incompressibility)
+    cells = s.cells(model.geometry.gdim)
+    n = model.geometry.gdim * math.prod(s.degree * c + 1 for c in cells)
+    if model.has_pressure:
+        n += math.prod((s.degree - 1) * c + 1 for c in cells)
+    if model.geometry.gdim == 2:
+        mem = BASE_BYTES + BYTES_2D * n * max(1.0, math.log2(n / 1e4))
+    else:
+        mem = BASE_BYTES + BYTES_3D * n ** (4 / 3)
+    a = scene.analysis
+    steps = math.ceil(a.t_end / a.dt) if a.kind == "dynamic" else None
+    return Estimate(n, mem, steps, "fem.cells_length / cells_height / degree")
+
+
+def budget(scene: Scene, settings: FemSettings | None = None) -> list[str]:
+    """Refuse a scene that cannot fit in this machine's memory (SceneError); warnings."""
+    from contract.budget import check_budget
+
+    return check_budget(estimate(scene, settings), "reference_fem")
+
+
 def check_static(scene: Scene) -> None:
     if scene.analysis.kind != "static":
         raise SceneError(f"analysis.kind: {scene.analysis.kind!r}: refinement studies are "
@@ -52,17 +93,21 @@ def _record(scene: Scene, settings: FemSettings) -> dict:
     rec = new_record("fenicsx", scene.to_dict())
     rec.update(continuum_model=settings.model, incompressibility=settings.incompressibility,
                fem=settings.to_dict(), dolfinx=backend.VERSION)
+    warnings = budget(scene, settings)
+    if warnings:
+        rec["warnings"] = warnings
     return rec
 
 
 def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | None = None,
-              output_format: str = "vtk") -> dict:
+              output_format: str = "vtk", progress=None) -> dict:
     """Solve ``scene`` (with ``settings`` overriding its [fem] table, e.g. in a
-    refinement study); return the record. ``output``: write the deformed mesh there."""
+    refinement study); return the record. ``output``: write the mesh and its
+    displacement there; ``progress(t, result)``: after every accepted time step."""
     checked = check(scene)
     settings = settings or checked
     if scene.analysis.kind == "dynamic":
-        return run_dynamic(scene, settings, output=output, output_format=output_format)
+        return run_dynamic(scene, settings, output=output, output_format=output_format, progress=progress)
     from .newton import solve_static
     from .setup import set_up, static_problem
 
@@ -73,17 +118,19 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
     rec["setup_s"] = time.perf_counter() - t0
     a = scene.analysis
     res = solve_static(problem.system, problem.set_load, a.load_steps, a.newton_rtol,
-                       a.max_iterations)
+                       a.max_iterations, a.wall_time)
     rec.update(status=res.status, reason=res.reason, ndof=problem.n_free,
                newton_iterations=res.newton_iterations, load_steps=res.load_steps,
                rejected_steps=res.rejected_steps, cpu_s=res.cpu_s, wall_s=res.wall_s,
                effects=sorted(s.effects), load_reached=res.t_reached)
+    if res.unloaded:
+        rec["note"] = "no load: an unloaded static scene is valid, its answer is the reference state"
     if res.status == "converged":
         tip = s.model.geometry.tip_point(scene.beam)
         ux, uy = s.disc.point_displacement([tip])[0][:2]
         rec["tip"] = {"ux": float(ux), "uy": float(uy)}
         if output is not None:
-            rec["output"] = str(s.disc.write(Path(output) / scene.name, output_format, scale=s.mu))
+            rec["output"] = str(s.disc.write(Path(output) / safe_name(scene.name), output_format, scale=s.mu))
     return rec
 
 
@@ -111,13 +158,14 @@ def run_dynamic(scene: Scene, settings: FemSettings, output: Path | None = None,
     limit = energy_limit if energy_limit is not None else scene_energy_limit(scene)
     res = integrate(stepper, np.zeros(problem.n_dof), a.t_end, a.dt, a.output_times, a.dt_min,
                     a.tolerance, energy_limit=None if limit == float("inf") else limit,
-                    energy_every_step=energy_every_step, progress=progress)
+                    energy_every_step=energy_every_step, max_steps=a.max_steps, wall_time=a.wall_time,
+                    progress=progress)
     rec.update(ndof=problem.n_free, effects=sorted(problem.setup.effects + ["inertia"]),
                **record_keys(res, stepper.describe(), limit, scene.beam.length))
     if energy_every_step:
         rec["energy_steps"] = [e.to_dict(t) for t, e in res.energy_steps]
     if output is not None and res.final is not None:
         problem.disc.w.x.array[:] = res.final.u
-        rec["output"] = str(problem.disc.write(Path(output) / scene.name, output_format,
+        rec["output"] = str(problem.disc.write(Path(output) / safe_name(scene.name), output_format,
                                                scale=problem.setup.mu, t=res.final.t))
     return rec

@@ -121,6 +121,9 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as e:
         print(f"studies: error: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("studies: interrupted (every finished record is kept; a rerun does the rest)", file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":

@@ -32,10 +32,21 @@ class Change:
         return f"{self.study}: {self.case}: {self.what}"
 
 
+def _rounded(x):
+    """Numbers to 12 significant digits, so that a 1-ulp change in a constant is the same case."""
+    if isinstance(x, float):
+        return float(f"{x:.12g}")
+    if isinstance(x, dict):
+        return {k: _rounded(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_rounded(v) for v in x]
+    return x
+
+
 def key_of(rec: dict) -> str:
     """What the case is: solver, scene and options (the id without source and versions)."""
-    return canonical({"solver": rec["solver"], "scene": rec["scene"],
-                      "options": (rec.get("case") or {}).get("options") or {}})
+    return canonical(_rounded({"solver": rec["solver"], "scene": rec["scene"],
+                               "options": (rec.get("case") or {}).get("options") or {}}))
 
 
 def read(path: Path) -> dict[str, dict]:

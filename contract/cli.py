@@ -1,0 +1,103 @@
+"""What every command line of the harness shares: output paths checked before a run
+(never a traceback after the solve), file names made from scene names (always inside
+the folder the user gave), an interrupt as one line (exit status 130), and a progress
+bar on the terminal (never in a record).
+"""
+from __future__ import annotations
+
+import os
+import re
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from .errors import SceneError
+
+INTERRUPTED = 130
+
+
+def safe_name(name: str) -> str:
+    """A file name from a scene name: letters, digits, '.', '_' and '-' kept, every other
+    run of characters (separators, NUL, spaces) made one '_', runs of dots dropped, no
+    leading or trailing dot or '_': it cannot leave the folder it is put in."""
+    s = re.sub(r"[^A-Za-z0-9._-]+", "_", name)
+    s = re.sub(r"_+", "_", re.sub(r"\.{2,}", "", s)).strip("._")
+    return s or "scene"
+
+
+def _writable_dir(d: Path, flag: str) -> None:
+    """Make the folder d (with its parents) and prove that a file can be written in it,
+    by writing and removing one (permission bits do not tell, e.g. for root or on a
+    read-only file system)."""
+    probe = d
+    while not probe.exists() and probe.parent != probe:
+        probe = probe.parent
+    if probe.exists() and not probe.is_dir():
+        raise SceneError(f"{flag}: cannot create {d}: {probe} is a file, not a folder")
+    try:
+        d.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=d, prefix=".write-check-"):
+            pass
+    except OSError as e:
+        raise SceneError(f"{flag}: cannot write in {d} ({e.strerror or e})") from None
+
+
+def check_output_file(path: str | Path | None, flag: str) -> Path | None:
+    """A file the run will write: not a folder, in a folder that exists or can be made."""
+    if path is None:
+        return None
+    p = Path(path)
+    if p.is_dir():
+        raise SceneError(f"{flag}: {p} is a folder; give a file name")
+    if p.exists() and not os.access(p, os.W_OK):
+        raise SceneError(f"{flag}: cannot overwrite {p} (permission denied)")
+    _writable_dir(p.parent, flag)
+    return p
+
+
+def check_output_dir(path: str | Path | None, flag: str) -> Path | None:
+    """A folder the run will write into: a folder (or creatable), not a file."""
+    if path is None:
+        return None
+    p = Path(path)
+    if p.exists() and not p.is_dir():
+        raise SceneError(f"{flag}: {p} is a file; give a folder")
+    _writable_dir(p, flag)
+    return p
+
+
+def interrupted(prog: str) -> int:
+    """What a command does on Ctrl-C: one line on stderr, exit status 130."""
+    print(f"{prog}: interrupted", file=sys.stderr)
+    return INTERRUPTED
+
+
+class Progress:
+    """A tqdm bar of simulated time with steps and Newton iterations, drawn on stderr
+    when it is a terminal (or when forced), at most every 0.5 s; ``close()`` removes it.
+    Called as ``progress(t, result)`` by the time loop."""
+
+    def __init__(self, t_end: float, enabled: bool = True, force: bool = False):
+        self.bar = None
+        if enabled and (force or sys.stderr.isatty()):
+            from tqdm import tqdm
+            self.bar = tqdm(total=t_end, unit="s", unit_scale=False, leave=False, mininterval=0.5,
+                            bar_format="{l_bar}{bar}| t = {n:.4g} / {total:.4g} s [{elapsed}<{remaining}{postfix}]",
+                            file=sys.stderr, dynamic_ncols=True)
+        self._last = 0.0
+
+    def __call__(self, t: float, res) -> None:
+        if self.bar is None:
+            return
+        now = time.perf_counter()
+        if now - self._last < 0.5:
+            return
+        self._last = now
+        self.bar.n = t
+        self.bar.set_postfix_str(f"steps {res.steps}, Newton {res.newton_iterations}", refresh=False)
+        self.bar.refresh()
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
