@@ -82,3 +82,38 @@ def band_matvec(ab, b, x):
         for i in range(lo, hi):
             y[i] += ab[b + i - j, j] * xj
     return y
+
+
+@njit(cache=True)
+def band_ldlt_inertia(upper, b, shift):
+    """Inertia of A - shift I for symmetric A in LAPACK's upper band form
+    ``upper[b + i - j, j] = A[i, j]`` (i <= j), by an LDL^T factorisation without
+    pivoting (a band stays a band): A - shift I = L D L^T, so by Sylvester's law of
+    inertia the number of negative pivots d_j is the number of eigenvalues below shift.
+    Returns (negative pivots, smallest |pivot|); a zero pivot stops the count there
+    (smallest |pivot| 0: the count is not to be trusted, the caller must decide)."""
+    n = upper.shape[1]
+    L = np.zeros((b + 1, n))       # L[k, j] = L[j + k, j], k = 1..b
+    d = np.zeros(n)
+    neg = 0
+    small = np.inf
+    for j in range(n):
+        lo = max(0, j - b)
+        dj = upper[b, j] - shift
+        for k in range(lo, j):
+            ljk = L[j - k, k]
+            dj -= ljk * ljk * d[k]
+        d[j] = dj
+        a = abs(dj)
+        if a < small:
+            small = a
+        if dj == 0.0:
+            return neg, 0.0
+        if dj < 0.0:
+            neg += 1
+        for i in range(j + 1, min(n, j + b + 1)):
+            s = upper[b + j - i, i]            # A[j, i], j < i
+            for k in range(max(0, i - b), j):
+                s -= L[i - k, k] * L[j - k, k] * d[k]
+            L[i - j, j] = s / dj
+    return neg, small

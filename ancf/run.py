@@ -36,7 +36,8 @@ def run_scene(scene: Scene, progress=None) -> tuple[dict, object]:
         status=res.status, reason=res.reason, ndof=model.n_free,
         newton_iterations=res.newton_iterations, load_steps=res.load_steps,
         relax_steps=res.relax_steps, rejected_steps=res.rejected_steps,
-        stable=res.stable, stability=res.stability, cpu_s=res.cpu_s, wall_s=res.wall_s,
+        stable=res.stable, stability=res.stability, negative_eigenvalues=res.negative_eigenvalues,
+        cpu_s=res.cpu_s, wall_s=res.wall_s,
         effects=sorted(effects),
     )
     if res.u is not None:

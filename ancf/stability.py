@@ -1,9 +1,10 @@
-"""Stability of a static equilibrium: the lowest eigenvalue of the tangent decides.
+"""Stability of a static equilibrium: the inertia of the tangent decides.
 
-:func:`check_stability` classifies an equilibrium as stable, unstable (a negative
-eigenvalue: the static solver leaves it along the mode), singular (a zero-energy mode of
-the quadrature rule) or undetermined (the lowest eigenvalue is within round-off of
-zero: the tangent is too ill-conditioned to decide in double precision).
+:func:`check_stability` classifies an equilibrium as stable, unstable (negative
+eigenvalues, counted by Sylvester's law of inertia; the static solver leaves it along
+the lowest mode), singular (a zero-energy mode of the quadrature rule) or undetermined
+(the lowest eigenvalue is within round-off of zero: the tangent is too ill-conditioned
+to decide in double precision).
 """
 from __future__ import annotations
 
@@ -19,6 +20,7 @@ class Stability:
     kind: str                 # "stable" | "unstable" | "singular" | "undetermined"
     lowest: float | None      # lowest eigenvalue of the Jacobi-scaled constrained tangent
     mode: np.ndarray | None   # its eigenvector (global dofs), when not stable
+    negative: int | None = None   # eigenvalues below -SINGULAR_TOL (Sylvester's law of inertia)
 
     @property
     def stable(self) -> bool | None:
@@ -27,7 +29,8 @@ class Stability:
     def describe(self) -> str:
         if self.kind == "stable":
             return "stable"
-        what = {"unstable": "tangent has a negative eigenvalue",
+        n = self.negative or 0
+        what = {"unstable": f"tangent has {n} negative eigenvalue{'s' if n != 1 else ''}",
                 "singular": "tangent singular: a zero-energy mode of the quadrature rule",
                 "undetermined": "undetermined: the lowest eigenvalue is within round-off "
                                 "(the tangent is too ill-conditioned to decide in double precision)",
@@ -41,36 +44,48 @@ class Stability:
 # their absolute error is ~c eps ||S|| (||S|| <= ~5). The softest genuine bending mode
 # of the paper's cantilever falls with refinement to 5.7e-13 at 640 elements (resolved);
 # with alpha = 1e5 C10 it falls to ~2e-16 (not resolved: "undetermined"). A structural
-# zero-energy mode measured -4e-18. A Cholesky pivot above MIN_PIVOT settles stability
-# without an eigen solve.
+# zero-energy mode measured -4e-18.
 SINGULAR_TOL = 1e-14
-MIN_PIVOT = 1e-10
+# An LDL^T without pivoting is exact in exact arithmetic whenever it exists; in floating
+# point a tiny pivot lets the factors grow and the count go wrong. Below this smallest
+# |pivot| (S has a unit diagonal) the count is redone by LAPACK's bisection (dsbevx).
+PIVOT_TRUST = 1e-6
+
+
+def below(K, shift: float) -> int:
+    """How many eigenvalues of the Jacobi-scaled K lie below ``shift``: Sylvester's law
+    of inertia on a banded LDL^T of S - shift I, or LAPACK's banded bisection when a
+    pivot was too small to trust the factorisation."""
+    neg, small = K.scaled_inertia(shift)
+    if small >= PIVOT_TRUST:
+        return neg
+    from scipy.linalg import eigvals_banded
+    upper, _ = K.scaled_upper()
+    return int(len(eigvals_banded(upper, lower=False, select="v", select_range=(-np.inf, shift),
+                                  check_finite=False)))
 
 
 def check_stability(model: BeamModel, u: np.ndarray) -> Stability:
-    """Classify the equilibrium u by the lowest eigenpair (lambda, phi) of the
-    Jacobi-scaled constrained tangent S: stable (lambda > SINGULAR_TOL), unstable (below
-    -SINGULAR_TOL); in between, singular if phi is a zero-energy mode of the elastic
-    quadrature rule (its strain variation B phi vanishes at the rule's points but not at
-    a full rule's), else undetermined.
-
-    Fast path: a banded Cholesky factorisation of S whose smallest pivot is not tiny
-    (> MIN_PIVOT) proves S positive definite well above round-off (a plain Cholesky
-    cannot tell singular from positive definite: round-off may leave a tiny positive
-    pivot, as it did for HB2n-16's zero-energy mode)."""
+    """Classify the equilibrium u by the inertia of the Jacobi-scaled constrained tangent
+    S (a congruence of K: the same signs of eigenvalues): unstable when eigenvalues lie
+    below -SINGULAR_TOL (their number is the record's ``negative_eigenvalues``); stable
+    when none lies below +SINGULAR_TOL; in between (an eigenvalue within round-off of
+    zero), singular if the lowest mode is a zero-energy mode of the elastic quadrature
+    rule (its strain variation vanishes at the rule's points but not at a full rule's),
+    else undetermined. Counting by inertia cannot miss a negative eigenvalue, as an
+    eigen solver asked for the eigenvalue nearest a shift can; the lowest eigenpair (the
+    mode the static solver escapes along) is computed only when the state is not stable."""
     _, K = model.internal_force_and_tangent(u)
     K = K.constrain(model.fixed)
-    c, _ = K.scaled_cholesky()
-    if c is not None and (c[K.b] ** 2).min() > MIN_PIVOT:
-        return Stability("stable", None, None)
-    lowest, mode = _lowest_mode(K, model.fixed)
+    negative = below(K, -SINGULAR_TOL)
+    if negative == 0 and below(K, SINGULAR_TOL) == 0:
+        return Stability("stable", None, None, 0)
+    lowest, mode = lowest_mode(K, model.fixed, negative)
     if lowest is None:
-        return Stability("undetermined", None, None)
-    if lowest > SINGULAR_TOL:
-        return Stability("stable", lowest, None)
-    if lowest < -SINGULAR_TOL:
-        return Stability("unstable", lowest, mode)
-    return Stability("singular" if _is_quadrature_mode(model, mode) else "undetermined", lowest, mode)
+        return Stability("undetermined", None, None, negative)
+    if negative:
+        return Stability("unstable", lowest, mode, negative)
+    return Stability("singular" if _is_quadrature_mode(model, mode) else "undetermined", lowest, mode, 0)
 
 
 def _is_quadrature_mode(model: BeamModel, mode: np.ndarray) -> bool:
@@ -86,27 +101,56 @@ def _is_quadrature_mode(model: BeamModel, mode: np.ndarray) -> bool:
     return strain(model) <= 1e-6 * strain(full)
 
 
-def _lowest_mode(K, fixed) -> tuple[float | None, np.ndarray | None]:
-    """Lowest eigenpair of the Jacobi-scaled K by shift-invert Lanczos around a tiny
-    negative shift (S + 1e-10 I stays factorisable when S is singular and separates the
-    near-zero cluster), from a fixed start vector (deterministic) with bounded
-    iterations; dense below 3000 unknowns if Lanczos does not converge; (None, None)
-    if neither gives an answer."""
-    from scipy.sparse import diags
-    from scipy.sparse.linalg import ArpackError, ArpackNoConvergence, eigsh
+def lowest_mode(K, fixed, negative: int) -> tuple[float | None, np.ndarray | None]:
+    """The lowest eigenpair of the Jacobi-scaled K: the lowest eigenvalue bracketed by
+    bisection on inertia counts (lo with no eigenvalue below, hi with one), then inverse
+    iteration with the banded Cholesky factor of S - lo I (positive definite: lo lies
+    below every eigenvalue); the mode in global dofs (fixed dofs zero). (None, None) if
+    the iteration does not settle."""
+    from scipy.linalg import cho_solve_banded, cholesky_banded
 
-    A = K.to_sparse()
-    s = 1.0 / np.sqrt(np.abs(A.diagonal()))
-    S = (diags(s) @ A @ diags(s)).tocsc()
-    n = S.shape[0]
-    v0 = np.cos(np.arange(n) * 0.7) + 1.0          # fixed, non-degenerate start vector
+    norm = K.scaled_norm()
+    lo, hi = (-1.01 * norm, -SINGULAR_TOL) if negative else (-SINGULAR_TOL, SINGULAR_TOL)
+    for _ in range(200):
+        if hi - lo <= 1e-3 * abs(hi) + 1e-3 * SINGULAR_TOL:
+            break
+        mid = 0.5 * (lo + hi)
+        if below(K, mid) > 0:
+            hi = mid
+        else:
+            lo = mid
+    upper, s = K.scaled_upper()
+    shifted = upper.copy()
+    shifted[K.b] -= lo - 1e-3 * (hi - lo) - 1e-18
     try:
-        vals, vecs = eigsh(S, k=1, sigma=-1e-10, which="LM", v0=v0, maxiter=300)
-    except (ArpackNoConvergence, ArpackError, RuntimeError):
-        if n > 3000:
-            return None, None
-        vals, vecs = np.linalg.eigh(S.toarray())
-        vals, vecs = vals[:1], vecs[:, :1]
-    mode = s * vecs[:, 0]
+        c = cholesky_banded(shifted, lower=False, check_finite=False)
+    except np.linalg.LinAlgError:
+        return None, None
+    x = np.cos(np.arange(K.n) * 0.7) + 1.0          # fixed, non-degenerate start vector
+    lam = None
+    for _ in range(100):
+        y = cho_solve_banded((c, False), x, check_finite=False)
+        y /= np.linalg.norm(y)
+        new = float(y @ _sym_band_matvec(upper, K.b, y))
+        x = y
+        if lam is not None and abs(new - lam) <= 1e-10 * max(abs(new), SINGULAR_TOL):
+            lam = new
+            break
+        lam = new
+    if lam is None or not np.isfinite(lam):
+        return None, None
+    mode = s * x
     mode[fixed] = 0.0
-    return float(vals[0]), mode
+    return lam, mode
+
+
+def _sym_band_matvec(upper: np.ndarray, b: int, x: np.ndarray) -> np.ndarray:
+    """S x for symmetric S in upper band form."""
+    n = x.shape[0]
+    y = upper[b] * x
+    for k in range(b):
+        off = b - k
+        a = upper[k, off:]                     # S[j - off, j]
+        y[: n - off] += a * x[off:]
+        y[off:] += a * x[: n - off]
+    return y

@@ -161,6 +161,7 @@ class StaticResult:
     relax_steps: int
     stable: bool | None
     stability: str | None          # what the stability check found and did
+    negative_eigenvalues: int | None = None   # of the final state's tangent (inertia count)
     cpu_s: float = 0.0
     wall_s: float = 0.0
 
@@ -178,10 +179,11 @@ def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
     scale = max(np.linalg.norm(f_ext[free]), np.linalg.norm(f0), 1e-30)
     atol = rtol * scale
 
-    def finish(status, reason, u, stable=None, stability=None):
+    def finish(status, reason, u, verdict=None, stability=None):
         return StaticResult(u, status, reason, counts.newton_iterations, counts.accepted,
-                            counts.rejected, n_relax, stable, stability,
-                            time.process_time() - cpu0, time.perf_counter() - wall0)
+                            counts.rejected, n_relax, verdict and verdict.stable, stability,
+                            verdict and verdict.negative, time.process_time() - cpu0,
+                            time.perf_counter() - wall0)
 
     phases = []
     if np.linalg.norm(f0) > atol:
@@ -209,7 +211,7 @@ def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
         verdict = check_stability(model, u)
         note = (f"Newton converged to an unstable equilibrium ({first}); perturbed along the "
                 f"unstable mode and descended to {verdict.describe()} ({tries} time(s))")
-    return finish("converged", None, u, verdict.stable, note)
+    return finish("converged", None, u, verdict, note)
 
 
 def relax(model: BeamModel, rtol: float = 1e-8, max_iterations: int = 25,
