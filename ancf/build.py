@@ -19,6 +19,7 @@ from .material import Material
 from .mesh import Mesh, fixed_dofs
 from .model import BeamModel
 from .quadrature import gauss
+from .rank import default_quadrature, rule_warnings
 
 
 def check(scene: Scene) -> Scene:
@@ -43,7 +44,7 @@ def estimate(scene: Scene) -> Estimate:
     nodes = s.elements * (nn - 1) + 1
     n = 2 * nk * nodes
     b = 2 * nk * nn - 1
-    nq = s.quadrature[0] * s.quadrature[1]
+    nq = math.prod(quadrature(scene))
     words = (9 * b + 34) * n + s.elements * (26 * nq + 2 * el.dof) + (3 * n * n if n < 3000 else 0)
     a = scene.analysis
     steps = math.ceil(a.t_end / a.dt) if a.kind == "dynamic" else None
@@ -60,11 +61,35 @@ def build_material(spec: MaterialSpec) -> Material:
                     dict(spec.constants), spec.penalty, spec.density)
 
 
+def aspect(scene: Scene) -> float:
+    """l_e / h of the scene's mesh."""
+    return scene.beam.length / check(scene).ancf.elements / scene.beam.height
+
+
+def quadrature(scene: Scene) -> tuple[int, int]:
+    """The elastic rule: the scene's, or the element's default for its formulation kind
+    and l_e / h (:func:`ancf.rank.default_quadrature`)."""
+    s = check(scene).ancf
+    if s.quadrature is not None:
+        return tuple(s.quadrature)
+    return default_quadrature(get_element(s.element), get_formulation(scene.material.formulation).penalised,
+                              aspect(scene))
+
+
+def quadrature_warnings(scene: Scene) -> list[str]:
+    """The rank tests' verdict on a rule the scene chose (:func:`ancf.rank.rule_warnings`)."""
+    s = check(scene).ancf
+    if s.quadrature is None:
+        return []
+    return rule_warnings(get_element(s.element), tuple(s.quadrature),
+                         get_formulation(scene.material.formulation).penalised, aspect(scene))
+
+
 def build_model(scene: Scene) -> BeamModel:
     s = check(scene).ancf
     mesh = Mesh(get_element(s.element), s.elements, scene.beam.length,
                 scene.beam.height, scene.beam.width)
-    return BeamModel(mesh, build_material(scene.material), gauss(*s.quadrature),
+    return BeamModel(mesh, build_material(scene.material), gauss(*quadrature(scene)),
                      fixed_dofs(mesh, scene.supports.left, scene.supports.clamp))
 
 

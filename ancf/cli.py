@@ -82,7 +82,7 @@ def _list(registry: dict) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from contract.cli import interrupted
+    from contract.cli import by_interrupt, interrupted
     from contract.errors import SceneError
 
     p = argparse.ArgumentParser(prog="ancf", description="2D ANCF beams with hyperelastic laws")
@@ -110,6 +110,10 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except KeyboardInterrupt:
         return interrupted("ancf")
+    except SystemError as e:
+        if by_interrupt(e):
+            return interrupted("ancf")
+        raise
 
 
 if __name__ == "__main__":

@@ -42,6 +42,10 @@ class ElementSpec:
     nodes: tuple[float, ...]     # node positions xi in [0, 1] on the centre line (eta = 0)
     kinds: tuple[str, ...]       # nodal coordinate kinds at every node
     reference: str = ""
+    # the default elastic rule, chosen by the rank tests of ancf.rank: entries
+    # (penalised formulation?, smallest l_e / h, (points along x, across the thickness)),
+    # the first that matches a scene wins; empty: the rule exact for the basis (safe, dear)
+    quadrature: tuple[tuple[bool, float, tuple[int, int]], ...] = ()
 
     def __post_init__(self):
         unknown = [k for k in self.kinds if k not in KINDS]
@@ -125,13 +129,15 @@ def get_element(name: str) -> ElementSpec:
 
 register_element(ElementSpec(
     "LB2n-12", ("1", "x", "y", "x*y", "x^2", "x^3"), (0.0, 1.0), ("r", "r_x", "r_y"),
-    "Omar & Shabana 2001 (linear across the thickness)"))
+    "Omar & Shabana 2001 (linear across the thickness)",
+    ((False, 0.0, (3, 2)), (True, 0.0, (3, 2)))))
 register_element(ElementSpec(
     "HB2n-12", ("1", "x", "y", "x*y", "x^2 + y^2", "x^3"), (0.0, 1.0), ("r", "r_x", "r_y"),
-    "Zhao et al. 2021"))
+    "Zhao et al. 2021", ((False, 0.3, (3, 2)), (False, 0.0, (3, 3)), (True, 0.1, (3, 2)), (True, 0.0, (3, 3)))))
 register_element(ElementSpec(
     "HB3n-12", ("1", "x", "y", "x*y", "x^2 + y^2", "x^2*y"), (0.0, 0.5, 1.0), ("r", "r_y"),
-    "Zhao et al. 2021"))
+    "Zhao et al. 2021", ((False, 0.1, (3, 2)), (False, 0.0, (3, 3)), (True, 0.1, (3, 2)), (True, 0.0, (3, 3)))))
 register_element(ElementSpec(
     "HB2n-16", ("1", "x", "y", "x*y", "x^2", "y^2", "x*y^2", "x^3"), (0.0, 1.0),
-    ("r", "r_x", "r_y", "r_yy"), "Patel & Shabana 2018"))
+    ("r", "r_x", "r_y", "r_yy"), "Patel & Shabana 2018",
+    ((False, 0.3, (3, 2)), (False, 0.0, (3, 3)), (True, 0.3, (3, 2)), (True, 0.0, (3, 3)))))

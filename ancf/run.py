@@ -8,7 +8,7 @@ import numpy as np
 from contract.record import new_record
 from contract.scene import Scene
 
-from .build import budget, build_integrator, build_model, external_loads
+from .build import budget, build_integrator, build_model, external_loads, quadrature, quadrature_warnings
 from .static import relax, solve_static
 from .timeloop import energy_limit, integrate, record_keys
 
@@ -18,7 +18,8 @@ def run_scene(scene: Scene, progress=None) -> tuple[dict, object]:
     :mod:`contract.record`: SI units, nulls (never NaN) where a run failed.
     ``progress(t, result)``: called after every accepted time step (dynamics)."""
     rec = new_record("ancf", scene.to_dict())
-    warnings = budget(scene)
+    warnings = budget(scene) + quadrature_warnings(scene)
+    rec["quadrature"] = list(quadrature(scene))
     if warnings:
         rec["warnings"] = warnings
     t0 = time.perf_counter()

@@ -67,6 +67,16 @@ def check_output_dir(path: str | Path | None, flag: str) -> Path | None:
     return p
 
 
+def by_interrupt(e: BaseException) -> bool:
+    """Is ``e`` a Ctrl-C in disguise? A KeyboardInterrupt raised while compiled code
+    (numba) runs comes out as a SystemError whose cause is the interrupt."""
+    while e is not None:
+        if isinstance(e, KeyboardInterrupt):
+            return True
+        e = e.__cause__ or e.__context__
+    return False
+
+
 def interrupted(prog: str) -> int:
     """What a command does on Ctrl-C: one line on stderr, exit status 130."""
     print(f"{prog}: interrupted", file=sys.stderr)

@@ -57,7 +57,8 @@ class MaterialSpec:
 class AncfSettings:
     element: str
     elements: int
-    quadrature: tuple[int, int] = (3, 2)  # Gauss points along x, across the thickness
+    quadrature: tuple[int, int] | None = None  # Gauss points along x, across the thickness;
+                                               # None: the element's default (ancf.rank)
 
 
 @dataclass(frozen=True)
@@ -118,6 +119,8 @@ class Scene:
         out["material"] = {k: v for k, v in material.items() if v is not None}
         out["analysis"] = {k: v for k, v in analysis.items() if v is not None}
         out["loads"] = {k: v for k, v in d["loads"].items() if v is not None}
+        if out.get("ancf"):
+            out["ancf"] = {k: v for k, v in out["ancf"].items() if v is not None}
         if out["analysis"].get("energy_limit") == math.inf:
             out["analysis"]["energy_limit"] = "inf"       # JSON has no infinity; the loader takes "inf"
         return json.loads(json.dumps(out))  # tuples -> lists, plain JSON types
@@ -243,7 +246,9 @@ def _ancf(t) -> AncfSettings:
     _keys("ancf", t, required={"element", "elements"}, optional={"quadrature"})
     element = _name("ancf.element", t["element"])
     n = _positive("ancf.elements", t["elements"], int)
-    q = t.get("quadrature", list(AncfSettings.quadrature))
+    if "quadrature" not in t:
+        return AncfSettings(element, n, None)
+    q = t["quadrature"]
     if not isinstance(q, list) or len(q) != 2:
         raise SceneError(f"ancf.quadrature: must be [points along x, points across the thickness], got {q!r}")
     q = tuple(_ranged(f"ancf.quadrature[{i}]", v, 1, MAX_GAUSS, int) for i, v in enumerate(q))

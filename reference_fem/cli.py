@@ -161,7 +161,7 @@ def _report(args) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from contract.cli import interrupted
+    from contract.cli import by_interrupt, interrupted
     from contract.errors import SceneError
 
     p = argparse.ArgumentParser(prog="python -m reference_fem",
@@ -211,6 +211,10 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except KeyboardInterrupt:
         return interrupted("reference_fem")
+    except SystemError as e:
+        if by_interrupt(e):
+            return interrupted("reference_fem")
+        raise
 
 
 if __name__ == "__main__":

@@ -104,3 +104,16 @@ def test_the_saddle_itself_is_called_unstable():
     _, lam = scaled_dense(model, state["u"])
     assert v.kind == "unstable" and v.negative == int(np.sum(lam < -SINGULAR_TOL)) == 2
     assert v.lowest == pytest.approx(lam[0], rel=1e-6)
+
+
+def test_a_zero_energy_mode_at_round_off_is_called_singular():
+    """`paper` Neo-Hookean, HB2n-16 x 16, [2, 2], face clamp: two eigenvalues of S at
+    1.6e-16 and 2.2e-16 (dense), the spurious modes the rank test counts for [2, 2]. The
+    lowest eigenpair must still be found (S - lo I is singular to working precision),
+    and the verdict is singular, not undetermined."""
+    d = paper.cantilever_scene("neo-hookean", "paper", "HB2n-16", 16, quadrature=(2, 2), clamp="face", name="zero")
+    rec, (model, res) = run_scene(scene_from_dict(d))
+    _, lam = scaled_dense(model, res.u)
+    assert abs(lam[0]) < SINGULAR_TOL and lam[2] > 1e-9
+    assert rec["stable"] is False and "zero-energy mode" in rec["stability"]
+    assert any("2 spurious zero-energy mode" in w for w in rec["warnings"])

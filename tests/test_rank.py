@@ -1,0 +1,89 @@
+"""The rank tests of ancf.rank and the default rules they choose: every declared default
+passes both tests where it is declared; the next cheaper rule fails one; the u = 0
+spurious-mode count agrees with the zero eigenvalues of the model's own tangent (the
+independent route); a scene without a rule gets the default, a scene with a
+rank-deficient one runs with a warning."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from ancf.build import build_material
+from ancf.elements import ELEMENTS, get_element
+from ancf.mesh import Mesh
+from ancf.model import BeamModel
+from ancf.quadrature import gauss
+from ancf.rank import ASPECTS, default_quadrature, rank_test, strain_test
+from ancf.run import run_scene
+from contract import paper
+from contract.scene import MaterialSpec, scene_from_dict
+
+PAPER = ("LB2n-12", "HB2n-12", "HB3n-12", "HB2n-16")
+
+
+@pytest.mark.parametrize("name", PAPER)
+@pytest.mark.parametrize("penalised", [False, True])
+def test_each_declared_default_passes_both_tests_where_it_is_declared(name, penalised):
+    el = get_element(name)
+    for aspect in ASPECTS:
+        rule = default_quadrature(el, penalised, aspect)
+        lin = rank_test(el, rule, aspect)
+        assert lin["passes"], (rule, aspect, lin)
+    for aspect in (1.0, 0.1, 0.05, 0.01):
+        rule = default_quadrature(el, penalised, aspect)
+        if name != "LB2n-12" and not (penalised and aspect >= 0.1):
+            assert strain_test(name, rule, aspect)["passes"], (rule, aspect)
+
+
+@pytest.mark.parametrize("name, rule, aspect, test", [
+    ("LB2n-12", (2, 2), 1.0, "linear"),          # exact zero modes with 2 points along x
+    ("HB2n-16", (2, 2), 1.0, "linear"),
+    ("HB2n-16", (3, 2), 0.01, "linear"),         # x y^2: axial strain y^2 - h^2/12, zero at both points
+    ("HB2n-12", (3, 2), 0.1, "strain"),          # the finite-strain family of x^2 + y^2
+    ("HB3n-12", (3, 2), 0.05, "strain"),
+    ("HB2n-16", (3, 2), 0.1, "linear"),
+    ("HB3n-12", (5, 2), 0.05, "strain"),         # more points along x do not help
+])
+def test_the_cheaper_rules_fail(name, rule, aspect, test):
+    if test == "linear":
+        assert not rank_test(name, rule, aspect)["passes"]
+    else:
+        assert rank_test(name, rule, aspect)["passes"]          # invisible at u = 0 ...
+        assert not strain_test(name, rule, aspect)["passes"]    # ... found at finite strain
+
+
+@pytest.mark.parametrize("name", PAPER)
+@pytest.mark.parametrize("rule", [(1, 1), (2, 2), (3, 2), (2, 1)])
+def test_the_spurious_count_matches_the_models_tangent(name, rule):
+    """Zero eigenvalues of one free element's Jacobi-scaled tangent at u = 0 (plane stress,
+    Neo-Hookean), with the rigid three taken away, against the strain-matrix count."""
+    h = 0.005
+    c = dict(paper.materials()["neo-hookean"])
+    rho = c.pop("density")
+    mat = build_material(MaterialSpec("neo-hookean", "plane-stress", rho, c, None))
+    m = BeamModel(Mesh(get_element(name), 1, h, h, 0.007), mat, gauss(*rule), np.array([], dtype=int))
+    K = m.internal_force_and_tangent(np.zeros(m.mesh.n_dof))[1].to_sparse().toarray()
+    full = BeamModel(m.mesh, mat, gauss(6, 6), m.fixed).internal_force_and_tangent(np.zeros(m.mesh.n_dof))[1]
+    s = 1.0 / np.sqrt(np.diag(full.to_sparse().toarray()))
+    lam = np.linalg.eigvalsh(s[:, None] * (0.5 * (K + K.T)) * s)
+    zeros = int(np.sum(np.abs(lam) < 1e-10 * lam[-1]))
+    assert zeros - 3 == rank_test(name, rule, 1.0)["spurious"]
+
+
+def test_a_scene_without_a_rule_gets_the_default_and_a_chosen_rank_deficient_rule_is_flagged():
+    d = paper.cantilever_scene("mooney-rivlin", "plane-stress", "HB3n-12", 64, name="rank")
+    del d["ancf"]["quadrature"]
+    rec, _ = run_scene(scene_from_dict(d))
+    assert rec["quadrature"] == [3, 2] and not rec.get("warnings")    # l_e/h = 0.5
+    d["ancf"]["elements"] = 640                                           # l_e/h = 0.05
+    assert run_scene(scene_from_dict(d))[0]["quadrature"] == [3, 3]
+    d["ancf"]["elements"] = 64
+    d["ancf"]["quadrature"] = [2, 1]
+    rec, _ = run_scene(scene_from_dict(d))
+    assert rec["quadrature"] == [2, 1]
+    assert any("spurious zero-energy mode" in w for w in rec["warnings"])
+
+
+def test_every_registered_element_has_a_default():
+    for el in ELEMENTS.values():
+        assert all(n >= 1 for n in default_quadrature(el, False, 1.0))
