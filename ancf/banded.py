@@ -100,14 +100,15 @@ class Banded:
         except np.linalg.LinAlgError:
             return None, None
 
-    def scaled_inertia(self, shift: float = 0.0) -> tuple[int, float]:
+    def scaled_inertia(self, shift: float = 0.0) -> tuple[int, float, float]:
         """(how many eigenvalues of S = D^-1/2 K D^-1/2 lie below ``shift``, smallest
-        |pivot|) by a banded LDL^T of S - shift I (Sylvester's law of inertia). S is
-        congruent to K, so at shift 0 the count is K's number of negative eigenvalues."""
+        |pivot|, growth of the factors) by a banded LDL^T of S - shift I (Sylvester's law
+        of inertia; :func:`ancf.kernels.band_ldlt_inertia`). S is congruent to K, so at
+        shift 0 the count is K's number of negative eigenvalues."""
         from .kernels import band_ldlt_inertia
         upper, _ = self.scaled_upper()
-        neg, small = band_ldlt_inertia(upper, self.b, float(shift))
-        return int(neg), float(small)
+        neg, small, growth = band_ldlt_inertia(upper, self.b, float(shift))
+        return int(neg), float(small), float(growth)
 
     def is_positive_definite(self, shift: float = 0.0) -> bool:
         """Is D^-1/2 K D^-1/2 + shift I positive definite? (shift < 0 asks for a margin)"""

@@ -105,4 +105,5 @@ def external_loads(model: BeamModel, scene: Scene) -> dict[str, np.ndarray]:
 
 def build_integrator(scene: Scene, model: BeamModel, M, loads: dict):
     a = check(scene).analysis
-    return INTEGRATORS[a.integrator](model, M, loads, a.rho_inf, a.newton_rtol, a.max_iterations)
+    return INTEGRATORS[a.integrator](model, M, loads, a.rho_inf, a.newton_rtol, a.max_iterations,
+                                     newton=a.newton)

@@ -15,6 +15,8 @@ nodal coordinates.
 """
 from __future__ import annotations
 
+from functools import cached_property
+
 import numpy as np
 
 from .banded import Banded
@@ -32,10 +34,17 @@ class Integrator:
     # evaluation and leaves ~1e-12 of the state, far below the 0.1 mm step criterion.
     utol = 1e-6
 
+    # a compiled ``advance`` (many steps per call, :mod:`ancf.steploop`); None: Python steps
+    advance = None
+
     def __init__(self, model: BeamModel, M: Banded, loads: dict[str, np.ndarray], rho_inf: float = 0.5,
-                 newton_rtol: float = 1e-8, max_iterations: int = 25, line_points: int = 4):
-        """``loads``: the dead load vectors Q by effect ("gravity", "tip_force"), N."""
+                 newton_rtol: float = 1e-8, max_iterations: int = 25, line_points: int = 4,
+                 newton: str = "chord"):
+        """``loads``: the dead load vectors Q by effect ("gravity", "tip_force"), N.
+        ``newton``: the compiled loop's Newton variant (:data:`ancf.steploop.NEWTON`); the
+        Python steps (discrete gradient, adaptive steps) are full Newton."""
         self.model, self.M, self.loads = model, M, loads
+        self.newton = newton
         self.f_ext = sum(loads.values(), np.zeros(model.mesh.n_dof))
         self.rho_inf = rho_inf
         self.newton_rtol, self.max_iterations = newton_rtol, max_iterations
@@ -55,6 +64,14 @@ class Integrator:
     def describe(self) -> dict:
         """The record's ``integrator`` entry."""
         return {"name": self.name, "rho_inf": self.rho_inf, **self.coefficients(self.rho_inf)}
+
+    def warm(self, u0: np.ndarray) -> None:
+        """Load what the first step needs (compiled code from numba's disk cache), so that
+        it does not land in the solve time: the initial state, and one compiled step."""
+        s = self.initial_state(u0)
+        if self.advance is not None:
+            self.advance(s, 1e-6, 1e-6, 1e-6, 1)
+            self._loop.reset()
 
     # -- one step: subclasses ----------------------------------------------------------
     def step(self, s: State, dt: float) -> tuple[State | None, int]:
@@ -115,6 +132,23 @@ class GeneralizedAlpha(Integrator):
         am = (2 * rho_inf - 1) / (rho_inf + 1)
         af = rho_inf / (rho_inf + 1)
         return {"alpha_m": am, "alpha_f": af, "gamma": 0.5 - am + af, "beta": 0.25 * (1 - am + af) ** 2}
+
+    @cached_property
+    def _loop(self):
+        from .steploop import CompiledLoop
+        return CompiledLoop(self.model, self.M, self.f_ext, self.coefficients(self.rho_inf), self.newton,
+                            self.newton_rtol, self.max_iterations, self.utol)
+
+    def initial_state(self, u0: np.ndarray) -> State:
+        if self.advance is not None:
+            self._loop.reset()               # a new run: no factorisation kept
+        return super().initial_state(u0)
+
+    @property
+    def advance(self):
+        """Compiled steps from s towards t_out (:meth:`ancf.steploop.CompiledLoop.advance`),
+        for a :class:`BeamModel` (another model steps in Python)."""
+        return self._loop.advance if isinstance(self.model, BeamModel) else None
 
     def step(self, s: State, dt: float) -> tuple[State | None, int]:
         am, af, g, b = self.alpha_m, self.alpha_f, self.gamma, self.beta

@@ -13,6 +13,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .tape import FASTMATH, tape_batch
+
 
 @njit(cache=True)
 def assemble_force_tangent(F, WD, dN, w, dofs, b, n, with_tangent):
@@ -90,25 +92,35 @@ def band_ldlt_inertia(upper, b, shift):
     ``upper[b + i - j, j] = A[i, j]`` (i <= j), by an LDL^T factorisation without
     pivoting (a band stays a band): A - shift I = L D L^T, so by Sylvester's law of
     inertia the number of negative pivots d_j is the number of eigenvalues below shift.
-    Returns (negative pivots, smallest |pivot|); a zero pivot stops the count there
-    (smallest |pivot| 0: the count is not to be trusted, the caller must decide)."""
+    Returns (negative pivots, smallest |pivot|, growth); a zero pivot stops the count
+    there (smallest |pivot| 0: the count is not to be trusted, the caller must decide).
+    growth = max_j sum_k L_jk^2 |d_k| (L_jj = 1), the diagonal of |L| |D| |L|^T, which
+    bounds the factorisation's backward error (c eps growth): it equals the diagonal of
+    A - shift I (1 here) when no pivot cancels, and grows when a tiny pivot makes the
+    factors large."""
     n = upper.shape[1]
     L = np.zeros((b + 1, n))       # L[k, j] = L[j + k, j], k = 1..b
     d = np.zeros(n)
     neg = 0
     small = np.inf
+    growth = 0.0
     for j in range(n):
         lo = max(0, j - b)
         dj = upper[b, j] - shift
+        gj = 0.0
         for k in range(lo, j):
             ljk = L[j - k, k]
             dj -= ljk * ljk * d[k]
+            gj += ljk * ljk * abs(d[k])
         d[j] = dj
         a = abs(dj)
+        gj += a
+        if gj > growth:
+            growth = gj
         if a < small:
             small = a
         if dj == 0.0:
-            return neg, 0.0
+            return neg, 0.0, np.inf
         if dj < 0.0:
             neg += 1
         for i in range(j + 1, min(n, j + b + 1)):
@@ -116,4 +128,274 @@ def band_ldlt_inertia(upper, b, shift):
             for k in range(max(0, i - b), j):
                 s -= L[i - k, k] * L[j - k, k] * d[k]
             L[i - j, j] = s / dj
-    return neg, small
+    return neg, small, growth
+
+
+# -- the fused step kernels of the compiled time loop (:mod:`ancf.steploop`) ---------------
+# Status codes of the compiled loop (the fused assembly returns OK or INADMISSIBLE).
+OK, NEWTON_FAILED, SINGULAR, INADMISSIBLE, ENERGY_GROWTH, BUDGET = range(6)
+#
+# Column band storage. A symmetric matrix with half-bandwidth b is kept as its upper
+# triangle, column by column: ``C[j, b + i - j] = S[i, j]`` for ``j - b <= i <= j``
+# (shape (n, b + 1): LAPACK's upper band form transposed, so that one column of the band
+# is contiguous in memory). ``first[j]`` (:func:`envelope`) is the first row of column
+# j's nonzeros (the first dof of the elements holding dof j); the LDL^T factor has no
+# fill above it, so the factorisation, solves and products skip the band's structural
+# zeros (~25 % of the work for the node-block structure).
+
+
+@njit(cache=True)
+def step_scratch(n_ops, nq):
+    """Work arrays of the element loop for chunks of about 192 points: (chunk, R (n_ops,
+    6, m) tape jets, Fb (m, 4) deformation gradients, ab, Jb (m,) invariants),
+    m = chunk * nq."""
+    chunk = max(1, 192 // nq)
+    m = chunk * nq
+    return chunk, np.empty((n_ops, 6, m)), np.empty((m, 4)), np.empty(m), np.empty(m)
+
+
+@njit(cache=True, fastmath=FASTMATH)
+def point_gradients(u, u_n, alpha_f, dN, dofs, e0, e1, Fb, ab, Jb):
+    """F = I + grad ue, ue = (1 - alpha_f) u + alpha_f u_n, at the points of elements
+    e0 .. e1 - 1 into Fb (F00, F01, F10, F11), a = F:F into ab, J = det F into Jb.
+    Returns the number of points, or -1 if det F <= 0 (or is not finite) somewhere."""
+    nd = dofs.shape[1]
+    nq, ns = dN.shape[0], dN.shape[1]
+    g = 1.0 - alpha_f
+    m = 0
+    for e in range(e0, e1):
+        for q in range(nq):
+            F00, F01, F10, F11 = 1.0, 0.0, 0.0, 1.0
+            for s in range(ns):
+                d0, d1 = dofs[e, 2 * s], dofs[e, 2 * s + 1]
+                ux = g * u[d0] + alpha_f * u_n[d0]
+                uy = g * u[d1] + alpha_f * u_n[d1]
+                g0, g1 = dN[q, s, 0], dN[q, s, 1]
+                F00 += g0 * ux
+                F01 += g1 * ux
+                F10 += g0 * uy
+                F11 += g1 * uy
+            J = F00 * F11 - F01 * F10
+            if not (J > 0.0 and J < 1e300):
+                return -1
+            Fb[m, 0], Fb[m, 1], Fb[m, 2], Fb[m, 3] = F00, F01, F10, F11
+            ab[m] = F00 * F00 + F01 * F01 + F10 * F10 + F11 * F11
+            Jb[m] = J
+            m += 1
+    return m
+
+
+@njit(cache=True, fastmath=FASTMATH)
+def assemble_fused(u, u_n, alpha_f, dN, w, dofs, ops, consts, f, Kc, with_tangent, chunk, R, Fb, ab, Jb):
+    """Internal force at ue = (1 - alpha_f) u + alpha_f u_n into f (n,), and, if
+    with_tangent, the upper half of the tangent into Kc (column band, (n, b + 1)).
+    Per chunk of elements: F at all points, the tape over all of them, then per
+    element P (and A = dP/dF), the element force and the upper half of the element
+    tangent by 2 x 2 node blocks, and one scatter per element. Returns OK, or
+    INADMISSIBLE if det F <= 0 (or is not finite) at a point."""
+    ne, nd = dofs.shape
+    nq, ns = dN.shape[0], dN.shape[1]
+    b = Kc.shape[1] - 1
+    last = ops.shape[0] - 1
+    f[:] = 0.0
+    if with_tangent:
+        Kc[:, :] = 0.0
+    fl = np.empty(nd)
+    Kl = np.empty((nd, nd))
+    T = np.empty((ns, 2, 4))     # T[s, i, 2k + l] = sum_j dN_s,j A_(2i+j, 2k+l)
+    A = np.empty((4, 4))
+    Fv = np.empty(4)
+    cof = np.empty(4)
+    W = R[last]
+    for e0 in range(0, ne, chunk):
+        e1 = min(ne, e0 + chunk)
+        m = point_gradients(u, u_n, alpha_f, dN, dofs, e0, e1, Fb, ab, Jb)
+        if m < 0:
+            return INADMISSIBLE
+        tape_batch(ops, consts, ab, Jb, R, m, 2 if with_tangent else 1)
+        p = 0
+        for e in range(e0, e1):
+            fl[:] = 0.0
+            if with_tangent:
+                Kl[:, :] = 0.0
+            for q in range(nq):
+                F00, F01, F10, F11 = Fb[p, 0], Fb[p, 1], Fb[p, 2], Fb[p, 3]
+                Wa, WJ = W[1, p], W[2, p]
+                wq = w[q]
+                # P = 2 W_a F + W_J cof F;  f_(s, i) += w dN_s,j P_ij
+                P0 = wq * (2.0 * Wa * F00 + WJ * F11)
+                P1 = wq * (2.0 * Wa * F01 - WJ * F10)
+                P2 = wq * (2.0 * Wa * F10 - WJ * F01)
+                P3 = wq * (2.0 * Wa * F11 + WJ * F00)
+                for s in range(ns):
+                    g0, g1 = dN[q, s, 0], dN[q, s, 1]
+                    fl[2 * s] += g0 * P0 + g1 * P1
+                    fl[2 * s + 1] += g0 * P2 + g1 * P3
+                if with_tangent:
+                    # A = 4 W_aa F F + 2 W_aJ (F cof + cof F) + W_JJ cof cof + 2 W_a I + W_J dcof/dF
+                    Waa, WaJ, WJJ = W[3, p], W[4, p], W[5, p]
+                    Fv[0], Fv[1], Fv[2], Fv[3] = F00, F01, F10, F11
+                    cof[0], cof[1], cof[2], cof[3] = F11, -F10, -F01, F00
+                    for i in range(4):
+                        fi, ci = Fv[i], cof[i]
+                        for k in range(i, 4):
+                            fk, ck = Fv[k], cof[k]
+                            v = wq * (4.0 * Waa * fi * fk + 2.0 * WaJ * (fi * ck + ci * fk) + WJJ * ci * ck)
+                            A[i, k] = v
+                            A[k, i] = v
+                        A[i, i] += wq * 2.0 * Wa
+                    A[0, 3] += wq * WJ
+                    A[3, 0] += wq * WJ
+                    A[1, 2] -= wq * WJ
+                    A[2, 1] -= wq * WJ
+                    for s in range(ns):
+                        g0, g1 = dN[q, s, 0], dN[q, s, 1]
+                        for i in range(2):
+                            for kl in range(4):
+                                T[s, i, kl] = g0 * A[2 * i, kl] + g1 * A[2 * i + 1, kl]
+                    # K_(s i, s2 k) = sum_l T[s, i, 2k + l] dN_s2,l, node blocks s <= s2
+                    for s in range(ns):
+                        for s2 in range(s, ns):
+                            h0, h1 = dN[q, s2, 0], dN[q, s2, 1]
+                            Kl[2 * s, 2 * s2] += T[s, 0, 0] * h0 + T[s, 0, 1] * h1
+                            Kl[2 * s, 2 * s2 + 1] += T[s, 0, 2] * h0 + T[s, 0, 3] * h1
+                            Kl[2 * s + 1, 2 * s2] += T[s, 1, 0] * h0 + T[s, 1, 1] * h1
+                            Kl[2 * s + 1, 2 * s2 + 1] += T[s, 1, 2] * h0 + T[s, 1, 3] * h1
+                p += 1
+            for i in range(nd):
+                f[dofs[e, i]] += fl[i]
+            if with_tangent:
+                # upper half into the column band (the lower entry of a diagonal block is skipped)
+                for i in range(nd):
+                    r = dofs[e, i]
+                    for k in range(i, nd):
+                        c = dofs[e, k]
+                        if r <= c:
+                            Kc[c, b + r - c] += Kl[i, k]
+                        else:
+                            Kc[r, b + c - r] += Kl[i, k]
+    return OK
+
+
+@njit(cache=True)
+def strain_energy_fused(u, dN, w, dofs, ops, consts, chunk, R, Fb, ab, Jb):
+    """U = sum_e sum_q w_q W(F_eq) (J); nan if det F <= 0 somewhere."""
+    ne = dofs.shape[0]
+    nq = dN.shape[0]
+    last = ops.shape[0] - 1
+    total = 0.0
+    for e0 in range(0, ne, chunk):
+        e1 = min(ne, e0 + chunk)
+        m = point_gradients(u, u, 0.0, dN, dofs, e0, e1, Fb, ab, Jb)
+        if m < 0:
+            return np.nan
+        tape_batch(ops, consts, ab, Jb, R, m, 0)
+        for p in range(m):
+            total += w[p % nq] * R[last, 0, p]
+    return total
+
+
+@njit(cache=True, fastmath=FASTMATH)
+def col_matvec(C, first, x, y):
+    """y = S x, S symmetric in column band storage C (n, b + 1), envelope first."""
+    n, b1 = C.shape
+    b = b1 - 1
+    for j in range(n):
+        y[j] = 0.0
+    for j in range(n):
+        xj = x[j]
+        acc = C[j, b] * xj
+        for i in range(first[j], j):
+            v = C[j, b + i - j]
+            y[i] += v * xj
+            acc += v * x[i]
+        y[j] += acc
+
+
+@njit(cache=True)
+def col_constrain(C, fixed):
+    """Rows and columns of the fixed dofs replaced by those of the identity."""
+    n, b1 = C.shape
+    b = b1 - 1
+    for k in fixed:
+        for r in range(b + 1):
+            C[k, r] = 0.0                         # column k above the diagonal
+        for j in range(k + 1, min(n, k + b + 1)):
+            C[j, b + k - j] = 0.0                 # row k right of the diagonal
+        C[k, b] = 1.0
+
+
+@njit(cache=True, fastmath=FASTMATH)
+def col_ldlt(C, first, wk):
+    """In place: C (column band, upper) <- the factors of S = U^T D U, U unit upper
+    triangular (its strict upper part overwrites S's) and 1 / D on the diagonal.
+    Left-looking by columns, no pivoting, so the band is kept; column j is processed
+    from row first[j] (its envelope: no fill above it) and the inner products run over
+    contiguous memory. wk (n,) is work space. Returns the number of negative pivots
+    (the number of negative eigenvalues of S, by Sylvester's law of inertia), or
+    -(j + 1) if the pivot of column j is (near) zero, |D_j| <= 1e-12 |S_jj|, or not
+    finite: S is singular to working precision.
+
+    Why not Cholesky: S = (1 - alpha_f) K + c M is symmetric but need not be positive
+    definite at a Newton iterate. In the stiff case (plane strain, penalty 1e5 C10,
+    Newmark, 8 elements) the predictor's S has an eigenvalue -1.3e-2 against a largest
+    2e8 (the converged states' S are positive definite): the current code's LU takes
+    it, and a Cholesky that rejected such steps made 988 rejections where the current
+    loop makes none. LDL^T takes it too, at the cost of a Cholesky (a little less: no
+    square roots)."""
+    n, b1 = C.shape
+    b = b1 - 1
+    negative = 0
+    for j in range(n):
+        i0 = first[j]
+        cj = C[j]
+        oj = b - j
+        for i in range(i0, j):
+            ci = C[i]
+            oi = b - i
+            s = cj[oj + i]
+            for k in range(max(i0, first[i]), i):
+                s -= ci[oi + k] * wk[k]
+            wk[i] = s                                 # D_i U_ij
+            cj[oj + i] = s * ci[b]                    # U_ij; ci[b] holds 1 / D_i
+        d = cj[b]
+        s = d
+        for k in range(i0, j):
+            s -= cj[oj + k] * wk[k]
+        if not (abs(s) > 1e-12 * abs(d) and abs(s) < 1e300):
+            return -(j + 1)
+        if s < 0.0:
+            negative += 1
+        cj[b] = 1.0 / s
+    return negative
+
+
+@njit(cache=True, fastmath=FASTMATH)
+def col_ldlt_solve(C, first, x):
+    """In place: x <- S^-1 x with C the factors from :func:`ldlt`."""
+    n, b1 = C.shape
+    b = b1 - 1
+    for j in range(n):                          # U^T z = x (unit)
+        cj = C[j]
+        s = x[j]
+        for k in range(first[j], j):
+            s -= cj[b + k - j] * x[k]
+        x[j] = s
+    for j in range(n):                          # y = D^-1 z
+        x[j] *= C[j, b]
+    for j in range(n - 1, -1, -1):              # U x = y (unit), column-oriented
+        cj = C[j]
+        xj = x[j]
+        for k in range(first[j], j):
+            x[k] -= cj[b + k - j] * xj
+
+
+def envelope(dofs: np.ndarray, n: int) -> np.ndarray:
+    """first[j]: the smallest dof coupled to dof j by an element (>= j - b): the first
+    row of column j's nonzeros. Band LDL^T has no fill above it, so the loops start
+    there (the node-block structure: ~8 of b = 11 rows for HB2n-12, 11 of 15 for HB2n-16)."""
+    first = np.arange(n, dtype=np.int64)
+    for d in dofs:
+        np.minimum.at(first, d, d.min())
+    return first
+

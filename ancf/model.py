@@ -235,17 +235,24 @@ class BeamModel:
         return self.pattern.assemble(np.broadcast_to(Me, (m.n_elements,) + Me.shape))
 
     # -- outputs -------------------------------------------------------------------------
+    def _centre_shapes(self, per_element: int) -> np.ndarray:
+        """Shape functions at per_element + 1 points of the centre line, tabulated once
+        (outputs are taken at every output time)."""
+        cache = self.__dict__.setdefault("_centre_cache", {})
+        if per_element not in cache:
+            m = self.mesh
+            xi = np.linspace(0.0, 1.0, per_element + 1)
+            cache[per_element] = m.element.tabulate(xi, np.zeros_like(xi), m.element_length, m.height)[0]
+        return cache[per_element]
+
     def tip_displacement(self, u: np.ndarray) -> np.ndarray:
         """r(L, 0) - (L, 0) in m."""
-        m = self.mesh
-        N, _ = m.element.tabulate([1.0], [0.0], m.element_length, m.height)
-        return N[0] @ u[m.element_dofs[-1]]
+        return self._centre_shapes(1)[-1] @ u[self.mesh.element_dofs[-1]]
 
     def centre_line(self, u: np.ndarray, per_element: int = 8) -> np.ndarray:
         """Deformed centre-line points (n, 2) in m."""
         m = self.mesh
-        xi = np.linspace(0.0, 1.0, per_element + 1)
-        N, _ = m.element.tabulate(xi, np.zeros_like(xi), m.element_length, m.height)
+        N = self._centre_shapes(per_element)
         q = m.reference + u
         pts = np.einsum("pa,eai->epi", N, q[m.element_dofs])
         return np.concatenate([pts[:, :-1].reshape(-1, 2), pts[-1, -1:]])

@@ -15,6 +15,14 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+# The compiled step loop's kernels (:func:`tape_batch`, the fused assembly and the band
+# LDL^T of :mod:`ancf.kernels`) let LLVM reassociate and contract floating-point
+# operations, so that their inner products and point loops vectorise: 25 to 35 % less
+# time per call here. No no-NaN / no-inf assumption: the admissibility tests (det F > 0
+# and finite) stay exact. The last bits then depend on how LLVM compiled a function (code
+# compiled in-process and loaded from numba's cache may differ at round-off).
+FASTMATH = {"reassoc", "contract", "nsz", "arcp"}
+
 # opcodes
 VAR_A, VAR_J, CONST, ADD, ADDC, MUL, MULC, POWC = range(8)
 
@@ -129,10 +137,10 @@ def evaluate(ops, consts, a, J):
                         f, d1, d2 = v * v, 2.0 * v, 2.0
                     elif c == 3.0:
                         f, d1, d2 = v * v * v, 3.0 * v * v, 6.0 * v
-                    else:
+                    else:   # not f / v: v = 0 (I1 - 3 at rest) is a valid point
                         f = v ** c
-                        d1 = c * f / v
-                        d2 = c * (c - 1.0) * f / (v * v)
+                        d1 = c * v ** (c - 1.0)
+                        d2 = c * (c - 1.0) * v ** (c - 2.0)
                     a1, a2 = R[x, 1], R[x, 2]
                     R[k, 0] = f
                     R[k, 1] = d1 * a1
@@ -143,3 +151,98 @@ def evaluate(ops, consts, a, J):
             for m in range(6):
                 out[m, e, q] = R[n - 1, m]
     return out
+
+
+# -- batched replay: the compiled step loop (:mod:`ancf.steploop`) ---------------------------
+@njit(cache=True, fastmath=FASTMATH)
+def tape_batch(ops, consts, a, J, R, m, order):
+    """Replay the energy tape at m points (a, J) = (F:F, det F) in jet arithmetic.
+    R (n_ops, 6, >= m) is the scratch; afterwards R[-1, :, p] = (W, W_a, W_J, W_aa,
+    W_aJ, W_JJ) at point p. Instructions outer, points inner: one branch per
+    instruction and batch, and loops the compiler vectorises. order 0: W only;
+    1: W and its first derivatives (the force); 2: all (the tangent)."""
+    n = ops.shape[0]
+    nc = 6 if order >= 2 else (3 if order == 1 else 1)
+    for k in range(n):
+        op, x, y, c = ops[k, 0], ops[k, 1], ops[k, 2], consts[k]
+        Rk = R[k]
+        if op == VAR_A or op == VAR_J or op == CONST:
+            for d in range(nc):
+                for p in range(m):
+                    Rk[d, p] = 0.0
+            if op == VAR_A:
+                for p in range(m):
+                    Rk[0, p] = a[p]
+                if nc > 1:
+                    for p in range(m):
+                        Rk[1, p] = 1.0
+            elif op == VAR_J:
+                for p in range(m):
+                    Rk[0, p] = J[p]
+                if nc > 1:
+                    for p in range(m):
+                        Rk[2, p] = 1.0
+            else:
+                for p in range(m):
+                    Rk[0, p] = c
+        elif op == ADD:
+            Rx, Ry = R[x], R[y]
+            for d in range(nc):
+                for p in range(m):
+                    Rk[d, p] = Rx[d, p] + Ry[d, p]
+        elif op == ADDC:
+            Rx = R[x]
+            for d in range(nc):
+                for p in range(m):
+                    Rk[d, p] = Rx[d, p]
+            for p in range(m):
+                Rk[0, p] += c
+        elif op == MULC:
+            Rx = R[x]
+            for d in range(nc):
+                for p in range(m):
+                    Rk[d, p] = Rx[d, p] * c
+        elif op == MUL:
+            Rx, Ry = R[x], R[y]
+            for p in range(m):
+                Rk[0, p] = Rx[0, p] * Ry[0, p]
+            if nc > 1:
+                for p in range(m):
+                    x0, y0 = Rx[0, p], Ry[0, p]
+                    Rk[1, p] = Rx[1, p] * y0 + x0 * Ry[1, p]
+                    Rk[2, p] = Rx[2, p] * y0 + x0 * Ry[2, p]
+            if nc > 3:
+                for p in range(m):
+                    x0, y0, x1, x2, y1, y2 = Rx[0, p], Ry[0, p], Rx[1, p], Rx[2, p], Ry[1, p], Ry[2, p]
+                    Rk[3, p] = Rx[3, p] * y0 + 2.0 * x1 * y1 + x0 * Ry[3, p]
+                    Rk[4, p] = Rx[4, p] * y0 + x1 * y2 + x2 * y1 + x0 * Ry[4, p]
+                    Rk[5, p] = Rx[5, p] * y0 + 2.0 * x2 * y2 + x0 * Ry[5, p]
+        else:  # POWC: v^c, with the common exponents without pow()
+            Rx = R[x]
+            for p in range(m):
+                v = Rx[0, p]
+                if c == 2.0:
+                    f, d1, d2 = v * v, 2.0 * v, 2.0
+                elif c == 3.0:
+                    f, d1, d2 = v * v * v, 3.0 * v * v, 6.0 * v
+                elif c == -1.0:
+                    iv = 1.0 / v
+                    f, d1, d2 = iv, -iv * iv, 2.0 * iv * iv * iv
+                elif c == -2.0:
+                    iv = 1.0 / v
+                    f = iv * iv
+                    d1, d2 = -2.0 * f * iv, 6.0 * f * iv * iv
+                else:   # not f / v: v = 0 (I1 - 3 at rest) is a valid point
+                    f = v ** c
+                    d1 = c * v ** (c - 1.0)
+                    d2 = c * (c - 1.0) * v ** (c - 2.0)
+                Rk[0, p] = f
+                if nc > 1:
+                    a1, a2 = Rx[1, p], Rx[2, p]
+                    Rk[1, p] = d1 * a1
+                    Rk[2, p] = d1 * a2
+                    if nc > 3:
+                        Rk[3, p] = d2 * a1 * a1 + d1 * Rx[3, p]
+                        Rk[4, p] = d2 * a1 * a2 + d1 * Rx[4, p]
+                        Rk[5, p] = d2 * a2 * a2 + d1 * Rx[5, p]
+

@@ -23,6 +23,17 @@ every solver:
   dynamic keys of the record (:func:`record_keys`);
 - progress: ``progress(t, result)`` after every accepted step (the caller throttles).
 
+A stepper may also offer ``advance(s, h, t_out, dt, budget, offset, energy_every,
+energy_max)``: many steps in compiled code by these same rules (ANCF's generalized-alpha
+family, :mod:`ancf.steploop`, which compiles :func:`next_step` and
+:func:`after_acceptance` from here). :func:`integrate` then hands it every stretch up
+to the next output time and is entered back at the output time, at a rejected step
+(halved here, checked against ``dt_min``), at an energy growth, or after at most
+``budget`` steps (``max_steps``, ``wall_time`` and progress are checked then). Without a
+tolerance and without ``energy_every_step`` it is used unless ``compiled=False``; the
+energies between output times are then checked in the compiled loop and not kept in
+``energy_steps``.
+
 The states hold displacements u, velocities v and accelerations a of the unknowns.
 """
 from __future__ import annotations
@@ -40,6 +51,8 @@ ENERGY_CHECK_EVERY = 10
 # A step lands on an output time when the time left is within this fraction of the step
 # (no sliver steps from summed round-off).
 LAND = 1e-9
+# A compiled stepper returns to the loop at least this often (progress, wall time, Ctrl-C).
+STEPS_PER_CALL = 2000
 
 
 class StepFailure(ArithmeticError):
@@ -148,10 +161,12 @@ def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_
               dt_min: float | None = None, tolerance: float | None = None,
               energy_limit: float | None = None, energy_every_step: bool = False,
               max_steps: int | None = None, wall_time: float | None = None,
-              progress: Callable[[float, DynamicResult], None] | None = None) -> DynamicResult:
+              progress: Callable[[float, DynamicResult], None] | None = None,
+              compiled: bool = True) -> DynamicResult:
     """Integrate from rest at u0 to t_end (see the module doc for the rules).
     ``dt_min`` defaults to dt / 1024, ``max_steps`` to MAX_STEPS; ``energy_every_step``
-    records E at every step."""
+    records E at every step; ``compiled=False`` steps in Python even where the stepper
+    has a compiled ``advance``."""
     from contract.scene import MAX_STEPS
 
     wall0, cpu0 = time.perf_counter(), time.process_time()
@@ -168,6 +183,7 @@ def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_
     res.energy_steps.append((0.0, e0))
     if outs[0] == 0.0:
         res.outputs.append(stepper.output(s))
+    advance = getattr(stepper, "advance", None) if compiled and not (tolerance or energy_every_step) else None
     h, k = dt, 0
     while s.t < t_end * (1 - 1e-12):
         if res.steps >= max_steps:
@@ -180,21 +196,44 @@ def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_
             break
         while outs[k] <= s.t * (1 + 1e-12):
             k += 1
-        step_h, land = next_step(s.t, h, outs[k])
-        new, iterations = stepper.step(s, step_h)
-        res.newton_iterations += iterations
-        err = stepper.error(s, new, step_h) if (new is not None and tolerance) else 0.0
-        if new is None or (tolerance and err > tolerance):
-            res.rejected_steps += 1
-            h = after_rejection(step_h, err, tolerance, new is None)
-            if h < dt_min:
-                res.status = "failed"
-                res.reason = (f"step below dt_min = {dt_min:g} s at t = {s.t:.6g} s: "
-                              + ("Newton failed" if new is None else "local error above tolerance"))
+        if advance is not None:           # compiled steps up to outs[k], by the same rules
+            adv = advance(s, h, outs[k], dt, min(max_steps - res.steps, STEPS_PER_CALL), res.steps,
+                          ENERGY_CHECK_EVERY if energy_limit is not None else 0,
+                          e0.total + energy_limit if energy_limit is not None else math.inf)
+            res.newton_iterations += adv.iterations
+            res.steps += adv.steps
+            s, h, land = adv.state, adv.h, adv.outcome == "landed"
+            if adv.outcome == "energy-growth":
+                res.status, res.reason = "failed", _energy_growth(adv.energy, e0.total, s.t, energy_limit)
                 break
-            continue
-        res.steps += 1
-        s = new
+            if adv.outcome == "rejected":
+                res.rejected_steps += 1
+                h = after_rejection(h, 0.0, None, True)
+                if h < dt_min:
+                    res.status = "failed"
+                    res.reason = f"step below dt_min = {dt_min:g} s at t = {s.t:.6g} s: {adv.reason}"
+                    break
+                continue
+            if not land:
+                if progress:
+                    progress(s.t, res)
+                continue
+        else:
+            step_h, land = next_step(s.t, h, outs[k])
+            new, iterations = stepper.step(s, step_h)
+            res.newton_iterations += iterations
+            err = stepper.error(s, new, step_h) if (new is not None and tolerance) else 0.0
+            if new is None or (tolerance and err > tolerance):
+                res.rejected_steps += 1
+                h = after_rejection(step_h, err, tolerance, new is None)
+                if h < dt_min:
+                    res.status = "failed"
+                    res.reason = (f"step below dt_min = {dt_min:g} s at t = {s.t:.6g} s: "
+                                  + ("Newton failed" if new is None else "local error above tolerance"))
+                    break
+                continue
+            res.steps += 1
+            s = new
         energy = None
         if land:
             s.t = outs[k]
@@ -205,20 +244,23 @@ def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_
             energy = energy or stepper.energies(s)
             res.energy_steps.append((s.t, energy))
         if energy is not None and energy_limit is not None:
-            if not math.isfinite(energy.total):
-                res.status, res.reason = "failed", f"energy-growth: non-finite energy at t = {s.t:.6g} s"
+            if not energy.total <= e0.total + energy_limit:
+                res.status, res.reason = "failed", _energy_growth(energy.total, e0.total, s.t, energy_limit)
                 break
-            if energy.total > e0.total + energy_limit:
-                res.status = "failed"
-                res.reason = (f"energy-growth: E rose {energy.total - e0.total:.3g} J above E(0) "
-                              f"at t = {s.t:.6g} s (limit {energy_limit:.3g} J)")
-                break
-        h = after_acceptance(h, step_h, err, tolerance, dt, land)
+        if advance is None:               # (the compiled loop has already set h)
+            h = after_acceptance(h, step_h, err, tolerance, dt, land)
         if progress:
             progress(s.t, res)
     res.final = s
     res.cpu_s, res.wall_s = time.process_time() - cpu0, time.perf_counter() - wall0
     return res
+
+
+def _energy_growth(total: float, e0: float, t: float, limit: float) -> str:
+    """The reason of a run stopped by the energy check."""
+    if not math.isfinite(total):
+        return f"energy-growth: non-finite energy at t = {t:.6g} s"
+    return f"energy-growth: E rose {total - e0:.3g} J above E(0) at t = {t:.6g} s (limit {limit:.3g} J)"
 
 
 def energy_limit(scene) -> float:

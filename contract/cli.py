@@ -77,9 +77,22 @@ def by_interrupt(e: BaseException) -> bool:
     return False
 
 
-def interrupted(prog: str) -> int:
-    """What a command does on Ctrl-C: one line on stderr, exit status 130."""
-    print(f"{prog}: interrupted", file=sys.stderr)
+def command(prog: str, run, errors: tuple[type[BaseException], ...] = (SceneError,),
+            interrupt_note: str = "") -> int:
+    """Run a command's body ``run()`` the way every command line of the harness ends:
+    its exit status, or one line and 2 for a bad scene or option (``errors``), or one
+    line and 130 on Ctrl-C (also when it arrives inside compiled code)."""
+    try:
+        return run()
+    except errors as e:
+        print(f"{prog}: error: {e}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        pass
+    except SystemError as e:
+        if not by_interrupt(e):
+            raise
+    print(f"{prog}: interrupted{interrupt_note}", file=sys.stderr)
     return INTERRUPTED
 
 

@@ -27,7 +27,8 @@ CLAMPS = ("face", "all")
 ANALYSES = ("static", "dynamic")
 STATIC_KEYS = ("kind", "load_steps", "newton_rtol", "max_iterations", "wall_time")
 DYNAMIC_KEYS = ("kind", "t_end", "dt", "dt_min", "tolerance", "output_times", "integrator",
-                "rho_inf", "newton_rtol", "max_iterations", "energy_limit", "max_steps", "wall_time")
+                "rho_inf", "newton_rtol", "max_iterations", "energy_limit", "max_steps", "wall_time", "newton")
+NEWTON = ("chord", "full", "modified")   # the compiled time loop's Newton (ancf.steploop)
 # Sane ranges: a tolerance outside them answers a different question (1e10 "converges"
 # at the first residual) or none (below round-off Newton never stops).
 NEWTON_RTOL = (1e-15, 1e-3)
@@ -90,6 +91,7 @@ class Analysis:
     rho_inf: float = 0.5               # see README: 0.8 gains energy with the paper's penalty
     energy_limit: float | None = None  # J; None: 1e-3 m |g| L / 2 (with gravity); inf: no check
     max_steps: int | None = None       # None: MAX_STEPS
+    newton: str = "chord"              # one of NEWTON: chord (measured fastest), full, modified
     # both
     wall_time: float | None = None     # s; a run still going then stops, status "failed"
 
@@ -332,7 +334,8 @@ def _analysis(t) -> Analysis:
         tolerance=_positive("analysis.tolerance", t["tolerance"]) if "tolerance" in t else None,
         output_times=out,
         integrator=_name("analysis.integrator", t.get("integrator", Analysis.integrator)),
-        rho_inf=rho_inf, energy_limit=_energy_limit(t), max_steps=max_steps, **_common(t))
+        rho_inf=rho_inf, energy_limit=_energy_limit(t), max_steps=max_steps,
+        newton=_choice("analysis.newton", t.get("newton", Analysis.newton), NEWTON), **_common(t))
 
 
 # ---------------------------------------------------------------------------------------

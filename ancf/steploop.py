@@ -1,0 +1,366 @@
+"""The compiled time loop of the generalized-alpha family (generalized-alpha, Newmark).
+
+:func:`advance` integrates from the current time to the next output time in one numba
+call: predictor, Newton iterations (fused assembly, banded LDL^T with envelope and
+solve, convergence test), the update of velocities and accelerations, the landing on the
+output time and the energy check. Python (:func:`ancf.timeloop.integrate`) is entered
+only at output times, when a step is rejected (Newton failure, a singular step matrix,
+det F <= 0), when the energy limit is crossed, and every
+:data:`ancf.timeloop.STEPS_PER_CALL` steps
+(progress, wall time, Ctrl-C). The step-control rules are those of
+:mod:`ancf.timeloop`: :func:`~ancf.timeloop.next_step` and
+:func:`~ancf.timeloop.after_acceptance` are compiled here from that same source; a
+rejected step is returned to the Python loop, which halves it (``after_rejection``) and
+checks ``dt_min``, ``max_steps`` and ``wall_time`` there.
+
+Laws and elements stay data: the compiled code sees the tabulated shape-function
+gradients ``dN`` (nq, ns, 2) and weights ``w`` of the model, the element dofs, the law x
+formulation energy traced into a tape (:mod:`ancf.tape`), the mass matrix, the load and
+the fixed dofs. A registered element or law runs with no new compiled code. The
+integrator's coefficients (alpha_m, alpha_f, beta, gamma) come from the integrator class
+as data.
+
+The generalized-alpha family (Chung-Hulbert):
+
+    M a_(n+1-alpha_m) + f_int(u_(n+1-alpha_f)) = f_ext,
+    u_(n+1) = u_pred + beta h^2 (a_(n+1) - a_n),  u_pred = u_n + h v_n + h^2 a_n / 2,
+    v_(n+1) = v_n + h ((1 - gamma) a_n + gamma a_(n+1)),
+
+by Newton on u_(n+1) from the predictor a_(n+1) = a_n, with the step matrix
+S = (1 - alpha_f) K + (1 - alpha_m) / (beta h^2) M, factorised by LDL^T without pivoting
+(:func:`ancf.kernels.col_ldlt`): S need not be positive definite at a Newton iterate (a
+compressed beam with a stiff penalty, at the predictor), so only a (near) zero pivot
+rejects the step.
+
+Newton variants (``[analysis] newton``, :data:`NEWTON`):
+
+- "full": tangent and factorisation at every iteration; stops on the residual
+  |R|_2 <= rtol (|f_ext|_2 + |M a_n|_2) or on a correction max|du| <= utol max(|u|, h)
+  (the Python loop's method, reproduced step for step);
+- "chord" (default): the tangent at the predictor, factorised once per step and reused
+  for the step's iterations (refreshed within the step if the residual contracts by less
+  than ``KAPPA``). From the predictor the first correction is ~beta h^3 |da/dt|, so that
+  Jacobian is as good as a fresh one: the same 2 iterations per step on the pendulum
+  with one tangent, one factorisation and force-only residuals. Stops on the residual
+  only;
+- "modified": the factorisation is kept across iterations and steps (Exudyn's default),
+  refreshed when there is none, when the step size changed, on a contraction worse than
+  ``KAPPA`` or after ``MAX_MODIFIED`` iterations on one factorisation. Stops on the
+  residual only.
+
+With "chord" or "modified" a failed step is redone once from the predictor with full
+Newton before it is rejected. A reused factorisation stops on the residual only: its
+residual after a correction is (S_old - S) du, linear in du, so a correction test would
+leave a residual that does not shrink with dt, and its work turns the energy drift from
+O(dt^2) into O(dt) (measured; the residual stop keeps the Newmark drift ratio at 4.0 per
+halving, tests/test_steploop.py).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from . import timeloop
+from .kernels import (INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, col_constrain,
+                      col_ldlt, col_ldlt_solve, col_matvec, assemble_fused, envelope, step_scratch,
+                      strain_energy_fused)
+
+NEWTON = ("chord", "full", "modified")
+STATUS = {NEWTON_FAILED: "Newton failed", SINGULAR: "singular step matrix", INADMISSIBLE: "det F <= 0"}
+
+KAPPA = 0.5                  # chord/modified: refactor when |R_k| > KAPPA |R_(k-1)|
+# A reused factorisation stops on the residual, and also when the correction is below
+# ROUNDOFF utol (1e-8) of the state: where round-off keeps the residual above its
+# tolerance (fine meshes: 128 elements and more on the pendulum), and to spare the
+# verifying residual of a step whose second correction is already that small. The
+# residual it leaves, (S_old - S) du, is a hundred times below the correction test's;
+# measured on the Newmark pendulum (8 x HB2n-12, dt 2 ms ... 0.125 ms) the energy drift
+# is the same to 4 digits as with 1e-3 utol or with the residual test alone (ratio 4.0
+# per halving), and it spares the verifying residual of 85 % of the steps.
+ROUNDOFF = 1e-2
+MAX_MODIFIED = 8             # modified: at most this many iterations on one factorisation per step
+
+# Counters (an int64 array, cumulative over a run).
+C_STEPS, C_ITERATIONS, C_RESIDUALS, C_TANGENTS, C_FACTORS, C_SOLVES, C_REJECTED, C_ENERGIES = range(8)
+C_REJ_NEWTON, C_REJ_SINGULAR, C_REJ_INADMISSIBLE, C_INDEFINITE, C_FALLBACKS = range(8, 13)
+COUNTER_NAMES = ("steps", "iterations", "residuals", "tangents", "factorisations", "solves", "rejected",
+                 "energy_checks", "rejected_newton", "rejected_singular", "rejected_inadmissible",
+                 "indefinite_factorisations", "full_newton_fallbacks")
+
+# Integer Newton settings (``inewton``) and float ones (``fnewton``).
+I_MAX_IT, I_MODIFIED, I_STOP, I_MAX_MODIFIED, I_ENERGY_EVERY, I_JAC_PER_STEP = range(6)
+STOP_RESIDUAL, STOP_BOTH = 0, 1
+F_RTOL, F_UTOL, F_KAPPA, F_HBEAM, F_ELIMIT = range(5)
+
+# the step-control rules of the one time loop, compiled from their one source
+_next_step = njit(cache=True)(timeloop.next_step)
+_after_acceptance = njit(cache=True)(timeloop.after_acceptance)
+
+
+@njit(cache=True)
+def _norm2_free(x, is_free):
+    s = 0.0
+    for i in range(x.shape[0]):
+        if is_free[i]:
+            s += x[i] * x[i]
+    return math.sqrt(s)
+
+
+@njit(cache=True)
+def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
+         u_n, v_n, a_n, h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, full):
+    """One step u_n, v_n, a_n -> u, v, a of size h. S holds the current factorisation
+    (modified Newton), fstate = [h of that factorisation, 1 if valid]; wk: work (6, n);
+    chunk, R, Fb, ab, Jb: :func:`step_scratch`; full: full Newton whatever inewton says.
+    Returns (status, iterations)."""
+    am, af, beta, gamma = coef[0], coef[1], coef[2], coef[3]
+    max_it, modified = inewton[I_MAX_IT], inewton[I_MODIFIED] != 0 and not full
+    stop = STOP_BOTH if full else inewton[I_STOP]     # the fallback is the Python loop's Newton
+    max_mod = inewton[I_MAX_MODIFIED]
+    rtol, utol, kappa, hbeam = fnewton[F_RTOL], fnewton[F_UTOL], fnewton[F_KAPPA], fnewton[F_HBEAM]
+    n = u.shape[0]
+    u_pred, f, Ma_n, r, du = wk[0], wk[1], wk[2], wk[3], wk[4]
+    bh2 = beta * h * h
+    c = (1.0 - am) / bh2
+    for i in range(n):
+        u_pred[i] = u_n[i] + h * v_n[i] + 0.5 * h * h * a_n[i]
+        u[i] = u_pred[i]
+    col_matvec(Mc, first, a_n, Ma_n)
+    scale = _norm2_free(f_ext, is_free) + _norm2_free(Ma_n, is_free)
+    tol = rtol * max(scale, 1e-30)
+    if inewton[I_JAC_PER_STEP] != 0 or not (fstate[1] == 1.0 and abs(fstate[0] - h) <= 1e-9 * h):
+        fstate[1] = 0.0                               # no factorisation for this step
+    r_prev = 0.0
+    since = 0                                         # iterations on the current factorisation
+    it = 0
+    while True:
+        # residual M((1 - am) a + am a_n) + f(ue) - f_ext, with M a = c' M (u - u_pred) + M a_n
+        refactor = (not modified) or fstate[1] == 0.0
+        status = assemble_fused(u, u_n, af, dN, w, dofs, ops, consts, f, S, refactor, chunk, R, Fb, ab, Jb)
+        counters[C_RESIDUALS] += 1
+        if refactor:
+            counters[C_TANGENTS] += 1
+        if status != OK:
+            return status, it
+        for i in range(n):
+            du[i] = u[i] - u_pred[i]
+        col_matvec(Mc, first, du, r)
+        for i in range(n):
+            r[i] = (c * r[i] + Ma_n[i] + f[i] - f_ext[i]) if is_free[i] else 0.0
+        rn = _norm2_free(r, is_free)
+        if not rn < 1e300:
+            return NEWTON_FAILED, it
+        if rn <= tol:
+            break
+        if it == max_it:
+            return NEWTON_FAILED, it
+        rho = rn / r_prev if since > 0 else -1.0      # contraction of the last iteration (-1: none yet)
+        if modified and not refactor and (since >= max_mod or rho > kappa):
+            refactor = True                           # poor contraction: tangent at this iterate
+            status = assemble_fused(u, u_n, af, dN, w, dofs, ops, consts, f, S, True, chunk, R, Fb, ab, Jb)
+            counters[C_TANGENTS] += 1
+            if status != OK:
+                return status, it
+        if refactor:
+            # S = (1 - af) K + c M, constrained, factorised in place
+            for j in range(S.shape[0]):
+                for k in range(S.shape[1]):
+                    S[j, k] = (1.0 - af) * S[j, k] + c * Mc[j, k]
+            col_constrain(S, fixed)
+            counters[C_FACTORS] += 1
+            negative = col_ldlt(S, first, wk[5])
+            if negative < 0:
+                fstate[1] = 0.0
+                return SINGULAR, it
+            if negative > 0:
+                counters[C_INDEFINITE] += 1
+            fstate[0], fstate[1] = h, 1.0
+            since = 0
+        r_prev = rn
+        for i in range(n):
+            du[i] = -r[i]
+        col_ldlt_solve(S, first, du)
+        counters[C_SOLVES] += 1
+        since += 1
+        it += 1
+        umax, dumax = 0.0, 0.0
+        for i in range(n):
+            u[i] += du[i]
+            umax = max(umax, abs(u[i]))
+            dumax = max(dumax, abs(du[i]))
+        if dumax <= (utol if stop == STOP_BOTH else ROUNDOFF * utol) * max(umax, hbeam):
+            break
+    for i in range(n):
+        a[i] = (u[i] - u_pred[i]) / bh2 + a_n[i]
+        v[i] = v_n[i] + h * ((1.0 - gamma) * a_n[i] + gamma * a[i])
+    return OK, it
+
+
+
+@njit(cache=True)
+def energy(u, v, dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, tmp, chunk, R, Fb, ab, Jb):
+    """Kinetic + strain + gravity potential (J); the gravity potential is
+    -f_ext . (q_ref + u) as in ancf.integrators.Integrator.energies."""
+    col_matvec(Mc, first, v, tmp)
+    kin = 0.5 * np.dot(v, tmp)
+    return kin + strain_energy_fused(u, dN, w, dofs, ops, consts, chunk, R, Fb, ab, Jb) - np.dot(f_ext, q_ref + u)
+
+
+@njit(cache=True)
+def advance(dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, fixed, coef, inewton, fnewton,
+            u, v, a, tstate, t_out, dt, budget, offset, S, fstate, counters):
+    """Integrate in place from tstate[0] with the next step tstate[1] towards t_out, by
+    the rules of :mod:`ancf.timeloop` (landing, growth back to dt). Returns
+
+    - OK: landed on t_out;
+    - BUDGET: ``budget`` steps taken without landing;
+    - ENERGY_GROWTH: the total energy, checked every inewton[I_ENERGY_EVERY] accepted
+      steps counted from ``offset`` (0: no check; not at the landing step, which Python
+      checks with the output), is not <= fnewton[F_ELIMIT]; tstate[3] = that energy;
+    - NEWTON_FAILED, SINGULAR, INADMISSIBLE: a rejected step; u, v, a and tstate[0] are
+      at its start, tstate[1] is its size.
+
+    tstate = [t, next step, accepted steps in this call, energy at a growth]."""
+    n = u.shape[0]
+    is_free = np.ones(n, np.bool_)
+    for k in fixed:
+        is_free[k] = False
+    wk = np.empty((6, n))
+    chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
+    un, vn, an = np.empty(n), np.empty(n), np.empty(n)
+    every = inewton[I_ENERGY_EVERY]
+    t, h = tstate[0], tstate[1]
+    done = 0
+    while True:
+        if done >= budget:
+            tstate[0], tstate[1], tstate[2] = t, h, done
+            return BUDGET
+        step_h, land = _next_step(t, h, t_out)
+        un[:] = u
+        vn[:] = v
+        an[:] = a
+        status, its = step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
+                           un, vn, an, step_h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, False)
+        counters[C_ITERATIONS] += its
+        if status != OK and status != SINGULAR and inewton[I_MODIFIED] != 0:
+            # a reused factorisation failed (divergence, det F <= 0, no convergence):
+            # redo the step from the predictor with full Newton before rejecting it
+            counters[C_FALLBACKS] += 1
+            status, its = step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
+                               un, vn, an, step_h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, True)
+            counters[C_ITERATIONS] += its
+        if status != OK:
+            u[:] = un
+            v[:] = vn
+            a[:] = an
+            tstate[0], tstate[1], tstate[2] = t, step_h, done
+            counters[C_REJECTED] += 1
+            if status == NEWTON_FAILED:
+                counters[C_REJ_NEWTON] += 1
+            elif status == SINGULAR:
+                counters[C_REJ_SINGULAR] += 1
+            else:
+                counters[C_REJ_INADMISSIBLE] += 1
+            return status
+        counters[C_STEPS] += 1
+        done += 1
+        t = t_out if land else t + step_h
+        h = _after_acceptance(h, step_h, 0.0, 0.0, dt, land)
+        if every > 0 and not land and (offset + done) % every == 0:
+            counters[C_ENERGIES] += 1
+            E = energy(u, v, dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, wk[5], chunk, R, Fb, ab, Jb)
+            if not E <= fnewton[F_ELIMIT]:
+                tstate[0], tstate[1], tstate[2], tstate[3] = t, h, done, E
+                return ENERGY_GROWTH
+        if land:
+            tstate[0], tstate[1], tstate[2] = t, h, done
+            return OK
+
+
+@njit(cache=True)
+def total_energy(u, v, dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref):
+    chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
+    return energy(u, v, dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, np.empty(u.shape[0]), chunk, R, Fb,
+                  ab, Jb)
+
+
+# -- the Python side -----------------------------------------------------------------------
+def column_band(ab: np.ndarray, b: int) -> np.ndarray:
+    """LAPACK general band ab (2 b + 1, n) of a symmetric matrix -> column band (n, b + 1)."""
+    return np.ascontiguousarray(ab[: b + 1].T)
+
+
+@dataclass
+class Advanced:
+    """What one :meth:`CompiledLoop.advance` call did."""
+    outcome: str              # "landed", "budget", "energy-growth", "rejected"
+    state: timeloop.State     # after the last accepted step (landed: at t_out)
+    h: float                  # the next step; "rejected": the size of the rejected step
+    steps: int                # accepted steps
+    iterations: int           # Newton iterations, of rejected steps too
+    energy: float = math.nan  # "energy-growth": the total energy found
+    reason: str | None = None  # "rejected": why
+
+
+class CompiledLoop:
+    """The arrays and settings of :func:`advance` for one model and integrator."""
+
+    def __init__(self, model, M, f_ext: np.ndarray, coefficients: dict, newton: str = "chord",
+                 rtol: float = 1e-8, max_iterations: int = 25, utol: float = 1e-6):
+        if newton not in NEWTON:
+            raise ValueError(f"newton: {newton!r} is not one of {', '.join(NEWTON)}")
+        b = model.mesh.bandwidth
+        ops, consts = model._tape
+        self.n, self.b = model.mesh.n_dof, b
+        self.data = (np.ascontiguousarray(model._dN), np.ascontiguousarray(model._w, dtype=float),
+                     np.ascontiguousarray(model._dofs, dtype=np.int64), np.ascontiguousarray(ops),
+                     np.ascontiguousarray(consts, dtype=float), column_band(M.ab, b),
+                     envelope(model._dofs, model.mesh.n_dof), np.ascontiguousarray(f_ext, dtype=float),
+                     np.ascontiguousarray(model.mesh.reference, dtype=float),
+                     np.ascontiguousarray(model.fixed, dtype=np.int64))
+        c = coefficients
+        self.coef = np.array([c["alpha_m"], c["alpha_f"], c["beta"], c["gamma"]], dtype=float)
+        self.newton = newton
+        self.inewton = np.zeros(6, np.int64)
+        self.inewton[I_MAX_IT] = max_iterations
+        self.inewton[I_MODIFIED] = int(newton != "full")
+        self.inewton[I_STOP] = STOP_BOTH if newton == "full" else STOP_RESIDUAL
+        self.inewton[I_MAX_MODIFIED] = MAX_MODIFIED
+        self.inewton[I_JAC_PER_STEP] = int(newton == "chord")
+        self.fnewton = np.zeros(5)
+        self.fnewton[F_RTOL], self.fnewton[F_UTOL] = rtol, utol
+        self.fnewton[F_KAPPA], self.fnewton[F_HBEAM] = KAPPA, float(model.mesh.height)
+        self.reset()
+
+    def reset(self):
+        """A new run: no factorisation kept, counters at zero."""
+        self.S = np.zeros((self.n, self.b + 1))
+        self.fstate = np.zeros(2)
+        self.counters = np.zeros(len(COUNTER_NAMES), np.int64)
+
+    @property
+    def stats(self) -> dict:
+        return dict(zip(COUNTER_NAMES, (int(x) for x in self.counters)))
+
+    def energy(self, u: np.ndarray, v: np.ndarray) -> float:
+        """Kinetic + strain + dead-load potential (J), as the integrator's energies total."""
+        return float(total_energy(np.ascontiguousarray(u, dtype=float), np.ascontiguousarray(v, dtype=float),
+                                  *self.data[:9]))
+
+    def advance(self, s: timeloop.State, h: float, t_out: float, dt: float, budget: int, offset: int = 0,
+                energy_every: int = 0, energy_max: float = math.inf) -> Advanced:
+        """From state s with next step h towards t_out (:func:`advance`); s is not changed."""
+        u, v, a = (np.array(x, dtype=float) for x in (s.u, s.v, s.a))
+        tstate = np.array([s.t, h, 0.0, math.nan])
+        self.inewton[I_ENERGY_EVERY] = energy_every
+        self.fnewton[F_ELIMIT] = energy_max
+        it0 = int(self.counters[C_ITERATIONS])
+        status = advance(*self.data, self.coef, self.inewton, self.fnewton, u, v, a, tstate, float(t_out),
+                         float(dt), int(budget), int(offset), self.S, self.fstate, self.counters)
+        state = timeloop.State(float(tstate[0]), u, v, a)
+        outcome = {OK: "landed", BUDGET: "budget", ENERGY_GROWTH: "energy-growth"}.get(status, "rejected")
+        return Advanced(outcome, state, float(tstate[1]), int(tstate[2]), int(self.counters[C_ITERATIONS]) - it0,
+                        float(tstate[3]), STATUS.get(status))

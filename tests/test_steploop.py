@@ -1,0 +1,172 @@
+"""The compiled time loop (ancf.steploop) against the Python loop it replaces: the same
+steps, rejections and tips; the chord Newton default within 0.01 mm; Newmark's energy
+drift still O(dt^2) with it; a user-registered element and law through it; the fused
+kernel and the column-band LDL^T against the reference ones."""
+import numpy as np
+import pytest
+
+from ancf.banded import Banded
+from ancf.build import build_integrator, build_model, external_loads
+from ancf.kernels import (OK, assemble_fused, col_constrain, col_ldlt, col_ldlt_solve, envelope,
+                          step_scratch, strain_energy_fused)
+from ancf.laws import LAWS, Law, register_law
+from ancf.steploop import column_band
+from ancf.timeloop import integrate
+from contract import paper
+from contract.errors import SceneError
+from contract.scene import scene_from_dict
+
+from .test_elements import cubic_element  # noqa: F401 (a fixture)
+
+TIP = 1e-5          # m: 0.01 mm, the record tolerance
+
+
+def scene(n=8, t_end=0.1, dt=1e-3, law="yeoh", element="HB2n-12", material=None, ancf=None, **analysis):
+    return scene_from_dict({
+        "name": "pendulum", "beam": dict(paper.PENDULUM),
+        "material": material or paper.material_table(law, "plane-stress"),
+        "ancf": ancf or {"element": element, "elements": n},
+        "supports": {"left": "pin"}, "loads": {"gravity": [0.0, -paper.GRAVITY]},
+        "analysis": {"kind": "dynamic", "t_end": t_end, "dt": dt,
+                     "output_times": list(np.round(np.linspace(0, t_end, 6), 12)), **analysis}})
+
+
+def run(sc, compiled=True, energy_limit=1e-3, max_steps=None):
+    model = build_model(sc)
+    integ = build_integrator(sc, model, model.mass_matrix(), external_loads(model, sc))
+    a = sc.analysis
+    return integrate(integ, np.zeros(model.mesh.n_dof), a.t_end, a.dt, a.output_times, a.dt_min,
+                     energy_limit=energy_limit, max_steps=max_steps, compiled=compiled), integ
+
+
+def tip_difference(r1, r2) -> float:
+    assert [o.t for o in r1.outputs] == [o.t for o in r2.outputs]
+    return max(float(np.hypot(a.tip[0] - b.tip[0], a.tip[1] - b.tip[1])) for a, b in zip(r1.outputs, r2.outputs))
+
+
+@pytest.mark.parametrize("analysis", [
+    dict(dt=3e-3),                                   # 3 ms does not divide the outputs: landing steps
+    dict(integrator="newmark"),
+    dict(max_iterations=1),                          # every other step rejected and halved
+], ids=["ga-landing", "newmark", "rejections"])
+def test_full_newton_reproduces_the_python_loop_step_for_step(analysis):
+    """newton = "full" is the Python loop's method: the same accepted and rejected steps,
+    the same Newton iterations, tips equal to round-off (measured 1e-12 mm)."""
+    sc = scene(newton="full", **analysis)
+    py, _ = run(sc, compiled=False)
+    cc, integ = run(sc)
+    assert integ.advance is not None
+    assert cc.status == py.status == "converged"
+    assert (cc.steps, cc.rejected_steps, cc.newton_iterations) == (py.steps, py.rejected_steps, py.newton_iterations)
+    if "max_iterations" in analysis:
+        assert cc.rejected_steps > 0
+    assert tip_difference(py, cc) < 1e-3 * TIP
+    for o1, o2 in zip(py.outputs, cc.outputs):
+        assert o2.energy.total == pytest.approx(o1.energy.total, rel=1e-9, abs=1e-12)
+
+
+@pytest.mark.parametrize("newton", ["chord", "modified"])
+def test_reused_factorisations_agree_with_the_python_loop(newton):
+    sc = scene(newton=newton, dt=3e-3)
+    py, _ = run(sc, compiled=False)
+    cc, integ = run(sc)
+    assert cc.status == "converged" and cc.steps == py.steps
+    assert tip_difference(py, cc) < TIP
+    stats = integ._loop.stats
+    assert stats["factorisations"] < stats["iterations"]        # a factorisation serves several
+
+
+def test_chord_is_the_default_and_newton_is_validated():
+    assert scene().analysis.newton == "chord"
+    with pytest.raises(SceneError, match=r"analysis\.newton: unknown value 'quasi'; allowed: "
+                                         r"'chord', 'full', 'modified'"):
+        scene(newton="quasi")
+
+
+def test_newmark_energy_drift_stays_second_order_with_the_chord_default():
+    """Newmark conserves energy up to O(dt^2) (the trapezoidal rule's error) plus the work
+    of the residual Newton leaves; the chord default stops on the residual, so that work
+    stays ~1e-12 J and the drift falls 4 times per halving of dt (measured 3.97, 3.99)."""
+    drift = []
+    for dt in (2e-3, 1e-3, 5e-4):
+        res, _ = run(scene(t_end=0.2, dt=dt, integrator="newmark", output_times=list(np.round(
+            np.linspace(0, 0.2, 21), 12))), energy_limit=None)
+        assert res.status == "converged"
+        e = np.array([o.energy.total for o in res.outputs])
+        drift.append(np.abs(e - e[0]).max())
+    ratios = [drift[i] / drift[i + 1] for i in range(2)]
+    assert all(3.5 < r < 4.5 for r in ratios), (drift, ratios)
+
+
+def test_energy_growth_and_step_limit_stop_the_compiled_loop():
+    """A limit below E(0) trips the first check inside the compiled loop (step 10, not an
+    output time): the same reason as the Python loop's."""
+    res, _ = run(scene(), energy_limit=-1.0)
+    py, _ = run(scene(), energy_limit=-1.0, compiled=False)
+    assert res.status == "failed" and res.reason.startswith("energy-growth: E rose")
+    assert "at t = 0.01 s" in res.reason and res.steps == py.steps == 10
+    assert res.reason.split(" J above")[1] == py.reason.split(" J above")[1]
+    res, _ = run(scene(), max_steps=30)
+    assert res.status == "failed" and "step limit: 30 accepted steps" in res.reason
+
+
+@pytest.fixture
+def user_element_and_law(cubic_element):
+    """test_elements' user-defined cubic element and a law defined here (a quartic
+    term: the tape's generic power, whose derivative once divided by I1 - 3 = 0 at rest)."""
+    law = register_law(Law("quartic (steploop test)", ("C10", "C20"),
+                           lambda I1, I2, c: c["C10"] * (I1 - 3.0) + c["C20"] * (I1 - 3.0) ** 4))
+    yield cubic_element.name, law.name
+    del LAWS[law.name]
+
+
+def test_a_user_registered_element_and_law_run_through_the_compiled_loop(user_element_and_law):
+    element, law = user_element_and_law
+    material = {"law": law, "formulation": "plane-stress", "C10": 0.4e6, "C20": 0.2e6, "density": 1100.0}
+    sc = scene(material=material, ancf={"element": element, "elements": 4, "quadrature": [4, 3]}, t_end=0.05)
+    py, _ = run(sc, compiled=False)
+    cc, integ = run(sc)
+    assert cc.status == py.status == "converged"
+    assert integ._loop.stats["steps"] == cc.steps
+    assert tip_difference(py, cc) < TIP
+
+
+@pytest.mark.parametrize("law", ["neo-hookean", "mooney-rivlin", "yeoh"])
+@pytest.mark.parametrize("form", ["paper", "plane-strain", "plane-stress"])
+def test_fused_kernel_and_ldlt_equal_the_reference(law, form):
+    """Force, tangent (upper band) and energy of the fused kernel equal the model's
+    kernel at ue = 0.7 u + 0.3 u_n; LDL^T on the column band solves like gbsv and counts
+    the negative pivots (the inertia)."""
+    sc = scene(material=paper.material_table(law, form), element="HB2n-16", n=4)
+    model = build_model(sc)
+    n, b = model.mesh.n_dof, model.mesh.bandwidth
+    rng = np.random.default_rng(3)
+    u, un = (1e-4 * rng.standard_normal(n) for _ in range(2))
+    u[model.fixed] = un[model.fixed] = 0.0
+    f_ref, K_ref = model.internal_force_and_tangent(0.7 * u + 0.3 * un)
+    ops, consts = model._tape
+    f, Kc = np.empty(n), np.empty((n, b + 1))
+    scratch = step_scratch(ops.shape[0], model._dN.shape[0])
+    args = (model._dN, model._w, model._dofs.astype(np.int64), ops, consts)
+    assert assemble_fused(u, un, 0.3, *args, f, Kc, True, *scratch) == OK
+    np.testing.assert_allclose(f, f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())
+    np.testing.assert_allclose(Kc, column_band(K_ref.ab, b), rtol=0, atol=1e-12 * np.abs(K_ref.ab).max())
+    assert strain_energy_fused(u, *args, *scratch) == pytest.approx(model.strain_energy(u), rel=1e-12)
+    M = model.mass_matrix()
+    first = envelope(model._dofs, n)
+    S = column_band(0.6 * K_ref.ab + 4e6 * M.ab, b)
+    col_constrain(S, model.fixed.astype(np.int64))
+    rhs = np.arange(n, dtype=float) % 7
+    rhs[model.fixed] = 0.0
+    x_ref = Banded(0.6 * K_ref.ab + 4e6 * M.ab, b).constrain(model.fixed).solve(rhs)
+    assert col_ldlt(S, first, np.empty(n)) == 0
+    col_ldlt_solve(S, first, rhs)
+    np.testing.assert_allclose(rhs, x_ref, rtol=1e-10, atol=1e-12 * np.abs(x_ref).max())
+    S2 = column_band(K_ref.ab + 4e6 * M.ab, b)
+    S2[:, b] -= 1e12 * np.abs(S2).max()                       # every free pivot negative
+    col_constrain(S2, model.fixed.astype(np.int64))
+    assert col_ldlt(S2, first, np.empty(n)) == n - len(model.fixed)
+    S3 = np.zeros_like(S2)
+    S3[:, b] = 1.0
+    S3[5, b] = 0.0                                            # singular: the step is rejected
+    assert col_ldlt(S3, first, np.empty(n)) == -6
