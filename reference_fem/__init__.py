@@ -2,7 +2,9 @@
 
 The scene's beam as a continuum on a structured gmsh mesh: plane strain, exactly
 incompressible (Taylor-Hood, mixed) or with the ANCF penalty (perturbed Lagrangian),
-or incompressible plane stress (F33 = 1/det F). Same scene files (``contract.scene``)
+or incompressible plane stress (F33 = 1/det F); or the real beam in 3D
+(``[fem] model = "3d"``, hexahedra, full 3D invariants), distributed over the ranks of
+an ``mpiexec`` launch. Same scene files (``contract.scene``)
 and records (``contract.record``) as ``ancf``, the same load-path rule
 (``ancf.loadpath``) and time loop (``ancf.timeloop``).
 
@@ -19,6 +21,7 @@ Modules, one concept each:
 - :mod:`.run`: scene -> record; :mod:`.convergence`: refinement and Richardson;
 - :mod:`.gold`, :mod:`.pendulum`, :mod:`.report`: gold data of the paper's examples, tables;
 - :mod:`.cli`: ``python -m reference_fem run | converge | gold | pendulum | report``.
+- :mod:`.launch`: the ``mpiexec`` / ``srun`` command line of a run on N ranks (no dolfinx).
 
 Importing the package imports nothing heavy; dolfinx is loaded when a problem is built.
 """

@@ -5,6 +5,7 @@
 - ``converge SCENE.toml [--levels N] [--json OUT.json]``: refinement study, table of
   tip values per level, observed order, Richardson value and error estimate;
 - ``gold [--out DIR] [--levels N]``: regenerate tests/gold/fem_cantilever.json;
+  ``gold --3d [--laws L ...]``: tests/gold/fem_cantilever_3d.json (the 3D beam);
   ``gold --pendulum [--models M ...]``: regenerate tests/gold/fem_pendulum.json
   (three laws x models, each with its dt / 2 and refined-mesh runs);
 - ``pendulum [--law L] [--model M] [--dt DT] [--cells-height N] [--aspect A]
@@ -48,12 +49,15 @@ def _run(args) -> int:
     finally:
         if progress:
             progress.close()
+    if not _root():
+        return 0 if rec["status"] == "converged" else 1
     if json_out:
         write_record(rec, json_out)
     f = rec["fem"]
+    cells = f"{f['cells_length']} x {f['cells_height']}" + (f" x {f['cells_width']}" if f.get("cells_width") else "")
+    ranks = f", {rec['mpi_ranks']} MPI ranks" if rec.get("mpi_ranks", 1) > 1 else ""
     print(f"scene       {scene.name}  ({rec['continuum_model']}, {rec['incompressibility']}, "
-          f"{f['cells_length']} x {f['cells_height']} {f['cell']}, degree {f['degree']}, "
-          f"ndof {rec['ndof']})")
+          f"{cells} {f['cell']}, degree {f['degree']}, ndof {rec['ndof']}{ranks})")
     print(f"status      {rec['status']}" + (f"  ({rec['reason']})" if rec["reason"] else ""))
     if rec["tip"]:
         print(f"tip         ux = {rec['tip']['ux'] * 1e3:.4f} mm   uy = {rec['tip']['uy'] * 1e3:.4f} mm")
@@ -76,10 +80,31 @@ def _run(args) -> int:
     return 0 if rec["status"] == "converged" else 1
 
 
+def _root() -> bool:
+    """True unless this process is a rank > 0 of an MPI launch (which writes nothing)."""
+    import sys as _sys
+
+    if "mpi4py.MPI" not in _sys.modules:
+        return True
+    from mpi4py import MPI
+
+    return MPI.COMM_WORLD.rank == 0
+
+
+def _root_after_import() -> bool:
+    """:func:`_root` for a command that will start dolfinx (and MPI) anyway."""
+    from mpi4py import MPI
+
+    return MPI.COMM_WORLD.rank == 0
+
+
 def _level_line(level: dict) -> str:
     tip = level["tip"]
     vals = f"{tip['ux'] * 1e3:12.5f} {tip['uy'] * 1e3:12.5f}" if tip else f"{'-':>12s} {'-':>12s}"
-    return (f"{level['cells_length']:6d} x {level['cells_height']:<4d} {level['ndof']:8d} {vals} "
+    cells = f"{level['cells_length']:6d} x {level['cells_height']:<4d}"
+    if level.get("cells_width"):
+        cells = f"{level['cells_length']:4d} x {level['cells_height']} x {level['cells_width']:<3d}"
+    return (f"{cells} {level['ndof']:8d} {vals} "
             f"{level['wall_s']:8.2f} {level['status']}")
 
 
@@ -92,9 +117,14 @@ def _converge(args) -> int:
 
     scene = load_scene(args.scene)
     check_static(scene)
-    print(f"{'cells':>13s} {'ndof':>8s} {'ux (mm)':>12s} {'uy (mm)':>12s} {'solve s':>8s}")
-    study = refinement_study(scene, args.levels, progress=lambda lv: print(_level_line(lv), flush=True))
+    root = _root_after_import()
+    if root:
+        print(f"{'cells':>13s} {'ndof':>8s} {'ux (mm)':>12s} {'uy (mm)':>12s} {'solve s':>8s}")
+    study = refinement_study(scene, args.levels,
+                             progress=lambda lv: root and print(_level_line(lv), flush=True))
     d = study.to_dict()
+    if not root:
+        return 0 if d["extrapolated"] else 1
     print("observed order (per triple of levels): "
           + ", ".join("-" if p is None else f"{p:.2f}" for p in d["orders"]))
     if d["extrapolated"]:
@@ -117,9 +147,16 @@ def _gold(args) -> int:
                                    progress=lambda m: print(m, flush=True))
         print(f"wrote {path}")
         return 0
+    if args.solid:
+        from .gold import LAWS, write_gold_3d
+
+        path = write_gold_3d(Path(args.out), args.levels or 3, laws=args.laws or LAWS,
+                             progress=print if _root_after_import() else None)
+        print(f"wrote {path}") if _root_after_import() else None
+        return 0
     from .gold import write_gold
 
-    path = write_gold(Path(args.out), args.levels, progress=print)
+    path = write_gold(Path(args.out), args.levels or 5, progress=print)
     print(f"wrote {path}")
     return 0
 
@@ -161,11 +198,10 @@ def _report(args) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from contract.cli import by_interrupt, interrupted
-    from contract.errors import SceneError
+    from contract.cli import command
 
     p = argparse.ArgumentParser(prog="python -m reference_fem",
-                                description="2D continuum reference (DOLFINx) for the ANCF scenes")
+                                description="2D and 3D continuum reference (DOLFINx) for the ANCF scenes")
     sub = p.add_subparsers(dest="command", required=True)
     r = sub.add_parser("run", help="solve one scene file")
     r.add_argument("scene")
@@ -182,7 +218,12 @@ def main(argv: list[str] | None = None) -> int:
     c.add_argument("--json", metavar="OUT", help="write the study here")
     gd = sub.add_parser("gold", help="regenerate the gold file of the paper's cantilever")
     gd.add_argument("--out", default="tests/gold", help="directory (default tests/gold)")
-    gd.add_argument("--levels", type=int, default=5, help="meshes per case (default 5)")
+    gd.add_argument("--levels", type=int, default=None, help="meshes per case (default 5; --3d: 3)")
+    gd.add_argument("--3d", dest="solid", action="store_true",
+                    help="the 3D beam's gold file (tests/gold/fem_cantilever_3d.json) instead; "
+                         "runs on the ranks of an mpiexec launch")
+    gd.add_argument("--laws", nargs="+", choices=["neo-hookean", "mooney-rivlin", "yeoh"],
+                    help="with --3d: only these laws (the file's other cases are kept)")
     gd.add_argument("--pendulum", action="store_true",
                     help="the pendulum's gold file (tests/gold/fem_pendulum.json) instead")
     gd.add_argument("--models", nargs="+", default=["plane-stress", "plane-strain"],
@@ -203,18 +244,8 @@ def main(argv: list[str] | None = None) -> int:
                     help="default tests/gold/fem_cantilever.json (fem_pendulum.json with --pendulum)")
     rp.add_argument("--pendulum", action="store_true", help="tables of the pendulum gold file")
     args = p.parse_args(argv)
-    try:
-        return {"run": _run, "converge": _converge, "gold": _gold, "report": _report,
-                "pendulum": _pendulum}[args.command](args)
-    except (SceneError, ValueError) as e:
-        print(f"reference_fem: error: {e}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        return interrupted("reference_fem")
-    except SystemError as e:
-        if by_interrupt(e):
-            return interrupted("reference_fem")
-        raise
+    run = {"run": _run, "converge": _converge, "gold": _gold, "report": _report, "pendulum": _pendulum}[args.command]
+    return command("reference_fem", lambda: run(args), errors=(ValueError,))
 
 
 if __name__ == "__main__":

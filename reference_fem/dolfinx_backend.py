@@ -1,12 +1,17 @@
 """Every DOLFINx call of reference_fem, written against DOLFINx 0.5.2.
 
 A newer DOLFINx changes this module only (gmsh import, element constructors, point
-evaluation, assembly and PETSc glue). Everything is built on ``MPI.COMM_SELF``, so
-cases can run side by side in separate processes or threads of a study.
+evaluation, assembly and PETSc glue). The 2D meshes are built on ``MPI.COMM_SELF``, so
+cases can run side by side in separate processes or threads of a study. The 3D mesh
+(:func:`box_mesh`) is distributed over ``MPI.COMM_WORLD`` when the process was started
+by ``mpiexec -n N`` with N > 1 (else ``COMM_SELF``); everything else takes its
+communicator from the mesh, and every number a decision reads (norms, counts, point
+values) is global and the same on every rank.
 
 Interface:
 
 - :func:`rectangle_mesh`: a structured gmsh mesh of [0, L] x [-h/2, h/2];
+  :func:`box_mesh`: the 3D beam, built on rank 0 and distributed;
 - :class:`Discretisation`: displacement (and optionally scaled pressure) space on a
   mesh, the unknown, test functions, measures, constants, Dirichlet conditions,
   point evaluation and output;
@@ -34,7 +39,7 @@ import dolfinx.io
 import dolfinx.io.gmshio
 import dolfinx.mesh
 
-from .geometry import structured_rectangle
+from .geometry import structured_box, structured_rectangle
 
 VERSION = dolfinx.__version__
 COMM = MPI.COMM_SELF
@@ -49,12 +54,32 @@ def rectangle_mesh(length: float, height: float, nx: int, ny: int, cell: str):
     return mesh
 
 
+def solver_comm():
+    """COMM_WORLD under an MPI launch of several ranks, else COMM_SELF."""
+    return MPI.COMM_WORLD if MPI.COMM_WORLD.size > 1 else COMM
+
+
+def box_mesh(length: float, height: float, width: float, nx: int, ny: int, nz: int, cell: str,
+             progression: float = 1.0):
+    """Structured mesh of [0, L] x [-h/2, h/2] x [-w/2, w/2]: nx x ny x nz hexahedra (or
+    6 tetrahedra each), meshed by gmsh on rank 0 and distributed over :func:`solver_comm`."""
+    comm = solver_comm()
+    with structured_box(length, height, width, nx, ny, nz, cell, progression, build=comm.rank == 0) as model:
+        mesh, _, _ = dolfinx.io.gmshio.model_to_mesh(model, comm, 0, gdim=3)
+    n = comm.allreduce(mesh.topology.index_map(3).size_local)
+    expected = nx * ny * nz * (1 if cell == "hexahedron" else 6)
+    if n != expected:
+        raise RuntimeError(f"gmsh made {n} cells, expected {expected}")
+    return mesh
+
+
 class Discretisation:
     """Lagrange displacement of ``degree`` (vector), plus a continuous scaled pressure
     of ``degree - 1`` when ``pressure`` (Taylor-Hood), on ``mesh``."""
 
     def __init__(self, mesh, degree: int, pressure: bool, quadrature_degree: int):
         self.mesh = mesh
+        self.comm = mesh.comm
         cell = mesh.ufl_cell()
         Ve = ufl.VectorElement("Lagrange", cell, degree)
         self.pressure = pressure
@@ -98,7 +123,7 @@ class Discretisation:
     @property
     def ndof(self) -> int:
         imap = self.W.dofmap.index_map
-        return imap.size_local * self.W.dofmap.index_map_bs
+        return imap.size_global * self.W.dofmap.index_map_bs
 
     def constant(self, value):
         return dolfinx.fem.Constant(self.mesh, PETSc.ScalarType(value))
@@ -129,7 +154,7 @@ class Discretisation:
                 dofs = dolfinx.fem.locate_dofs_geometrical((sub, V), where)
             else:
                 raise ValueError(f"on: {on!r}; allowed: 'facets', 'points'")
-            if len(dofs[0]) == 0:
+            if self.comm.allreduce(len(dofs[0])) == 0:
                 raise ValueError(f"no degrees of freedom found for the condition on {on}")
             zero = dolfinx.fem.Function(V)
             self._zeros.append(zero)
@@ -146,12 +171,38 @@ class Discretisation:
         gdim = self.mesh.geometry.dim
         pts = np.zeros((len(points), 3))
         pts[:, :points.shape[1]] = points
+        if self.comm.size > 1:
+            return self._point_displacement_parallel(pts)[:, :gdim]
         tree = dolfinx.geometry.BoundingBoxTree(self.mesh, self.mesh.topology.dim)
         candidates = dolfinx.geometry.compute_collisions(tree, pts)
         cells = dolfinx.geometry.compute_colliding_cells(self.mesh, candidates, pts)
         first = [cells.links(i)[0] for i in range(len(pts))]
         values = self.displacement().eval(pts, np.array(first, dtype=np.int32))
         return np.asarray(values).reshape(len(pts), -1)[:, :gdim]
+
+    def _point_displacement_parallel(self, pts) -> np.ndarray:
+        """Each rank evaluates the points in its owned cells (ghosts excluded), the values
+        are gathered, and the lowest rank holding a point gives it: the same numbers on
+        every rank."""
+        u = self.displacement()
+        owned = self.mesh.topology.index_map(self.mesh.topology.dim).size_local
+        tree = dolfinx.geometry.BoundingBoxTree(self.mesh, self.mesh.topology.dim,
+                                                np.arange(owned, dtype=np.int32))
+        candidates = dolfinx.geometry.compute_collisions(tree, pts)
+        cells = dolfinx.geometry.compute_colliding_cells(self.mesh, candidates, pts)
+        dim = u.function_space.dofmap.index_map_bs
+        mine = np.full((len(pts), dim), np.nan)
+        for i in range(len(pts)):
+            c = cells.links(i)
+            if len(c):
+                mine[i] = np.asarray(u.eval(pts[i:i + 1], np.array([c[0]], np.int32))).reshape(dim)
+        out = np.full((len(pts), dim), np.nan)
+        for values in self.comm.allgather(mine):
+            take = np.isnan(out[:, 0]) & np.isfinite(values[:, 0])
+            out[take] = values[take]
+        if np.isnan(out).any():
+            raise ValueError("a point is outside the mesh")
+        return out
 
     def positions(self, w: np.ndarray, points) -> np.ndarray:
         """Deformed positions (n, gdim) in m of reference points (n, gdim) at the state w
@@ -181,21 +232,22 @@ class Discretisation:
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
         if fmt == "xdmf":
-            with dolfinx.io.XDMFFile(COMM, str(path.with_suffix(".xdmf")), "w") as f:
+            with dolfinx.io.XDMFFile(self.comm, str(path.with_suffix(".xdmf")), "w") as f:
                 f.write_mesh(self.mesh)
                 for field in fields:
                     f.write_function(field, t)
             return path.with_suffix(".xdmf")
         if fmt == "vtk":
-            with dolfinx.io.VTKFile(COMM, str(path.with_suffix(".pvd")), "w") as f:
+            with dolfinx.io.VTKFile(self.comm, str(path.with_suffix(".pvd")), "w") as f:
                 f.write_function(fields, t)
             return path.with_suffix(".pvd")
         raise ValueError(f"format {fmt!r}; allowed: 'vtk', 'xdmf'")
 
 
-def fixed_dof_count(bcs) -> int:
-    """How many degrees of freedom a list of Dirichlet conditions fixes."""
-    return int(sum(bc.dof_indices()[1] for bc in bcs))
+def fixed_dof_count(bcs, comm=COMM) -> int:
+    """How many degrees of freedom a list of Dirichlet conditions fixes (owned ones,
+    summed over the ranks of ``comm``)."""
+    return int(comm.allreduce(sum(bc.dof_indices()[1] for bc in bcs)))
 
 
 class NonlinearSystem:
@@ -213,16 +265,24 @@ class NonlinearSystem:
         self.b = dolfinx.fem.petsc.create_vector(self.R)
         self.A = dolfinx.fem.petsc.create_matrix(self.K)
         self.dx = self.b.duplicate()
-        self.ksp = self._lu()
+        self.ksp = self._lu(disc.comm)
 
     @staticmethod
-    def _lu():
-        ksp = PETSc.KSP().create(COMM)
+    def _lu(comm=COMM):
+        ksp = PETSc.KSP().create(comm)
         ksp.setType("preonly")
         pc = ksp.getPC()
         pc.setType("lu")
         pc.setFactorSolverType("mumps")
         return ksp
+
+    @property
+    def any_rank(self):
+        """None on one rank; over several, flag -> True on every rank if any rank's is."""
+        comm = self.disc.comm
+        if comm.size == 1:
+            return None
+        return lambda flag: bool(comm.allreduce(bool(flag), op=MPI.LOR))
 
     @property
     def x(self):
@@ -250,7 +310,7 @@ class NonlinearSystem:
             # a failed factorisation sticks to the PC (every later solve fails at once,
             # however small the next load increment): start from a fresh one
             self.ksp.destroy()
-            self.ksp = self._lu()
+            self.ksp = self._lu(self.disc.comm)
             raise ArithmeticError(f"linear solve failed (PETSc reason {reason})")
         self.x.axpy(-1.0, self.dx)
         self.x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
@@ -274,13 +334,15 @@ class NonlinearSystem:
 
 
 class Functional:
-    """A compiled scalar form; calling it assembles its value."""
+    """A compiled scalar form; calling it assembles its value (summed over the ranks)."""
 
     def __init__(self, expr):
         self.form = dolfinx.fem.form(expr)
+        self.comm = self.form.mesh.comm
 
     def __call__(self) -> float:
-        return float(dolfinx.fem.assemble_scalar(self.form))
+        value = float(dolfinx.fem.assemble_scalar(self.form))
+        return value if self.comm.size == 1 else float(self.comm.allreduce(value))
 
 
 class VectorNorm:

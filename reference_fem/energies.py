@@ -8,7 +8,8 @@ right Cauchy-Green tensor, independently of the 2D shortcuts in
 - plane strain: F3 = diag(F, 1); I1 = tr C3, I2 = (I1^2 - tr C3^2) / 2, made
   isochoric with J = det F: I1bar = J^(-2/3) I1, I2bar = J^(-4/3) I2;
 - plane stress (incompressible): F3 = diag(F, 1/J), so I1 = tr C + J^-2,
-  I2 = tr C J^-2 + J^2; no volumetric term.
+  I2 = tr C J^-2 + J^2; no volumetric term;
+- 3D: the full C = F^T F, isochoric as in plane strain (no planar reduction).
 
 How a continuum model uses them (and enforces incompressibility) is
 :mod:`reference_fem.models`.
@@ -82,3 +83,10 @@ def plane_stress_invariants(F):
     F3 = ufl.as_matrix([[F[0, 0], F[0, 1], 0], [F[1, 0], F[1, 1], 0], [0, 0, 1 / J]])
     I1, I2 = _invariants_3d(F3.T * F3)
     return I1, I2, J
+
+
+def solid_invariants(F):
+    """Isochoric (I1bar, I2bar) of a 3 x 3 gradient F, and J = det F."""
+    J = ufl.det(F)
+    I1, I2 = _invariants_3d(F.T * F)
+    return J ** (-2.0 / 3.0) * I1, J ** (-4.0 / 3.0) * I2, J

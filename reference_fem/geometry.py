@@ -7,7 +7,13 @@ transfinite triangles into quads, "triangle" keeps two per quad with alternating
 diagonals (no preferred direction). With ny even, the free-end centre point (L, 0)
 and the left centre point (0, 0) are mesh vertices. Energies and forces of the 2D
 problem are per unit width; :meth:`Geometry.width_factor` turns them into the full
-beam's. No dolfinx here (gmsh is imported when a mesh is built).
+beam's.
+
+:class:`BoxGeometry` (:data:`BOX`) is the real beam [0, L] x [-h/2, h/2] x [-w/2, w/2]
+(``fem.model = "3d"``): nx x ny x nz transfinite hexahedra (or each split into 6
+tetrahedra), optionally graded along x toward the clamp; the tip is the centre
+(L, 0, 0) of the free end face, the pin the line (0, 0, z) across the width at the left
+end's mid-height. No dolfinx here (gmsh is imported when a mesh is built).
 """
 from __future__ import annotations
 
@@ -42,6 +48,53 @@ def structured_rectangle(length: float, height: float, nx: int, ny: int, cell: s
                 gmsh.model.mesh.setRecombine(2, surface)
             gmsh.model.addPhysicalGroup(2, [surface], 1)
             gmsh.model.mesh.generate(2)
+            yield gmsh.model
+        finally:
+            gmsh.finalize()
+
+
+@contextlib.contextmanager
+def structured_box(length: float, height: float, width: float, nx: int, ny: int, nz: int,
+                   cell: str, progression: float = 1.0, build: bool = True):
+    """Yield ``gmsh.model`` holding the meshed box (physical volume 1); ``build=False``
+    (the other MPI ranks) yields the untouched ``gmsh.model``, which dolfinx's
+    distribution call wants on every rank. ``progression``: cell-to-cell growth of the
+    cell length along x, away from x = 0."""
+    import gmsh
+
+    if cell not in ("hexahedron", "tetrahedron"):
+        raise ValueError(f"cell {cell!r}; allowed: 'hexahedron', 'tetrahedron'")
+    if not build:
+        yield gmsh.model
+        return
+    with _LOCK:
+        gmsh.initialize()
+        try:
+            gmsh.option.setNumber("General.Terminal", 0)
+            gmsh.model.add("beam3d")
+            volume = gmsh.model.occ.addBox(0.0, -height / 2, -width / 2, length, height, width)
+            gmsh.model.occ.synchronize()
+            counts = (nx, ny, nz)
+            for _, curve in gmsh.model.getEntities(1):
+                x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(1, curve)
+                d = int(np.argmax([x1 - x0, y1 - y0, z1 - z0]))
+                if d == 0 and progression != 1.0:
+                    a, b = gmsh.model.getBoundary([(1, curve)], oriented=True)
+                    xa = gmsh.model.getValue(0, abs(a[1]), [])[0]
+                    xb = gmsh.model.getValue(0, abs(b[1]), [])[0]
+                    q = progression if xa < xb else 1.0 / progression
+                    gmsh.model.mesh.setTransfiniteCurve(curve, nx + 1, "Progression", q)
+                else:
+                    gmsh.model.mesh.setTransfiniteCurve(curve, counts[d] + 1)
+            for _, surface in gmsh.model.getEntities(2):
+                gmsh.model.mesh.setTransfiniteSurface(surface)
+                if cell == "hexahedron":
+                    gmsh.model.mesh.setRecombine(2, surface)
+            gmsh.model.mesh.setTransfiniteVolume(volume)
+            if cell == "hexahedron":
+                gmsh.model.mesh.setRecombine(3, volume)
+            gmsh.model.addPhysicalGroup(3, [volume], 1)
+            gmsh.model.mesh.generate(3)
             yield gmsh.model
         finally:
             gmsh.finalize()
@@ -104,3 +157,29 @@ class PlaneGeometry(Geometry):
 
 
 PLANE = PlaneGeometry()
+
+
+class BoxGeometry(Geometry):
+    gdim = 3
+    pin_note = ("the line (0, 0, z) across the width at the left face's mid-height: every "
+                "displacement component zero at its nodes (a pin gripping the whole width; the "
+                "face turns about it); the line load's field is logarithmically singular, so "
+                "the local compliance grows slowly with refinement, as the 2D point pin's")
+
+    def mesh(self, beam, settings):
+        from . import dolfinx_backend as backend
+
+        return backend.box_mesh(beam.length, beam.height, beam.width, *settings.cells(3), settings.cell,
+                                settings.progression)
+
+    def pin(self, beam):
+        tol = 1e-9 * beam.length
+        return lambda x: (np.abs(x[0]) < tol) & (np.abs(x[1]) < tol)
+
+    def sides(self, beam):
+        """The two faces z = +-w/2."""
+        tol = 1e-9 * beam.length
+        return lambda x: np.abs(np.abs(x[2]) - beam.width / 2) < tol
+
+
+BOX = BoxGeometry()

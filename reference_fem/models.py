@@ -12,7 +12,10 @@ size of the displacement ones. Energies per unit reference volume (Pa).
 - :class:`MixedPlaneStrain`: psi(I1bar, I2bar) + mu phat (J - 1), exactly incompressible;
 - :class:`PenaltyPlaneStrain`: ... - (mu phat)^2 / (2 alpha): eliminating phat gives the
   ANCF ``plane-strain`` energy psi + alpha/2 (J - 1)^2 without locking (perturbed
-  Lagrangian).
+  Lagrangian);
+- :class:`Solid` (``model = "3d"``): the real beam (length x height x width) on
+  :data:`reference_fem.geometry.BOX`, the full 3D invariants, mixed or penalty as in
+  plane strain (:class:`MixedSolid`, :class:`PenaltySolid`).
 
 To add a model: subclass, set its names and ``has_pressure``, write ``invariants`` and
 ``energy``, and register it in :data:`MODELS` under (model, incompressibility).
@@ -25,8 +28,8 @@ import ufl
 
 from contract.errors import UnknownName
 
-from .energies import LawUFL, plane_strain_invariants, plane_stress_invariants
-from .geometry import Geometry, PLANE
+from .energies import LawUFL, plane_strain_invariants, plane_stress_invariants, solid_invariants
+from .geometry import BOX, Geometry, PLANE
 
 
 class ContinuumModel:
@@ -126,8 +129,27 @@ class PenaltyPlaneStrain(PlaneStrain):
         return u_alpha
 
 
+class Solid(PlaneStrain):
+    """The beam as a 3D continuum: psi(I1bar, I2bar) of the full C, a scaled pressure
+    (Taylor-Hood Q2/Q1 or P2/P1) for J = 1; the box geometry."""
+    name = "3d"
+    geometry = BOX
+
+    def invariants(self, F):
+        return solid_invariants(F)
+
+
+class MixedSolid(Solid, MixedPlaneStrain):
+    incompressibility = "mixed"
+
+
+class PenaltySolid(Solid, PenaltyPlaneStrain):
+    incompressibility = "penalty"
+
+
 MODELS: dict[tuple[str, str], ContinuumModel] = {
-    (m.name, m.incompressibility): m for m in (MixedPlaneStrain(), PenaltyPlaneStrain(), PlaneStress())
+    (m.name, m.incompressibility): m for m in (MixedPlaneStrain(), PenaltyPlaneStrain(), PlaneStress(),
+                                               MixedSolid(), PenaltySolid())
 }
 
 

@@ -89,13 +89,21 @@ def reference_residual(system, set_load: Callable[[float], None]) -> float:
 def solve_static(system, set_load, steps: int, rtol: float, max_iterations: int,
                  wall_time: float | None = None) -> StaticResult:
     """Follow the load from t = 0 to 1. An unloaded scene (zero load vector) is
-    valid: its answer is the reference state (no increment is taken)."""
+    valid: its answer is the reference state (no increment is taken).
+
+    A system distributed over MPI ranks has ``any_rank(flag)`` (True on every rank if
+    any rank's flag is): the wall-time test then goes through it, so that every rank
+    stops at the same increment (the Newton decisions read global norms already)."""
     result = StaticResult()
     w0, c0 = time.perf_counter(), time.process_time()
     r_ref = reference_residual(system, set_load)
     counts = PathCounts()
+    any_rank = getattr(system, "any_rank", None)
+    deadline = None if wall_time is None else w0 + wall_time
 
     def solve(t0: float, t1: float) -> Attempt:
+        if any_rank is not None and deadline is not None and any_rank(time.perf_counter() > deadline):
+            raise PathFailure("load", t0, f"wall time reached at t = {t0:.6g} (load) (analysis.wall_time)")
         saved = system.save()
         set_load(t1)
         try:
@@ -108,8 +116,7 @@ def solve_static(system, set_load, steps: int, rtol: float, max_iterations: int,
 
     try:
         if r_ref > 0:
-            deadline = None if wall_time is None else w0 + wall_time
-            for t, attempt in follow(solve, steps, counts, deadline=deadline):
+            for t, attempt in follow(solve, steps, counts, deadline=None if any_rank else deadline):
                 result.t_reached = t
                 result.history.append((t, attempt.iterations))
         else:

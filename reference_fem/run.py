@@ -1,12 +1,15 @@
 """Run one scene with the continuum reference and produce its record.
 
 The record is :func:`contract.record.new_record` ("fenicsx") with the same keys as an
-ANCF run, plus ``continuum_model`` ("plane-strain" | "plane-stress"),
+ANCF run, plus ``continuum_model`` ("plane-strain" | "plane-stress" | "3d"),
 ``incompressibility`` ("mixed" | "penalty" | "exact") and ``fem`` (the resolved
 discretisation: cells, cell type, degree, quadrature degree) and ``dolfinx``
 (version). ``ndof`` counts the unknowns of the solve (displacement and pressure
 degrees of freedom minus those the supports fix), like ancf's free dofs. ``setup_s``
-is meshing and JIT compilation, apart from the solve.
+is meshing and JIT compilation, apart from the solve. The 3D model adds ``tip_uz`` (m,
+the lateral displacement of the free-end face centre: zero by symmetry on hexahedra)
+and ``mpi_ranks``; under ``mpiexec`` every rank computes the same record and the
+command line writes it from rank 0.
 
 Dynamic scenes (``analysis.kind = "dynamic"``) add the dynamic keys of the one time
 loop (:func:`ancf.timeloop.record_keys`, the same as ``ancf run``'s): ``tip_history``
@@ -119,6 +122,8 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
     a = scene.analysis
     res = solve_static(problem.system, problem.set_load, a.load_steps, a.newton_rtol,
                        a.max_iterations, a.wall_time)
+    if s.model.geometry.gdim == 3:
+        rec["mpi_ranks"] = s.disc.comm.size
     rec.update(status=res.status, reason=res.reason, ndof=problem.n_free,
                newton_iterations=res.newton_iterations, load_steps=res.load_steps,
                rejected_steps=res.rejected_steps, cpu_s=res.cpu_s, wall_s=res.wall_s,
@@ -127,8 +132,10 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
         rec["note"] = "no load: an unloaded static scene is valid, its answer is the reference state"
     if res.status == "converged":
         tip = s.model.geometry.tip_point(scene.beam)
-        ux, uy = s.disc.point_displacement([tip])[0][:2]
-        rec["tip"] = {"ux": float(ux), "uy": float(uy)}
+        u = s.disc.point_displacement([tip])[0]
+        rec["tip"] = {"ux": float(u[0]), "uy": float(u[1])}
+        if len(u) == 3:
+            rec["tip_uz"] = float(u[2])
         if output is not None:
             rec["output"] = str(s.disc.write(Path(output) / safe_name(scene.name), output_format, scale=s.mu))
     return rec

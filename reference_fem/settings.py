@@ -9,7 +9,8 @@ Keys (all optional except ``model`` for ``paper`` scenes):
 
 - ``cells_height`` (int): cells across the height h;
 - ``cells_length`` (int) *or* ``aspect`` (cell length / cell height): cells along L;
-- ``cell``: "quadrilateral" | "triangle";
+- ``cell``: "quadrilateral" | "triangle" (2D); "hexahedron" | "tetrahedron" (3D, each
+  hexahedron of the structured grid split into 6);
 - ``degree`` (int): displacement degree; the pressure (mixed, penalty) is one lower
   (Taylor-Hood Q2/Q1 or P2/P1 by default);
 - ``quadrature_degree`` (int): set explicitly, because UFL's estimate for the
@@ -18,9 +19,24 @@ Keys (all optional except ``model`` for ``paper`` scenes):
   alpha/2 (J - 1)^2 as a perturbed Lagrangian); plane strain only;
 - ``model``: "plane-strain" | "plane-stress"; required for ``paper`` scenes (which
   have no continuum meaning), otherwise it must agree with the scene's formulation.
+  "3d": the real beam, length x height x width, with any formulation (the 3D model
+  replaces the formulation's 2D assumption; a ``penalty`` needs material.penalty).
+
+3D only (:class:`reference_fem.geometry.BoxGeometry`):
+
+- ``cells_width`` (int): cells across the width (default: cells no more than 1.5 times
+  as wide as high, ``ceil(cells_height * w / (1.5 h))``; the paper beam: as many as
+  across the height);
+- ``progression`` (> 0): cell-to-cell growth of the cell length along x, from the clamp
+  to the free end (1: uniform); a refined level uses its ``factor``-th root, so the
+  levels stay nested (the clamp's edges are singular: grading toward them makes the
+  refinement sequence monotone; README, "The real beam in 3D");
+- ``side_faces``: "free" (default) | "plane-strain" (u_z = 0 on both faces z = +-w/2:
+  the 3D problem then contains the 2D plane-strain solution exactly; a check).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass, replace
 from typing import Any, Mapping
 
@@ -30,13 +46,16 @@ from contract.scene import Scene
 from .models import get_model
 
 CELLS = ("quadrilateral", "triangle")
+CELLS_3D = ("hexahedron", "tetrahedron")
 INCOMPRESSIBILITY = ("mixed", "penalty")
-MODELS = ("plane-strain", "plane-stress")
+MODELS = ("plane-strain", "plane-stress", "3d")
+SIDE_FACES = ("free", "plane-strain")
 # The scene's formulations and whether the scene carries a penalty (the scene language
 # both solvers read: `paper` and `plane-strain` do, `plane-stress` does not).
 FORMULATIONS = {"paper": True, "plane-strain": True, "plane-stress": False}
 KEYS = ("cells_height", "cells_length", "aspect", "cell", "degree", "quadrature_degree",
-        "incompressibility", "model")
+        "incompressibility", "model", "cells_width", "progression", "side_faces")
+KEYS_3D = ("cells_width", "progression", "side_faces")
 
 # Defaults: chosen by the convergence study in reports/reference_fem.md so that the
 # paper's beam (L = 160 mm, h = 5 mm; 64 x 4 Q2 cells) is within 0.5 % of the
@@ -56,25 +75,38 @@ MAX_DEGREE = 8
 class FemSettings:
     """A resolved [fem] table: the mesh counts are numbers, the model is named."""
 
-    model: str                 # "plane-strain" | "plane-stress"
+    model: str                 # "plane-strain" | "plane-stress" | "3d"
     incompressibility: str     # "mixed" | "penalty" | "exact" (plane stress: F33 = 1/J)
     cells_length: int
     cells_height: int
     cell: str = DEFAULT_CELL
     degree: int = DEFAULT_DEGREE
     quadrature_degree: int = 4
+    cells_width: int | None = None   # 3D only
+    progression: float = 1.0         # 3D only
+    side_faces: str = "free"         # 3D only
 
     def cells(self, gdim: int = 2) -> tuple[int, ...]:
-        """Cells along x and across the height."""
+        """Cells along x and across the height (and across the width in 3D)."""
+        if gdim == 3:
+            return (self.cells_length, self.cells_height, self.cells_width)
         return (self.cells_length, self.cells_height)
 
     def refined(self, factor: int) -> "FemSettings":
-        """The same discretisation with every cell split ``factor`` times per direction."""
-        return replace(self, cells_length=self.cells_length * factor,
-                       cells_height=self.cells_height * factor)
+        """The same discretisation with every cell split ``factor`` times per direction
+        (graded 3D meshes: the progression's ``factor``-th root, nested)."""
+        if self.model != "3d":
+            return replace(self, cells_length=self.cells_length * factor,
+                           cells_height=self.cells_height * factor)
+        return replace(self, cells_length=self.cells_length * factor, cells_height=self.cells_height * factor,
+                       cells_width=self.cells_width * factor, progression=self.progression ** (1.0 / factor))
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        d = asdict(self)
+        if self.model != "3d":   # 2D records keep their keys
+            for k in KEYS_3D:
+                d.pop(k)
+        return d
 
 
 def default_quadrature_degree(degree: int) -> int:
@@ -107,10 +139,12 @@ def fem_settings(scene: Scene) -> FemSettings:
         raise SceneError(f"fem: unknown key(s) {unknown}; allowed: {', '.join(sorted(KEYS))}")
 
     form = scene.material.formulation
-    if form == "paper":
+    if t.get("model") == "3d":
+        model = "3d"
+    elif form == "paper":
         if "model" not in t:
             raise SceneError("fem.model: required for material.formulation = \"paper\" "
-                             "(no continuum meaning); allowed: 'plane-strain', 'plane-stress'")
+                             "(no continuum meaning); allowed: 'plane-strain', 'plane-stress', '3d'")
         model = _choice("model", t["model"], MODELS)
     else:
         model = form
@@ -129,7 +163,13 @@ def fem_settings(scene: Scene) -> FemSettings:
         if incompressibility == "penalty" and scene.material.penalty is None:
             raise SceneError("fem.incompressibility: \"penalty\" needs material.penalty")
 
-    cell = _choice("cell", t.get("cell", DEFAULT_CELL), CELLS)
+    if model == "3d":
+        cell = _choice("cell", t.get("cell", "hexahedron"), CELLS_3D)
+    else:
+        cell = _choice("cell", t.get("cell", DEFAULT_CELL), CELLS)
+        given = sorted(set(t) & set(KEYS_3D))
+        if given:
+            raise SceneError(f"fem.{given[0]}: only for fem.model = \"3d\"")
     degree = _int("degree", t.get("degree", DEFAULT_DEGREE), get_model(model, incompressibility).min_degree,
                   MAX_DEGREE)
     ny = _int("cells_height", t.get("cells_height", DEFAULT_CELLS_HEIGHT))
@@ -145,4 +185,12 @@ def fem_settings(scene: Scene) -> FemSettings:
         nx = max(1, round(b.length / b.height * ny / aspect))
     qdeg = _int("quadrature_degree", t.get("quadrature_degree", default_quadrature_degree(degree)), 1,
                 4 * MAX_DEGREE)
-    return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg)
+    if model != "3d":
+        return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg)
+    b = scene.beam
+    nz = _int("cells_width", t.get("cells_width", max(1, math.ceil(ny * b.width / (1.5 * b.height) - 1e-9))))
+    q = t.get("progression", 1.0)
+    if isinstance(q, bool) or not isinstance(q, (int, float)) or not 0 < q < float("inf"):
+        raise SceneError(f"fem.progression: must be a positive number (cell-to-cell growth along x), got {q!r}")
+    side = _choice("side_faces", t.get("side_faces", "free"), SIDE_FACES)
+    return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg, nz, float(q), side)

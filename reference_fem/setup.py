@@ -14,8 +14,9 @@ over the full width is F_tip). Constants enter as dolfinx Constants.
 
 Supports: ``clamp`` fixes the whole left face x = 0 (every component, any
 ``supports.clamp``: a continuum has no separate slopes); ``pin`` fixes the model
-geometry's pin (2D: the node at the centre of the left face, which needs an even number
-of cells across the height).
+geometry's pin (2D: the node at the centre of the left face; 3D: the line across the
+width at mid-height; both need an even number of cells across the height). 3D with
+``side_faces = "plane-strain"`` adds u_z = 0 on both side faces.
 """
 from __future__ import annotations
 
@@ -59,7 +60,7 @@ class Setup:
 
     @property
     def n_fixed(self) -> int:
-        return backend.fixed_dof_count(self.bcs)
+        return backend.fixed_dof_count(self.bcs, self.disc.comm)
 
     def gradient(self, u):
         return ufl.Identity(self.model.geometry.gdim) + ufl.grad(u)
@@ -96,12 +97,13 @@ class Setup:
 
 def supports(disc: backend.Discretisation, scene: Scene, settings: FemSettings, model: ContinuumModel):
     g, b = model.geometry, scene.beam
+    sides = disc.fix(g.sides(b), components=(2,)) if settings.side_faces == "plane-strain" else []
     if scene.supports.left == "clamp":
-        return disc.fix(g.at_left(b), components=range(g.gdim))
+        return disc.fix(g.at_left(b), components=range(g.gdim)) + sides
     if settings.cells_height % 2:
         raise SceneError("fem.cells_height: supports.left = \"pin\" fixes the node at the "
                          "centre of the left face; needs an even number of cells across")
-    return disc.fix(g.pin(b), components=range(g.gdim), on="points")
+    return disc.fix(g.pin(b), components=range(g.gdim), on="points") + sides
 
 
 def set_up(scene: Scene, settings: FemSettings) -> Setup:
