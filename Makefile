@@ -4,7 +4,7 @@ PY := .venv/bin/python
 export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 
-.PHONY: setup test test-slow study bench bench-penalty bench-peers clean-venv
+.PHONY: setup test test-slow study study-full bench bench-penalty bench-peers clean-venv
 
 setup:
 	@bash tools/setup.sh
@@ -17,6 +17,15 @@ test-slow: setup
 
 study: setup
 	$(PY) -m studies run all
+	$(PY) -m studies card paper HB2n-20 --import examples.transversely_cubic
+
+# make study, then the heavy 3D levels (issue 11): the converged 3D cantilever of the
+# three laws (graded 16x1x1 ... 64x4x4, 2 to 4 min per law here) into reports/data/solid3d;
+# RANKS=N runs it under mpiexec on N ranks (README, "The real beam in 3D")
+RANKS ?= 1
+MPIEXEC := mpiexec --oversubscribe --allow-run-as-root -x PYTHONPATH -x OMP_NUM_THREADS -x OPENBLAS_NUM_THREADS
+study-full: study
+	$(if $(filter 1,$(RANKS)),,$(MPIEXEC) -n $(RANKS)) $(PY) -m reference_fem gold --3d --out reports/data/solid3d
 
 bench: setup
 	$(PY) -m studies.bench table3

@@ -12,11 +12,11 @@ from __future__ import annotations
 
 from .case import make_case
 from .continuum import scene as continuum_scene
-from .grid import cantilever_case
+from .grid import DEFAULT, cantilever_case, qlabel
 from .reference import short, MATCHING, continuum_references, describe, variant_of
 from .report import Section, Table, figure, marker, pct, vec_error
 
-STYLE = {(2, 2): ":", (3, 2): "-", (5, 3): "--", (3, 3): "-."}
+STYLE = {(2, 2): ":", (3, 2): "-", (5, 3): "--", (3, 3): "-.", DEFAULT: "-"}
 
 
 def cases(grid: dict, tiny: bool) -> list:
@@ -39,7 +39,7 @@ def points(ctx) -> list[dict]:
         if r["solver"] == "ancf":
             ref = refs.get((d["law"], MATCHING[d["formulation"]]))
             p = {"law": d["law"], "model": MATCHING[d["formulation"]], "solver": "ancf",
-                 "config": f"{d['element']} q{d['quadrature'][0]}{d['quadrature'][1]}", "element": d["element"],
+                 "config": f"{d['element']} {qlabel(d['quadrature'])}", "element": d["element"],
                  "quadrature": d["quadrature"], "mesh": d["elements"], "ndof": r.get("ndof")}
         else:
             ref = refs.get((d["law"], variant_of(r["scene"])))

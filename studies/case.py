@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib import metadata
 from typing import Any, Mapping
@@ -53,6 +53,19 @@ class Case:
     solver: str         # a key of studies.solvers.SOLVERS
     scene_json: str     # canonical JSON of the scene dict (contract.scene format, SI)
     options_json: str   # canonical JSON of the options dict (e.g. {"timing": {...}})
+    # the id, fixed where the case is made and carried to any worker with the case: a
+    # worker never re-derives it from sources that may have changed since (see
+    # :meth:`Case.sources_changed`)
+    id: str = field(default="", compare=False)
+
+    def __post_init__(self):
+        if not self.id:
+            object.__setattr__(self, "id", case_id(self.solver, self.scene_json, self.options_json))
+
+    def sources_changed(self) -> bool:
+        """Whether the solver's sources (or versions) differ from those the id was made
+        with: a record computed now would not be what the id names."""
+        return _fresh_id(self.solver, self.scene_json, self.options_json) != self.id
 
     @property
     def scene(self) -> dict:
@@ -71,21 +84,19 @@ class Case:
     def name(self) -> str:
         return self.scene["name"]
 
-    @property
-    def id(self) -> str:
-        return case_id(self.solver, self.scene_json, self.options_json)
-
     def to_dict(self) -> dict:
         return {"id": self.id, "study": self.study, "solver": self.solver,
                 "name": self.name, "options": self.options}
 
 
-@lru_cache(maxsize=None)
-def case_id(solver: str, scene_json: str, options_json: str) -> str:
+def _fresh_id(solver: str, scene_json: str, options_json: str) -> str:
     ident = canonical({"solver": solver, "scene": json.loads(scene_json),
                        "options": json.loads(options_json), "source": source_hash(solver),
                        "versions": versions()})
     return hashlib.sha256(ident.encode()).hexdigest()[:20]
+
+
+case_id = lru_cache(maxsize=None)(_fresh_id)   # sources are read once per process
 
 
 def make_case(study: str, solver: str, scene: Mapping, options: Mapping | None = None) -> Case:

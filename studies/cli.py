@@ -9,7 +9,9 @@
 - ``gold [--refresh]``: run every study in tiny mode and compare its named values with
   tests/gold/studies_tiny.json (``--refresh`` rewrites that file instead);
 - ``diff OLD NEW``: the records of two output directories compared case by case
-  (:mod:`studies.diff`): which results changed, and by how much.
+  (:mod:`studies.diff`): which results changed, and by how much;
+- ``card NAME [NAME ...] [--import MODULE]``: the element report card (:mod:`studies.card`),
+  ``paper`` for the four paper elements; written to ``<out>/cards/``.
 
 Clusters: ``mpiexec -n N python -m mpi4py.futures -m studies run all --executor mpi``.
 """
@@ -19,6 +21,8 @@ import argparse
 import sys
 import time
 from pathlib import Path
+
+from contract.cli import command
 
 from .catalog import CASES_TOML, get_study, load_catalog
 from .execute import DEFAULT_TIMEOUT_S
@@ -86,6 +90,16 @@ def _gold(args) -> int:
     return 1 if problems else 0
 
 
+def _card(args) -> int:
+    from .card import PAPER_ELEMENTS, run_cards
+
+    out = resolve_out(args.out, args.tiny)
+    names = [e for n in args.names for e in (PAPER_ELEMENTS if n == "paper" else (n,))]
+    for path in run_cards(names, out, args.tiny, args.imports, args.workers, not args.no_progress, args.force):
+        print(f"card: {path}")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m studies", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="command", required=True)
@@ -113,17 +127,21 @@ def main(argv: list[str] | None = None) -> int:
     g = sub.add_parser("gold", help="tiny-mode golden values: check, or --refresh")
     g.add_argument("--refresh", action="store_true", help="rewrite tests/gold/studies_tiny.json")
     g.add_argument("--out", help="directory for the tiny run (default: a temp dir)")
+    c = sub.add_parser("card", help="element report cards (NAME ..., or paper)")
+    c.add_argument("names", nargs="+", metavar="NAME")
+    c.add_argument("--import", dest="imports", action="append", default=[], metavar="MODULE",
+                   help="a module to import first (it registers the user's element); repeatable")
+    c.add_argument("--tiny", action="store_true", help="the CI grid")
+    c.add_argument("--out", help="output directory (default reports/, or a temp dir with --tiny)")
+    c.add_argument("--force", action="store_true", help="recompute the cards' runs and checks")
+    c.add_argument("--workers", type=int, default=2)
+    c.add_argument("--no-progress", action="store_true")
     for sp in (ls, r, rp):
         sp.add_argument("--catalog", type=Path, default=CASES_TOML, help="the case list (default studies/cases.toml)")
     args = p.parse_args(argv)
-    try:
-        return {"list": _list, "run": _run, "report": _report, "gold": _gold, "diff": _diff}[args.command](args)
-    except ValueError as e:
-        print(f"studies: error: {e}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        print("studies: interrupted (every finished record is kept; a rerun does the rest)", file=sys.stderr)
-        return 130
+    run = {"list": _list, "run": _run, "report": _report, "gold": _gold, "diff": _diff, "card": _card}[args.command]
+    return command("studies", lambda: run(args), errors=(ValueError, ImportError),
+                   interrupt_note=" (every finished record is kept; a rerun does the rest)")
 
 
 if __name__ == "__main__":

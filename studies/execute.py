@@ -1,7 +1,8 @@
 """Running one case: the worker function (any process) and the serial timed run.
 
 :func:`execute` runs a case once and returns its record: the solver's record plus
-``case_id``, ``case`` and ``versions``. A case that raises is recorded, not lost:
+``case_id``, ``case`` and ``versions``. A case whose options name ``imports`` (modules that register a
+user's element or law) imports them first, in whatever process runs it. A case that raises is recorded, not lost:
 status "failed" and the exception as the reason (:func:`contract.record.sanitize` later
 turns any NaN into null).
 
@@ -13,6 +14,7 @@ calls it serially, outside any pool.
 """
 from __future__ import annotations
 
+import importlib
 import os
 import signal
 import statistics
@@ -45,6 +47,9 @@ def _failed(case: Case, exc: BaseException) -> dict:
 
 
 def annotate(rec: dict, case: Case, started: float) -> dict:
+    if case.sources_changed():   # edited while the study ran: keep the result, never reuse it
+        rec["transient"] = True
+        rec["note"] = "the solver's sources changed while this case ran; the next run recomputes it"
     rec["case_id"] = case.id
     rec["case"] = case.to_dict()
     rec["versions"] = versions()
@@ -53,9 +58,26 @@ def annotate(rec: dict, case: Case, started: float) -> dict:
     return rec
 
 
+def _run_launched(case: Case, timeout_s: float | None) -> tuple[dict, float]:
+    """A case with the ``mpi_ranks`` option: ``python -m reference_fem run`` under
+    mpiexec (or srun) on that many ranks, in a temporary directory; its record."""
+    import tempfile
+
+    from reference_fem.launch import run_launched
+
+    t0 = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix="case-mpi-") as tmp:
+        rec = run_launched(case.scene, int(case.options["mpi_ranks"]), tmp, timeout_s)
+    return rec, time.perf_counter() - t0
+
+
 def _run_once(case: Case, timeout_s: float | None = None) -> tuple[dict, float]:
     """One solver call; a solver error or a run beyond ``timeout_s`` (SIGALRM, main
     thread: pool and MPI workers run tasks there) gives a failed record."""
+    if case.options.get("mpi_ranks"):
+        return _run_launched(case, timeout_s)
+    for module in case.options.get("imports", ()):   # user modules that register elements / laws
+        importlib.import_module(module)
     run = get_solver(case.solver).run
     armed = bool(timeout_s) and hasattr(signal, "setitimer")
     if armed:

@@ -10,16 +10,16 @@ from __future__ import annotations
 
 import math
 
-from .grid import cantilever_case
+from .grid import cantilever_case, qlabel, rule
 from .pendulum import LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case, tip_errors
-from .reference import short, MATCHING, VARIANT_LABEL, abaqus, continuum_references, describe
+from .reference import short, VARIANT_LABEL, abaqus, continuum_references, describe
 from .report import Section, Table, mm, pct, vec_error
 
 VARIANTS = ("plane-strain", "plane-strain-penalty", "plane-stress")
 
 
 def configurations(grid: dict) -> list[tuple[str, tuple[int, int], str]]:
-    return [(f, tuple(q), c) for f, q, c in grid["configurations"]]
+    return [(f, rule(q), c) for f, q, c in grid["configurations"]]
 
 
 def cases(grid: dict, tiny: bool) -> list:
@@ -99,7 +99,7 @@ def candidates(ctx) -> dict[str, list[tuple[str, tuple[float, float], float | No
                     continue
                 tip = (ser[-1]["tip"]["ux"], ser[-1]["tip"]["uy"])
                 change = vec_error(ser[-2]["tip"], tip) if len(ser) > 1 else None
-                lst.append((f"ANCF `{f}` q{q[0]}{q[1]} {c}, {el} x {ser[-1]['elements']}", tip, change))
+                lst.append((f"ANCF `{f}` {qlabel(q)} {c}, {el} x {ser[-1]['elements']}", tip, change))
         out[law] = lst
     return out
 
@@ -186,7 +186,7 @@ def gold_values(ctx) -> dict:
             q = d["quadrature"]
             for comp in ("ux", "uy"):
                 v = d["tip"][comp]
-                out[f"formulation/{d['formulation']}/q{q[0]}{q[1]}/{d['clamp']}/{d['element']}/{d['elements']}/"
+                out[f"formulation/{d['formulation']}/{qlabel(q)}/{d['clamp']}/{d['element']}/{d['elements']}/"
                     f"{short(d['law'])}/{comp}"] = (v, 1e-6 * abs(v) + 1e-9)
     for r in ctx.records():
         if r["scene"]["analysis"]["kind"] == "dynamic":

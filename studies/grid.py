@@ -16,9 +16,26 @@ def count_for(grid: dict, element: str) -> int:
     raise ValueError(f"counts: expected \"paper\" or a table {{element = count}}, got {counts!r}")
 
 
+# A grid's quadrature entry: [n_x, n_y], or this word for the element's own rule at the
+# mesh's l_e / h (ElementSpec.quadrature; the scene then leaves `quadrature` out).
+DEFAULT = "default"
+
+
+def rule(quadrature) -> tuple[int, int] | str:
+    """A grid's quadrature entry as a hashable value: (n_x, n_y) or :data:`DEFAULT`."""
+    return DEFAULT if quadrature == DEFAULT else tuple(int(v) for v in quadrature)
+
+
+def qlabel(quadrature) -> str:
+    """"q32" for (3, 2), "qdef" for the element default: names, figure and gold keys."""
+    q = rule(quadrature)
+    return "qdef" if q == DEFAULT else f"q{q[0]}{q[1]}"
+
+
 def cantilever_case(study: str, law: str, formulation: str, element: str, elements: int,
                     quadrature, clamp: str, options: dict | None = None) -> Case:
-    q = tuple(int(v) for v in quadrature)
-    name = f"cantilever-{law}-{formulation}-{element}-{elements}-q{q[0]}{q[1]}-{clamp}"
+    q = rule(quadrature)
+    name = f"cantilever-{law}-{formulation}-{element}-{elements}-{qlabel(q)}-{clamp}"
     return make_case(study, "ancf", cantilever_scene(law, formulation, element, int(elements),
-                                                     quadrature=q, clamp=clamp, name=name), options)
+                                                     quadrature=None if q == DEFAULT else q,
+                                                     clamp=clamp, name=name), options)

@@ -14,6 +14,8 @@ from dataclasses import dataclass, field
 
 from contract.paper import paper_tip
 
+from .grid import DEFAULT, rule
+
 # ANCF formulation -> continuum variant of the same model (``paper`` has no continuum
 # meaning; its energies are plane-strain-like, so plane strain with the penalty is shown).
 MATCHING = {"plane-strain": "plane-strain-penalty", "plane-stress": "plane-stress",
@@ -44,7 +46,8 @@ def describe(rec: dict) -> dict:
     if rec["solver"] == "ancf":
         a = s["ancf"]
         d.update(formulation=s["material"]["formulation"], element=a["element"],
-                 elements=a["elements"], quadrature=tuple(a["quadrature"]),
+                 elements=a["elements"], quadrature=rule(a.get("quadrature", DEFAULT)),
+                 rule_used=tuple(rec["quadrature"]) if rec.get("quadrature") else None,
                  clamp=s["supports"].get("clamp"))
     else:
         fem = s.get("fem") or {}

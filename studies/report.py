@@ -156,6 +156,11 @@ def write_readme(out: Path, sections: list[Section], tiny: bool, timings: dict[s
                           f"{caption} ([{path}]({path}), CSV: [{path[:-3]}.csv]({path[:-3]}.csv))", ""]
         if s.text:
             lines += [s.text, ""]
+    cards = sorted((out / "cards").glob("*.md")) if (out / "cards").is_dir() else []
+    if cards:   # written by `python -m studies card` (make study runs it after the studies)
+        lines += ["## Element report cards", "",
+                  "Every check the harness knows, run on one element (`python -m studies card NAME`): "
+                  + ", ".join(f"[{c.stem}](cards/{c.name})" for c in cards) + ".", ""]
     if timings:
         lines += ["## Run times of the last run", "", "| study | s |", "|---|---|"]
         lines += [f"| {k} | {v:.1f} |" for k, v in timings.items()] + [""]

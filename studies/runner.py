@@ -15,7 +15,9 @@
    longer than ``timeout_s`` is stopped inside its worker and recorded as failed.
 3. Cases with a ``timing`` option then run serially in this process, after the pool
    has shut down (warm-up, median of N: :func:`studies.execute.execute_timed`), so that
-   timings never come from a busy machine.
+   timings never come from a busy machine. Cases with an ``mpi_ranks`` option (the 3D
+   continuum) run one after another, each launched by ``mpiexec -n N`` (``srun`` under
+   Slurm; :mod:`reference_fem.launch`) with the machine to themselves.
 4. The store is compacted to the current case list.
 """
 from __future__ import annotations
@@ -92,8 +94,9 @@ def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: s
     cases = list(dict.fromkeys(cases))  # the same case twice runs once
     todo = pending(cases, store, force)
     summary = RunSummary(study, cases=len(cases), reused=len(cases) - len(todo))
-    pooled = [c for c in todo if not c.timing]
-    timed = [c for c in todo if c.timing]
+    launched = [c for c in todo if c.options.get("mpi_ranks")]
+    pooled = [c for c in todo if not c.timing and c not in launched]
+    timed = [c for c in todo if c.timing and c not in launched]
     executor = executor or default_executor()
 
     def done(rec: dict, how: str) -> None:
@@ -118,6 +121,8 @@ def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: s
                     except Exception as e:  # the worker itself died (e.g. killed, segfault)
                         rec = _mark_worker_death(futures[fut], e)
                     done(rec, executor)
+        for c in launched:
+            done(execute(c, timeout_s), f"mpi-{c.options['mpi_ranks']}")
         for c in timed:
             done(execute_timed(c, timeout_s), "serial-timed")
     store.compact(c.id for c in cases)

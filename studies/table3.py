@@ -9,10 +9,25 @@ paper's own cell for ``paper`` and the matching continuum model otherwise.
 """
 from __future__ import annotations
 
+import json
+from pathlib import Path
+
 from .grid import cantilever_case, count_for
 from .reference import (short, MATCHING, VARIANT_LABEL, abaqus, continuum_references,
                         describe, paper_tip, stability_mark)
 from .report import Section, Table, mm, pct, rel_dev
+
+
+GOLD_3D = Path(__file__).resolve().parent.parent / "tests" / "gold" / "fem_cantilever_3d.json"
+
+
+def solid_references() -> dict[str, tuple[float, float]]:
+    """{law: (ux, uy)} of the converged 3D beam (tests/gold/fem_cantilever_3d.json,
+    ``python -m reference_fem gold --3d``), or {} without that file."""
+    if not GOLD_3D.exists():
+        return {}
+    cases = json.loads(GOLD_3D.read_text())["cases"]
+    return {c["law"]: (c["tip"]["ux"], c["tip"]["uy"]) for c in cases.values() if c.get("tip")}
 
 
 def cases(grid: dict, tiny: bool) -> list:
@@ -56,7 +71,8 @@ def report(ctx) -> Section:
                   "Free-end centre-line displacement of the paper's cantilever under its own weight. "
                   "`paper`: the paper's literal energies in the paper setting (quadrature (2, 2), all "
                   "nodal coordinates of the left node clamped); `plane-strain` / `plane-stress`: the "
-                  "consistent formulations with the defaults (quadrature (3, 2), clamp of the end face).")
+                  "consistent formulations with the defaults (each element's default quadrature at its "
+                  "l_e / h, README \"Default quadrature\"; clamp of the end face).")
     hdr = ["row", "n"] + [f"{short(l)} {c} (mm)" for l in laws for c in ("ux", "uy")]
     rows = []
     for form in forms:
@@ -71,6 +87,10 @@ def report(ctx) -> Section:
         tips = [refs[(law, v)].tip if (law, v) in refs else None for law in laws]
         rows.append([f"continuum {VARIANT_LABEL[v]}", "conv."]
                     + [mm(x) for t in tips for x in (t or (None, None))])
+    solid = solid_references()
+    if solid:
+        rows.append(["continuum 3D beam (w = 7 mm), exact", "conv."]
+                    + [mm(x) for law in laws for x in (solid.get(law) or (None, None))])
     rows.append(["paper ABAQUS", 160] + [mm(x) for law in laws for x in (abaqus(law) or (None, None))])
     sec.table(ctx, Table("table3", hdr, rows, {j: ".2f" for j in range(2, len(hdr))}),
               "Tip displacement (mm) of every element and formulation beside the paper's rows, the converged "
@@ -92,6 +112,21 @@ def report(ctx) -> Section:
               "Deviation of each cell, (ours - reference) / |reference|: `paper` against the paper's own cell, "
               "the consistent formulations against the continuum model they discretise (plane strain with the "
               "same penalty, or plane stress).")
+    if solid:
+        hdr = ["element", "formulation"] + [f"{short(l)} {c} (%)" for l in laws for c in ("ux", "uy")]
+        rows = []
+        for form in forms:
+            for el in els:
+                row = [el, form]
+                for law in laws:
+                    d, ref = got.get((el, form, law)), solid.get(law)
+                    tip = d["tip"] if d and d["status"] == "converged" else None
+                    row += [pct(rel_dev(tip["ux"], ref[0])) if tip and ref else None,
+                            pct(rel_dev(tip["uy"], ref[1])) if tip and ref else None]
+                rows.append(row)
+        sec.table(ctx, Table("table3_vs_3d", hdr, rows, {j: "+.2f" for j in range(2, len(hdr))}),
+                  "Deviation of each cell from the real 3D beam, (ours - 3D) / |3D|: the converged 3D continuum "
+                  "(7 mm wide, clamped face, exactly incompressible; tests/gold/fem_cantilever_3d.json).")
     sec.text = _findings(got, refs, els, laws, g.get("low_order", ()))
     return sec
 

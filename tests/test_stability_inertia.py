@@ -117,3 +117,18 @@ def test_a_zero_energy_mode_at_round_off_is_called_singular():
     assert abs(lam[0]) < SINGULAR_TOL and lam[2] > 1e-9
     assert rec["stable"] is False and "zero-energy mode" in rec["stability"]
     assert any("2 spurious zero-energy mode" in w for w in rec["warnings"])
+
+
+def test_the_factor_growth_decides_whether_a_tiny_pivot_spoils_the_count():
+    """A nearly singular but definite matrix has a tiny pivot and no growth (its count
+    is trusted); a tiny pivot that makes the factors large is reported as growth (the
+    count then goes to LAPACK's bisection). Both counts are known in closed form."""
+    from ancf.kernels import band_ldlt_inertia
+
+    def band(a, c):          # [[a, c], [c, a]] in upper band form, b = 1
+        return np.array([[0.0, c], [a, a]])
+
+    neg, small, growth = band_ldlt_inertia(band(1.0, 1.0 - 1e-10), 1, 0.0)
+    assert (neg, growth) == (0, pytest.approx(1.0)) and small < 1e-9     # eigenvalues 1e-10, 2
+    neg, small, growth = band_ldlt_inertia(band(1.0, 1e4), 1, 0.0)
+    assert neg == 1 and growth > 1e7                                       # eigenvalues 1 -+ 1e4

@@ -87,10 +87,29 @@ def test_case_id_changes_with_scene_options_and_solver_source(monkeypatch):
     before = a.id
     case_mod.case_id.cache_clear()
     monkeypatch.setattr(case_mod, "source_hash", lambda name: "other source")
-    assert a.id != before
+    assert small_cases(counts=(2,))[0].id != before
+    assert a.id == before and a.sources_changed()     # a made case keeps the id it was made with
     monkeypatch.undo()
     case_mod.case_id.cache_clear()
-    assert a.id == before
+    assert small_cases(counts=(2,))[0].id == before and not a.sources_changed()
+
+
+def test_a_source_edit_during_a_run_loses_no_record_and_the_next_run_redoes_them(tmp_path, monkeypatch):
+    """Records carry the id their case was made with (not one a worker re-derives from
+    edited sources, which compaction used to delete); what ran on changed sources is kept
+    but marked transient, so the next run recomputes it."""
+    from studies import case as case_mod
+    store = RecordStore(tmp_path / "t.jsonl")
+    cases = small_cases(counts=(2, 3))
+    monkeypatch.setattr(case_mod, "source_hash", lambda name: "edited while running")
+    s = run_cases("t", cases, store, executor="serial", progress=False)
+    recs = store.read()
+    assert s.computed == 2 and set(recs) == {c.id for c in cases}
+    assert all(r["transient"] and "changed" in r["note"] for r in recs.values())
+    monkeypatch.undo()
+    again = run_cases("t", cases, store, executor="serial", progress=False)
+    assert (again.computed, again.reused) == (2, 0)
+    assert not any(r.get("transient") for r in store.read().values())
 
 
 def test_unknown_solver_names_the_valid_ones():

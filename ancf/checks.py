@@ -1,0 +1,253 @@
+"""The contract checks of an element, as measurements: each returns the measured number(s),
+the bound it is held to and whether it passes. ``tests/test_elements.py`` and
+``tests/test_model.py`` assert them over every registered element; the element report
+card (``python -m studies card``) prints them.
+
+- :func:`nodality`: interpolating any basis function's nodal coordinates gives the
+  function and its gradient back;
+- :func:`reference_state`: the reference nodal coordinates give F = I;
+- :func:`energy_gradient`, :func:`tangent_gradient`: Taylor tests (force = energy
+  gradient, tangent = force gradient; remainder slopes near 2);
+- :func:`rigid_motion`: a rigid rotation + translation of a bent state leaves the energy
+  and rotates the force;
+- :func:`patch`: a homogeneous deformation: the assembled force equals the constant
+  stress P(F0) (from the energy, by central differences) times the boundary integrals of
+  the shape functions (divergence theorem);
+- :func:`mass`: 1^T M 1 = rho A L, the gravity resultant = rho g V, M symmetric positive
+  definite;
+- :func:`conformity`: the jump of r and r_y across a shared element face under a bent state
+  (measured, not required: elements whose trace involves other nodes jump).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .build import build_material
+from .elements import KINDS, ElementSpec, get_element
+from .formulations import FORMULATIONS
+from .mesh import Mesh, fixed_dofs
+from .model import BeamModel
+from .quadrature import gauss
+from contract import paper
+from contract.scene import MaterialSpec
+
+GEOMETRIES = ((0.160 / 16, 0.005), (0.160 / 640, 0.005), (0.350 / 4, 0.005))   # (l_e, h), m
+HS = np.array([4e-6, 2e-6, 1e-6])                                               # Taylor steps
+SLOPE = 1.8          # Taylor remainder slope required (2 in exact arithmetic)
+
+
+def _spec(element) -> ElementSpec:
+    return get_element(element) if isinstance(element, str) else element
+
+
+def paper_material(law: str, formulation: str, penalty: float = paper.PENALTY):
+    """The paper's constants of ``law`` in ``formulation`` (penalty where it has one)."""
+    c = dict(paper.materials()[law])
+    rho = c.pop("density")
+    return build_material(MaterialSpec(law, formulation, rho, c,
+                                       penalty if FORMULATIONS[formulation].penalised else None))
+
+
+def small_model(element, law: str = "yeoh", formulation: str = "plane-stress", n: int = 3,
+                penalty: float = 20e6, length: float = 0.16) -> BeamModel:
+    """n elements of the cantilever's section, clamped face, quadrature [3, 2]."""
+    mesh = Mesh(_spec(element), n, length, 0.005, 0.007)
+    return BeamModel(mesh, paper_material(law, formulation, penalty), gauss(3, 2),
+                     fixed_dofs(mesh, "clamp", "face"))
+
+
+def bent_state(model: BeamModel, rng, angle: float = 0.2, noise: float = 1e-6) -> np.ndarray:
+    """An admissible large-deformation state: the centre line bent to a circular arc
+    (tip rotation ``angle``), sections stretched 1 % and squeezed 1 %, plus ``noise``
+    (m, normal, from ``rng``)."""
+    m = model.mesh
+    kinds = m.element.kinds
+    q = m.reference.reshape(m.n_nodes, -1, 2).copy()
+    th = angle * m.node_x / m.length
+    R = m.length / angle
+    q[:, kinds.index("r")] = np.c_[R * np.sin(th), R * (1 - np.cos(th))]
+    if "r_x" in kinds:
+        q[:, kinds.index("r_x")] = 1.01 * np.c_[np.cos(th), np.sin(th)]
+    q[:, kinds.index("r_y")] = 0.99 * np.c_[-np.sin(th), np.cos(th)]
+    u = q.reshape(-1) - m.reference
+    return u + noise * rng.standard_normal(m.n_dof) if noise else u
+
+
+def rotate(model: BeamModel, u: np.ndarray, t: float, shift=(0.0, 0.0)):
+    """The state rotated by t about the origin and translated: positions and gradients
+    rotate, positions also shift. Returns (displacement, Q)."""
+    m = model.mesh
+    Q = np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])
+    q = (m.reference + u).reshape(m.n_nodes, -1, 2) @ Q.T
+    q[:, m.element.kinds.index("r")] += shift
+    return q.reshape(-1) - m.reference, Q
+
+
+def _nodal_values(spec: ElementSpec, poly, length: float) -> np.ndarray:
+    return np.array([poly(xi * length, 0.0, *KINDS[k]) for xi in spec.nodes for k in spec.kinds])
+
+
+def nodality(element, geometries=GEOMETRIES, seed: int = 0) -> dict:
+    """Worst error of reproducing every basis function and its gradient at random
+    points, relative to the size of the terms summed (round-off scale)."""
+    spec, rng, worst = _spec(element), np.random.default_rng(seed), 0.0
+    for length, height in geometries:
+        xi, eta = rng.uniform(0, 1, 20), rng.uniform(-0.5, 0.5, 20)
+        N, dN = spec.tabulate(xi, eta, length, height)
+        x, y = xi * length, eta * height
+        for p in spec.polys:
+            q = _nodal_values(spec, p, length)
+            for M, expected in ((N, p(x, y)), (dN[:, :, 0], p(x, y, 1, 0)), (dN[:, :, 1], p(x, y, 0, 1))):
+                terms = (np.abs(M) @ np.abs(q)).max()
+                err = np.abs(M @ q - expected).max()
+                worst = max(worst, float(err / terms) if terms > 0 else float(err))
+    return {"error": worst, "bound": 1e-11, "passes": worst <= 1e-11}
+
+
+def reference_state(element) -> dict:
+    """max |F - I| at points of an element in its reference coordinates."""
+    spec = _spec(element)
+    le, h = 0.01, 0.005
+    q = np.concatenate([spec.reference_coordinates(x * le) for x in spec.nodes])
+    xi = np.linspace(0, 1, 7)
+    N, dN = spec.tabulate(xi, np.full(7, 0.3), le, h)
+    F = np.einsum("ai,paj->pij", q, dN)
+    err = max(float(np.abs(F - np.eye(2)).max()), float(np.abs(N @ q - np.c_[xi * le, np.full(7, 0.3 * h)]).max() / h))
+    return {"error": err, "bound": 1e-12, "passes": err <= 1e-12}
+
+
+def _slopes(r) -> np.ndarray:
+    return np.diff(np.log(r)) / np.diff(np.log(HS))
+
+
+def energy_gradient(model: BeamModel, rng, directions: int = 3) -> dict:
+    """Taylor test |U(u + h d) - U(u) - h f.d| ~ h^2: the smallest remainder slope."""
+    u = bent_state(model, rng)
+    f, U0 = model.internal_force(u), model.strain_energy(u)
+    slopes = [_slopes([abs(model.strain_energy(u + h * d) - U0 - h * f @ d) for h in HS])
+              for d in rng.standard_normal((directions, u.size))]
+    s = float(np.min(slopes))
+    return {"slope": s, "bound": SLOPE, "passes": s > SLOPE}
+
+
+def tangent_gradient(model: BeamModel, rng) -> dict:
+    """Taylor test |f(u + h d) - f(u) - h K d| ~ h^2, and the symmetry of K."""
+    u = bent_state(model, rng)
+    f, K = model.internal_force_and_tangent(u)
+    Kd = K.to_sparse().toarray()
+    asym = float(np.abs(Kd - Kd.T).max() / np.abs(Kd).max())
+    d = rng.standard_normal(u.size)
+    s = float(_slopes([np.abs(model.internal_force(u + h * d) - f - h * (Kd @ d)).max() for h in HS]).min())
+    return {"slope": s, "asymmetry": asym, "bound": SLOPE, "passes": s > SLOPE and asym <= 1e-10}
+
+
+def rigid_motion(model: BeamModel, rng) -> dict:
+    """A bent state rotated by 0.7 rad and shifted: relative energy change and force
+    rotation error; and the rigidly moved reference (zero energy when stress-free)."""
+    u = bent_state(model, rng)
+    U, f = model.strain_energy(u), model.internal_force(u)
+    v, Q = rotate(model, u, 0.7, shift=(0.03, -0.2))
+    energy = abs(model.strain_energy(v) - U) / abs(U)
+    force = float(np.abs(model.internal_force(v) - (f.reshape(-1, 2) @ Q.T).reshape(-1)).max() / np.abs(f).max())
+    w, Q = rotate(model, np.zeros_like(u), -1.1, shift=(0.5, 0.1))
+    f0 = model.internal_force(np.zeros_like(u))
+    scale = max(np.abs(f0).max(), np.abs(f).max())
+    moved = float(np.abs(model.internal_force(w) - (f0.reshape(-1, 2) @ Q.T).reshape(-1)).max() / scale)
+    ok = energy <= 1e-9 and force <= 1e-8 and moved <= 1e-9
+    return {"energy": energy, "force": force, "reference_moved": moved, "passes": ok}
+
+
+def _face_integrals(model: BeamModel) -> np.ndarray:
+    """G[a, i, j] = integral over the boundary of N_a n_j (element faces x = 0, l_e of the
+    end elements, and the faces y = +-h/2), by Gauss rules exact for the polynomials."""
+    m, spec = model.mesh, model.mesh.element
+    le, h, w = m.element_length, m.height, m.width
+    G = np.zeros((m.n_dof // 2, 2))
+    x, wx = np.polynomial.legendre.leggauss(8)
+    xi, wxi = (x + 1) / 2, wx / 2
+    for e, dofs in enumerate(m.element_dofs):
+        shape_ids = dofs[:, 0] // 2
+        for eta, sign in ((0.5, 1.0), (-0.5, -1.0)):             # top and bottom faces: n = (0, +-1)
+            N, _ = spec.tabulate(xi, np.full(xi.size, eta), le, h)
+            G[shape_ids, 1] += sign * (wxi @ N) * le * w
+        for xe, sign, end in ((0.0, -1.0, e == 0), (1.0, 1.0, e == m.n_elements - 1)):
+            if end:                                               # end faces: n = (-+1, 0)
+                N, _ = spec.tabulate(np.full(xi.size, xe), xi - 0.5, le, h)
+                G[shape_ids, 0] += sign * (wxi @ N) * h * w
+    return G
+
+
+def patch(element, law: str = "neo-hookean", formulation: str = "plane-stress", n: int = 3,
+          length: float = 0.02) -> dict:
+    """Constant stress: u from F0 = [[1.1, 0.04], [-0.03, 0.93]] on a free n-element beam.
+    The assembled force must equal f_a = P(F0) . integral_boundary N_a n (divergence
+    theorem over the beam's outer boundary), with P = dW/dF from the energy U(F) / V by
+    central differences (error ~1e-9 of P). Returns the worst nodal error relative to
+    max |f|: round-off for a conforming element; for a non-conforming one, the interior
+    faces' jump terms, which do not cancel (Irons' patch test fails)."""
+    spec = _spec(element)
+    mesh = Mesh(spec, n, length, 0.005, 0.007)
+    model = BeamModel(mesh, paper_material(law, formulation), gauss(*_exact(spec)), np.array([], int))
+    F0 = np.array([[1.1, 0.04], [-0.03, 0.93]])
+
+    def state(F):
+        q = mesh.reference.reshape(mesh.n_nodes, -1, 2)
+        return (q @ F.T).reshape(-1) - mesh.reference       # positions and gradients map by F
+
+    V = mesh.length * mesh.height * mesh.width
+    P, d = np.zeros((2, 2)), 1e-6
+    for i in range(2):
+        for j in range(2):
+            E = np.zeros((2, 2)); E[i, j] = d
+            P[i, j] = (model.strain_energy(state(F0 + E)) - model.strain_energy(state(F0 - E))) / (2 * d * V)
+    expected = (_face_integrals(model) @ P.T).reshape(-1)
+    f = model.internal_force(state(F0))
+    err = float(np.abs(f - expected).max() / np.abs(f).max())
+    return {"error": err, "bound": 1e-6, "passes": err <= 1e-6}
+
+
+def _exact(spec: ElementSpec) -> tuple[int, int]:
+    dx, dy = spec.degree()
+    return dx + 1, dy + 1
+
+
+def mass(element, n: int = 5) -> dict:
+    """Relative errors of the translational mass and the gravity resultant; M SPD."""
+    mesh = Mesh(_spec(element), n, 0.35, 0.005, 0.007)
+    model = BeamModel(mesh, paper_material("yeoh", "plane-stress"), gauss(1, 1), np.array([], int))
+    M = model.mass_matrix()
+    ex = np.zeros(mesh.n_dof)
+    for node in range(mesh.n_nodes):
+        ex[mesh.dofs(node, ["r"])[0]] = 1.0
+    ey = np.roll(ex, 1)
+    exact = model.material.density * 0.35 * 0.005 * 0.007
+    g = model.gravity_force((0.0, -9.81))
+    Md = M.to_sparse().toarray()
+    errs = {"mass": max(abs(ex @ M.matvec(ex) / exact - 1), abs(ey @ M.matvec(ey) / exact - 1),
+                        abs(ex @ M.matvec(ey)) / exact),
+            "gravity": max(abs(g @ ey / (-9.81 * exact) - 1), abs(g @ ex) / (9.81 * exact)),
+            "asymmetry": float(np.abs(Md - Md.T).max() / np.abs(Md).max())}
+    spd = bool(M.is_positive_definite())
+    return {**errs, "positive_definite": spd, "bound": 1e-12,
+            "passes": spd and max(errs.values()) <= 1e-12}
+
+
+def conformity(element, angle: float = 0.5, n: int = 2) -> dict:
+    """Jumps across the shared face of two elements under the bent state (no noise):
+    max |r_left - r_right| / h and max |r_y,left - r_y,right| over the face."""
+    spec = _spec(element)
+    mesh = Mesh(spec, n, 0.02, 0.005, 0.007)
+    model = BeamModel(mesh, paper_material("neo-hookean", "plane-stress"), gauss(2, 2), np.array([], int))
+    q = mesh.reference + bent_state(model, None, angle, noise=0.0)
+    eta = np.linspace(-0.5, 0.5, 11)
+    le, h = mesh.element_length, mesh.height
+    jr = jy = 0.0
+    for e in range(n - 1):
+        left, right = mesh.element_dofs[e], mesh.element_dofs[e + 1]
+        NL, dNL = spec.tabulate(np.ones(eta.size), eta, le, h)
+        NR, dNR = spec.tabulate(np.zeros(eta.size), eta, le, h)
+        qL, qR = q[left], q[right]
+        jr = max(jr, float(np.abs(NL @ qL - NR @ qR).max() / h))
+        jy = max(jy, float(np.abs(dNL[:, :, 1] @ qL - dNR[:, :, 1] @ qR).max()))
+    return {"jump_r": jr, "jump_r_y": jy, "conforming": jr <= 1e-12 and jy <= 1e-12}
+

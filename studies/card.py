@@ -1,0 +1,187 @@
+"""The element report card: everything the harness knows, run on one element.
+
+``python -m studies card NAME [NAME ...] [--import MODULE] [--tiny] [--out DIR]`` (``paper``
+names the four paper elements) writes ``<out>/cards/<element>.md`` with its figures:
+
+1. **contract checks** (:mod:`ancf.checks`): nodality, reference state, force and tangent
+   Taylor tests and rigid motions in the three formulations, the patch test, exact mass;
+2. **rank tests** (:mod:`ancf.rank`) of four rules over l_e / h = 10 ... 0.01, and the
+   element's default rule at each;
+3. **conformity**: the jump of r and r_y across a shared face, and the patch-test
+   inconsistency against l_e / h;
+4. **static convergence** against the converged continuum (tests/gold/fem_cantilever.json)
+   for three laws in plane stress and plane strain, default quadrature: observed order
+   (successive differences) and plateau (the finest mesh against the continuum);
+5. **locking**: plane strain with penalty alpha = 10 ... 1e5 C10 against the exactly
+   incompressible continuum;
+6. **pendulum** error against the continuum gold (tests/gold/fem_pendulum.json);
+7. **cost**: serial warm timings of the plane-stress refinement, beside every other
+   element that has a card in the same output directory;
+8. **stability**: the inertia verdict of every static equilibrium above.
+
+Parts 4 to 8 are solver runs: cases in the store ``<out>/data/card-<element>.jsonl``
+(reused while nothing they depend on changed, like every study). Parts 1 to 3 are
+measured in this process and kept in ``<out>/data/card-<element>-checks.json``, keyed by
+the element's definition and the ancf source hash. The card itself is rendered from these
+two files only (:mod:`studies.card_report`). A user's element: ``--import mymodule``
+imports the module (which registers it) here and in every worker.
+"""
+from __future__ import annotations
+
+import importlib
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+
+from contract import paper
+
+from .case import Case, make_case
+from .grid import DEFAULT, cantilever_case
+from .pendulum import pendulum_dict
+from .runner import run_cases
+from .solvers import source_hash
+from .store import store_for
+
+PAPER_ELEMENTS = ("HB2n-12", "HB3n-12", "HB2n-16", "LB2n-12")
+LAWS = ("neo-hookean", "mooney-rivlin", "yeoh")
+GRID = {
+    "laws": LAWS, "formulations": ("plane-stress", "plane-strain"),
+    "counts": (4, 8, 16, 32, 64, 160, 320, 640),
+    "timing": {"repeats": 3, "budget_s": 1.0},
+    "locking": {"count": 64, "factors": (10.0, 1e2, 1e3, 1e4, 1e5)},
+    "pendulum": {"counts": (8, 16, 32, 64), "dt": 5e-4, "t_end": 0.5, "formulation": "plane-stress"},
+    "rules": ((2, 2), (3, 2), (3, 3), (5, 3)),
+    "aspects": (10.0, 3.0, 1.0, 0.3, 0.1, 0.05, 0.025, 0.01),
+    "patch_aspects": (4.0, 1.0, 0.3, 0.1, 0.05),
+}
+TINY = {
+    "laws": ("neo-hookean",), "formulations": ("plane-stress",), "counts": (4, 8, 16),
+    "timing": {"repeats": 1, "budget_s": 0.2},
+    "locking": {"count": 8, "factors": (10.0, 1e3)},
+    "pendulum": {"counts": (4,), "dt": 1e-3, "t_end": 0.1, "formulation": "plane-stress"},
+    "rules": ((3, 2), (3, 3)), "aspects": (1.0, 0.1), "patch_aspects": (1.0, 0.1),
+}
+
+
+def slug(element: str) -> str:
+    """The element's name as a file stem."""
+    return re.sub(r"[^A-Za-z0-9._-]+", "_", element)
+
+
+def grid_for(tiny: bool) -> dict:
+    return TINY if tiny else GRID
+
+
+def import_modules(modules) -> None:
+    for m in modules:
+        importlib.import_module(m)
+
+
+def cases(element: str, tiny: bool = False, imports=()) -> list[Case]:
+    """Parts 4 to 8 as cases (tiny: the CI grid)."""
+    g, study = grid_for(tiny), f"card-{element}"
+    opts = {"imports": list(imports)} if imports else {}
+    out = []
+    for form in g["formulations"]:
+        for law in g["laws"]:
+            for n in g["counts"]:
+                timed = {**opts, "timing": dict(g["timing"])} if form == "plane-stress" else opts
+                out.append(cantilever_case(study, law, form, element, n, DEFAULT, "face", timed or None))
+    lk = g["locking"]
+    for law in g["laws"]:
+        c10 = paper.materials()[law]["C10"]
+        for k in lk["factors"]:
+            s = paper.cantilever_scene(law, "plane-strain", element, lk["count"], quadrature=None,
+                                       penalty=k * c10, name=f"cantilever-{law}-plane-strain-{element}-"
+                                       f"{lk['count']}-qdef-face-penalty{k:g}C10")
+            out.append(make_case(study, "ancf", s, opts or None))
+    pd = g["pendulum"]
+    for n in pd["counts"]:
+        out.append(make_case(study, "ancf", pendulum_dict(element, n, pd["formulation"], pd["dt"],
+                                                          t_end=pd["t_end"]), opts or None))
+    return out
+
+
+def measure_checks(element: str, tiny: bool = False) -> dict:
+    """Parts 1 to 3, measured here (numbers in SI or as ratios)."""
+    from ancf import checks
+    from ancf.elements import get_element
+    from ancf.rank import default_quadrature, rank_test, strain_test
+
+    g, spec, rng = grid_for(tiny), get_element(element), np.random.default_rng(20211206)
+    forms = {}
+    for form in ("paper", "plane-strain", "plane-stress"):
+        model = checks.small_model(element, "yeoh", form)
+        forms[form] = {"energy_gradient": checks.energy_gradient(model, rng),
+                       "tangent_gradient": checks.tangent_gradient(model, rng),
+                       "rigid_motion": checks.rigid_motion(model, rng)}
+    rank = []
+    for a in g["aspects"]:
+        row = {"aspect": a, "default": {"plane-stress": list(default_quadrature(spec, False, a)),
+                                        "penalised": list(default_quadrature(spec, True, a))}, "rules": {}}
+        for r in g["rules"]:
+            lin = rank_test(spec, r, a)
+            fs = strain_test(element, r, a) if lin["spurious"] == 0 else None
+            row["rules"][f"{r[0]}x{r[1]}"] = {**lin, "strain_ratio": fs["ratio"] if fs else None}
+        rank.append(row)
+    patch = [{"aspect": a, **checks.patch(spec, length=a * 0.005 * 3)} for a in g["patch_aspects"]]
+    return {"element": element, "definition": repr(spec), "source": source_hash("ancf"),
+            "nodality": checks.nodality(spec), "reference_state": checks.reference_state(spec),
+            "mass": checks.mass(spec), "formulations": forms, "patch": patch,
+            "conformity": checks.conformity(spec), "rank": rank, "tiny": tiny}
+
+
+def checks_path(out: Path, element: str) -> Path:
+    return Path(out) / "data" / f"card-{slug(element)}-checks.json"
+
+
+def checks_record(element: str, out: Path, tiny: bool = False, force: bool = False) -> dict:
+    """The stored parts 1 to 3, measured again when missing, forced, or when the element's
+    definition or ancf's sources changed."""
+    from ancf.elements import get_element
+
+    path = checks_path(out, element)
+    if path.exists() and not force:
+        rec = json.loads(path.read_text())
+        if (rec.get("definition"), rec.get("source"), rec.get("tiny")) == (
+                repr(get_element(element)), source_hash("ancf"), tiny):
+            return rec
+    rec = measure_checks(element, tiny)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(".tmp")
+    tmp.write_text(json.dumps(rec, indent=1, default=_plain))
+    tmp.replace(path)
+    return rec
+
+
+def _plain(o):
+    if isinstance(o, (np.floating, np.integer)):
+        return o.item()
+    if isinstance(o, np.bool_):
+        return bool(o)
+    raise TypeError(type(o))
+
+
+def run_cards(elements: list[str], out: Path, tiny: bool = False, imports=(), workers: int = 2,
+              progress: bool = True, force: bool = False, log=print) -> list[Path]:
+    """Runs (or reuses) every named element's cases and checks, then renders every card."""
+    from ancf.elements import get_element
+    from .card_report import render
+
+    import_modules(imports)
+    for el in elements:
+        get_element(el)                                  # an unknown name fails here, with the list
+    for el in elements:
+        cs = cases(el, tiny, imports)
+        s = run_cases(f"card-{el}", cs, store_for(out, f"card-{slug(el)}"), None, workers,
+                      force=force, progress=progress)
+        log(f"card {el}: {s.cases} cases, {s.reused} reused, {s.computed} computed, {s.failed} failed, "
+            f"{s.seconds:.1f} s")
+        checks_record(el, out, tiny, force)
+    paths = [render(el, out, tiny, imports) for el in elements]
+    if (Path(out) / "README.md").exists():   # link the cards from the results page
+        from .pipeline import build_reports
+        build_reports(Path(out), tiny, log)
+    return paths

@@ -1,0 +1,267 @@
+"""The element report card rendered from its records only (:mod:`studies.card` makes them):
+``<out>/cards/<element>.md`` and its figures beside it. Nothing here runs a solver."""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .card import cases, checks_path, grid_for, slug
+from .pendulum import FEM_GOLD, continuum_pendulum, describe_dynamic, tip_errors
+from .reference import MATCHING, gold_references, short
+from .report import figure, mm, vec_error
+from .store import RecordStore, store_for
+
+ROOT = Path(__file__).resolve().parent.parent
+FEM_STATIC = ROOT / "tests" / "gold" / "fem_cantilever.json"
+
+
+def _f(v, spec=".3g"):
+    return "-" if v is None or (isinstance(v, float) and not math.isfinite(v)) else format(v, spec)
+
+
+def _yes(ok) -> str:
+    return "pass" if ok else "**fail**"
+
+
+def _records(element: str, out: Path, tiny: bool, imports) -> list[dict]:
+    have = store_for(out, f"card-{slug(element)}").read()
+    return [have[c.id] for c in cases(element, tiny, imports) if c.id in have]
+
+
+def _static(recs):
+    for r in recs:
+        s = r["scene"]
+        if s["analysis"]["kind"] == "static":
+            yield r, s["material"], s["ancf"]["elements"]
+
+
+def _is_locking(r) -> bool:
+    return "penalty" in r["case"]["name"]
+
+
+def _contract_section(chk: dict) -> list[str]:
+    lines = ["## 1. Contract checks (`ancf.checks`)", "",
+             "| check | measured | bound | verdict |", "|---|---|---|---|"]
+    add = lambda name, meas, bound, ok: lines.append(f"| {name} | {meas} | {bound} | {_yes(ok)} |")
+    n, r, m = chk["nodality"], chk["reference_state"], chk["mass"]
+    add("nodality: every basis function and gradient reproduced", f"{_f(n['error'])} (relative)", "1e-11", n["passes"])
+    add("reference coordinates give F = I", _f(r["error"]), "1e-12", r["passes"])
+    add("mass and gravity exact, M SPD", f"mass {_f(m['mass'])}, gravity {_f(m['gravity'])}, SPD {m['positive_definite']}",
+        "1e-12", m["passes"])
+    for form, t in chk["formulations"].items():
+        eg, tg, rm = t["energy_gradient"], t["tangent_gradient"], t["rigid_motion"]
+        add(f"`{form}` Yeoh: force = energy gradient (Taylor slope)", _f(eg["slope"]), "> 1.8", eg["passes"])
+        add(f"`{form}` Yeoh: tangent = force gradient (slope; asymmetry)", f"{_f(tg['slope'])}; {_f(tg['asymmetry'])}",
+            "> 1.8; 1e-10", tg["passes"])
+        add(f"`{form}` Yeoh: rigid motion (energy, force rotation)", f"{_f(rm['energy'])}, {_f(rm['force'])}",
+            "1e-9, 1e-8", rm["passes"])
+    p = chk["patch"]
+    add("patch test (constant stress, 3 elements), worst over l_e/h", _f(max(x["error"] for x in p)), "1e-6",
+        all(x["passes"] for x in p))
+    return lines + [""]
+
+
+def _conformity_section(chk: dict) -> list[str]:
+    c = chk["conformity"]
+    lines = ["## 3. Conformity across element faces", "",
+             f"Bent state (circular arc, tip rotation 0.5 rad) on two elements: jump of r across the shared face "
+             f"{_f(c['jump_r'])} h, jump of r_y {_f(c['jump_r_y'])}: "
+             + ("**conforming**." if c["conforming"] else "**not conforming**: the trace on a face depends on the "
+                "other node's coordinates."), "",
+             "Patch test (Irons): the force of a homogeneous deformation against the constant stress times the "
+             "boundary integrals of the shape functions, relative to max |f|. For a non-conforming element the "
+             "interior faces' jump terms do not cancel; the inconsistency grows as l_e / h shrinks.", "",
+             "| l_e / h | " + " | ".join(_f(x["aspect"]) for x in chk["patch"]) + " |",
+             "|---|" + "---|" * len(chk["patch"]),
+             "| error | " + " | ".join(_f(x["error"]) for x in chk["patch"]) + " |", ""]
+    return lines
+
+
+def _rank_section(chk: dict, out: Path, name: str) -> list[str]:
+    rules = list(chk["rank"][0]["rules"])
+    lines = ["## 2. Rank tests (`ancf.rank`)", "",
+             "Per rule: spurious zero-energy modes beyond the 3 rigid ones / mu_min (smallest energy ratio of a "
+             "deformation mode under the rule against an exact rule) / finite-strain ratio (seen / true Green "
+             "strain of the worst state, amplitude 0.2). Passing: 0 spurious, mu_min >= 0.1, ratio >= 0.3.", "",
+             "| l_e / h | default (plane stress) | default (penalised) | " + " | ".join(rules) + " |",
+             "|---|---|---|" + "---|" * len(rules)]
+    for row in chk["rank"]:
+        cells = []
+        for r in rules:
+            x = row["rules"][r]
+            ok = x["spurious"] == 0 and x["mu_min"] >= 0.1 and (x["strain_ratio"] or 0) >= 0.3
+            cells.append(f"{x['spurious']} / {_f(x['mu_min'], '.2f')} / {_f(x['strain_ratio'], '.2f')}"
+                         + ("" if ok else " ✗"))
+        d = row["default"]
+        lines.append(f"| {_f(row['aspect'])} | {d['plane-stress']} | {d['penalised']} | " + " | ".join(cells) + " |")
+    fig, ax = figure(1, 2, figsize=(9, 3.4))
+    a = [row["aspect"] for row in chk["rank"]]
+    for r in rules:
+        ax[0].plot(a, [row["rules"][r]["mu_min"] for row in chk["rank"]], "o-", ms=3, label=r)
+        ax[1].plot(a, [row["rules"][r]["strain_ratio"] or 0.0 for row in chk["rank"]], "o-", ms=3, label=r)
+    for k, (t, lim) in enumerate((("mu_min (u = 0)", 0.1), ("finite-strain ratio", 0.3))):
+        ax[k].axhline(lim, color="grey", ls=":")
+        ax[k].set_xscale("log")
+        ax[k].set_xlabel("l_e / h")
+        ax[k].set_title(t, fontsize=9)
+    ax[1].legend(fontsize=7)
+    fig.savefig(out / f"{name}-rank.png", dpi=100, bbox_inches="tight")
+    _close(fig)
+    return lines + ["", f"![rank]({name}-rank.png)", ""]
+
+
+def _close(fig):
+    import matplotlib.pyplot as plt
+    plt.close(fig)
+
+
+def _convergence(recs, refs) -> list[str]:
+    """The table of observed orders and plateaus per law and formulation."""
+    series: dict = {}
+    for r, m, n in _static(recs):
+        if _is_locking(r):
+            continue
+        ref = refs.get((m["law"], MATCHING[m["formulation"]]))
+        ok = r["status"] == "converged" and r.get("tip")
+        err = vec_error(r["tip"], ref) if ok and ref else None
+        t = (r.get("timing") or {}).get("median_s")
+        series.setdefault((m["law"], m["formulation"]), []).append((n, err, r.get("ndof"), t, r if ok else None))
+    lines = ["## 4. Static convergence against the converged continuum", "",
+             "Default quadrature at each mesh (recorded per run). Error: |u - u_ref| / |u_ref| over (ux, uy), "
+             "u_ref the Richardson value of the matching continuum model. Observed orders, n: log2 of "
+             "|u_n - u_2n| / |u_2n - u_4n| for each doubling triple (a negative order: the differences grow, the "
+             "mesh sequence drifts). Plateau: the finest mesh's error, where discretisation has stopped and the "
+             "beam model's own distance remains.", "",
+             "| law | formulation | finest n | tip ux, uy (mm) | plateau | observed orders (n: p) | errors 4 ... finest |",
+             "|---|---|---|---|---|---|---|"]
+    for (law, form), ser in sorted(series.items()):
+        ser.sort(key=lambda p: p[0])
+        tips = {n: np.array([rec["tip"]["ux"], rec["tip"]["uy"]]) for n, _, _, _, rec in ser if rec}
+        orders = []
+        for n in (n for n in sorted(tips) if 2 * n in tips and 4 * n in tips):
+            d1, d2 = np.linalg.norm(tips[n] - tips[2 * n]), np.linalg.norm(tips[2 * n] - tips[4 * n])
+            orders.append(f"{n}: {math.log2(d1 / d2):.2f}" if d1 > 0 and d2 > 0 else f"{n}: -")
+        last = next(((n, e, rec) for n, e, _, _, rec in reversed(ser) if rec), None)
+        errs = ", ".join(_f(100 * e, ".2g") + " %" if e is not None else "failed" for _, e, _, _, _ in ser)
+        tip = f"{mm(last[2]['tip']['ux']):.2f}, {mm(last[2]['tip']['uy']):.2f}" if last else "-"
+        lines.append(f"| {short(law)} | {form} | {last[0] if last else '-'} | {tip} | "
+                     f"{_f(100 * last[1], '.3f') + ' %' if last and last[1] is not None else '-'} | {', '.join(orders) or '-'} | {errs} |")
+    return lines + [""]
+
+
+def _locking(recs, refs) -> list[str]:
+    rows = []
+    for r, m, n in _static(recs):
+        if not _is_locking(r):
+            continue
+        ref = refs.get((m["law"], "plane-strain"))
+        k = m["penalty"] / m["C10"]
+        err = vec_error(r["tip"], ref) if r["status"] == "converged" and r.get("tip") and ref else None
+        rows.append((m["law"], k, n, err, r["status"]))
+    lines = ["## 5. Locking: plane strain as the penalty grows", "",
+             "Tip error against the exactly incompressible plane-strain continuum (mixed Q2/Q1), penalty "
+             "alpha = k C10 (the paper's 1000 MPa is k = 1.05e3 for NH, 1.8e3 for Yeoh). A locking element's error "
+             "grows with k; a locking-free one tends to the incompressible limit.", "",
+             "| law | n | " + " | ".join(f"k = {k:g}" for k in sorted({x[1] for x in rows})) + " |",
+             "|---|---|" + "---|" * len({x[1] for x in rows})]
+    for law in dict.fromkeys(x[0] for x in rows):
+        sel = sorted((x for x in rows if x[0] == law), key=lambda x: x[1])
+        lines.append(f"| {short(law)} | {sel[0][2]} | " + " | ".join(
+            (_f(100 * x[3], ".3g") + " %") if x[3] is not None else x[4] for x in sel) + " |")
+    return lines + [""]
+
+
+def _pendulum(recs) -> list[str]:
+    gold = continuum_pendulum(FEM_GOLD)
+    lines = ["## 6. Pendulum against the continuum", ""]
+    rows = []
+    for r in recs:
+        if r["scene"]["analysis"]["kind"] != "dynamic":
+            continue
+        d = describe_dynamic(r)
+        ref = gold.get((d["law"], d["formulation"]))
+        errs = tip_errors(d["tips"], ref.tips) if ref and d["ok"] else {}
+        rows.append(f"| {d['elements']} | {d['dt'] * 1e3:g} | {d['status']} | "
+                    f"{_f(100 * max(errs.values()), '.3g') + ' %' if errs else '-'} | "
+                    f"{_f(100 * errs[max(errs)], '.3g') + ' %' if errs else '-'} | {_f(d['wall_s'], '.3g')} |")
+    if not gold:
+        return lines + ["No continuum pendulum gold (tests/gold/fem_pendulum.json).", ""]
+    return lines + ["Yeoh, plane stress, generalized-alpha rho_inf 0.5. Error: |r(t) - r_ref(t)| / L over the "
+                    "output times, against the continuum gold.", "",
+                    "| n | dt (ms) | status | max error | error at t_end | wall (s) |", "|---|---|---|---|---|---|"] + rows + [""]
+
+
+def _cost(element: str, law: str, out: Path, cards: Path, name: str) -> list[str]:
+    """Work-precision of the plane-stress refinement of ``law``: this element and every
+    other card whose records are in ``out``/data; the figure goes to ``cards``."""
+    fig, axes = figure(1, 1, figsize=(5.5, 4))
+    others = sorted(p.stem[len("card-"):] for p in (out / "data").glob("card-*.jsonl"))
+    refs = gold_references(FEM_STATIC)
+    drawn = []
+    for other in others:
+        recs = list(RecordStore(out / "data" / f"card-{other}.jsonl").read().values())
+        pts = []
+        for r, m, n in _static(recs):
+            t = (r.get("timing") or {}).get("median_s")
+            ref = refs.get((m["law"], "plane-stress"))
+            if m["formulation"] == "plane-stress" and m["law"] == law and t and r["status"] == "converged" and ref:
+                pts.append((t, vec_error(r["tip"], ref), n))
+        if pts:
+            pts.sort(key=lambda p: p[2])
+            mine = other == slug(element)
+            axes.plot([p[0] for p in pts], [max(p[1], 1e-7) for p in pts], "o-" if mine else ".--",
+                      lw=2 if mine else 0.8, ms=4, label=other)
+            drawn.append(other)
+    axes.set_xscale("log")
+    axes.set_yscale("log")
+    axes.set_xlabel("wall time, serial warm median (s)")
+    axes.set_ylabel(f"|u - u_ref| / |u_ref| ({short(law)}, plane stress)")
+    axes.legend(fontsize=7)
+    fig.savefig(cards / f"{name}-cost.png", dpi=100, bbox_inches="tight")
+    _close(fig)
+    return ["## 7. Cost", "", f"{short(law)}, plane stress, the static refinement; the other elements with a card in this "
+            f"directory ({', '.join(o for o in drawn if o != slug(element)) or 'none yet'}) dashed.", "",
+            f"![cost]({name}-cost.png)", ""]
+
+
+def _stability(recs) -> list[str]:
+    static = [r for r, _, _ in _static(recs)]
+    verdicts = {"stable": sum(r.get("stable") is True for r in static),
+                "unstable": sum(r.get("stable") is False for r in static),
+                "undetermined": sum(r.get("stable") is None and r["status"] == "converged" for r in static),
+                "not converged": sum(r["status"] != "converged" for r in static)}
+    neg = max((r.get("negative_eigenvalues") or 0 for r in static), default=0)
+    bad = [f"{r['case']['name']} ({r.get('negative_eigenvalues')} negative)" for r in static if r.get("stable") is False]
+    failed = [f"{r['case']['name']}: {r.get('reason')}" for r in static if r["status"] != "converged"]
+    return (["## 8. Stability of every equilibrium above (inertia of the constrained tangent)", "",
+             ", ".join(f"{k}: {v}" for k, v in verdicts.items()) + f"; most negative eigenvalues: {neg}.", ""]
+            + [f"- unstable: {b}" for b in bad] + [f"- not converged: {f}" for f in failed] + [""])
+
+
+def render(element: str, out: Path, tiny: bool = False, imports=()) -> Path:
+    out = Path(out)
+    cards = out / "cards"
+    cards.mkdir(parents=True, exist_ok=True)
+    name = slug(element)
+    chk = json.loads(checks_path(out, element).read_text())
+    recs = _records(element, out, tiny, imports)
+    refs = gold_references(FEM_STATIC)
+    conv = _convergence(recs, refs)
+    laws = grid_for(tiny)["laws"]
+    checks_ok = (chk["nodality"]["passes"] and chk["reference_state"]["passes"] and chk["mass"]["passes"]
+                 and all(v["passes"] for t in chk["formulations"].values() for v in t.values()))
+    head = [f"# Element report card: {element}", "",
+            f"{chk['definition']}", "",
+            f"Generated by `python -m studies card {element}"
+            + (f" --import {' '.join(imports)}" if imports else "") + ("` (tiny grid)." if tiny else "`."),
+            f"Consistency checks: {'all pass' if checks_ok else '**some fail**'}; patch test: "
+            f"{'passes' if all(x['passes'] for x in chk['patch']) else '**fails** (see 3)'}; conforming: "
+            f"{chk['conformity']['conforming']}. {len(recs)} solver runs.", ""]
+    text = (head + _contract_section(chk) + _rank_section(chk, cards, name) + _conformity_section(chk) + conv
+            + _locking(recs, refs) + _pendulum(recs) + _cost(element, "yeoh" if "yeoh" in laws else laws[0], out, cards, name) + _stability(recs))
+    path = cards / f"{name}.md"
+    path.write_text("\n".join(text) + "\n")
+    return path
