@@ -22,7 +22,7 @@ from pathlib import Path
 from types import ModuleType
 
 CASES_TOML = Path(__file__).with_name("cases.toml")
-META_KEYS = ("module", "title", "needs", "tiny")
+META_KEYS = ("module", "title", "needs", "tiny", "full")
 COMMON = "common"   # not a study: grid keys every study gets unless it sets its own
 
 
@@ -34,6 +34,13 @@ class Study:
     grid: dict
     needs: tuple[str, ...]
     tiny: bool
+    full: bool = False      # heavy: left out of "all" (``make study``) unless tiny; run when named
+
+    @property
+    def in_all(self) -> bool:
+        """Is this study part of ``run all``? Every study in tiny mode; outside it, not a
+        ``full = true`` one (``make study-full`` names those)."""
+        return self.tiny or not self.full
 
     @cached_property
     def module(self) -> ModuleType:
@@ -53,7 +60,7 @@ def load_catalog(tiny: bool = False, path: Path = CASES_TOML) -> dict[str, Study
         if tiny:
             grid.update(t.get("tiny", {}))
         needs = tuple(t.get("needs", ()))
-        out[name] = Study(name, t.get("title", name), t["module"], grid, needs, tiny)
+        out[name] = Study(name, t.get("title", name), t["module"], grid, needs, tiny, bool(t.get("full", False)))
     for s in out.values():
         unknown = [n for n in s.needs if n not in out]
         if unknown:

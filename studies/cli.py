@@ -1,7 +1,8 @@
 """``python -m studies``: list, run and report the studies of studies/cases.toml.
 
 - ``list``: the studies, their case counts and what each needs;
-- ``run NAME [NAME ...] | all``: run the studies (and those they need), reusing finished
+- ``run NAME [NAME ...] | all``: run the studies (and those they need; ``all``: every one but
+  the ``full = true`` ones, which ``make study-full`` names), reusing finished
   records; ``--force`` recomputes the named ones; ``--tiny`` runs the CI grids into
   ``--out DIR`` (default: a new temporary directory, never reports/); then rebuilds
   every table, figure and the README from the records; prints the time per study;
@@ -32,6 +33,7 @@ def _list(args) -> int:
     catalog = load_catalog(args.tiny, args.catalog)
     for s in catalog.values():
         needs = f"  (needs {', '.join(s.needs)})" if s.needs else ""
+        needs += "  [not in 'all': make study-full]" if not s.in_all else ""
         print(f"{s.name:15s} {len(s.cases()):5d} cases  {s.title}{needs}")
     return 0
 

@@ -11,6 +11,7 @@ judged by.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 from contract.paper import paper_tip
 
@@ -93,6 +94,19 @@ def gold_references(path) -> dict[tuple[str, str], tuple[float, float]]:
     g = json.loads(open(path).read())
     return {(c["law"], k.split("/", 1)[1]): (c["tip"]["ux"], c["tip"]["uy"])
             for k, c in g["cases"].items() if c.get("tip")}
+
+
+GOLD_3D = Path(__file__).resolve().parent.parent / "tests" / "gold" / "fem_cantilever_3d.json"
+SOLID_LABEL = "3D beam (w = 7 mm)"
+
+
+def solid_references(path=GOLD_3D) -> dict[str, tuple[float, float]]:
+    """{law: (ux, uy)} of the converged 3D beam at the paper's width (the Richardson
+    values of ``python -m reference_fem gold --3d``, tests/gold/fem_cantilever_3d.json,
+    with the meshes and versions that made them), or {} without that file."""
+    if not Path(path).exists():
+        return {}
+    return {law: tip for (law, variant), tip in gold_references(path).items() if variant == "3d"}
 
 
 def abaqus(law: str) -> tuple[float, float] | None:

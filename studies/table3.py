@@ -9,25 +9,10 @@ paper's own cell for ``paper`` and the matching continuum model otherwise.
 """
 from __future__ import annotations
 
-import json
-from pathlib import Path
-
 from .grid import cantilever_case, count_for
-from .reference import (short, MATCHING, VARIANT_LABEL, abaqus, continuum_references,
-                        describe, paper_tip, stability_mark)
+from .reference import (short, MATCHING, SOLID_LABEL, VARIANT_LABEL, abaqus, continuum_references,
+                        describe, paper_tip, solid_references)
 from .report import Section, Table, mm, pct, rel_dev
-
-
-GOLD_3D = Path(__file__).resolve().parent.parent / "tests" / "gold" / "fem_cantilever_3d.json"
-
-
-def solid_references() -> dict[str, tuple[float, float]]:
-    """{law: (ux, uy)} of the converged 3D beam (tests/gold/fem_cantilever_3d.json,
-    ``python -m reference_fem gold --3d``), or {} without that file."""
-    if not GOLD_3D.exists():
-        return {}
-    cases = json.loads(GOLD_3D.read_text())["cases"]
-    return {c["law"]: (c["tip"]["ux"], c["tip"]["uy"]) for c in cases.values() if c.get("tip")}
 
 
 def cases(grid: dict, tiny: bool) -> list:
@@ -89,7 +74,7 @@ def report(ctx) -> Section:
                     + [mm(x) for t in tips for x in (t or (None, None))])
     solid = solid_references()
     if solid:
-        rows.append(["continuum 3D beam (w = 7 mm), exact", "conv."]
+        rows.append([f"continuum {SOLID_LABEL}, exactly incompressible", "conv."]
                     + [mm(x) for law in laws for x in (solid.get(law) or (None, None))])
     rows.append(["paper ABAQUS", 160] + [mm(x) for law in laws for x in (abaqus(law) or (None, None))])
     sec.table(ctx, Table("table3", hdr, rows, {j: ".2f" for j in range(2, len(hdr))}),

@@ -24,12 +24,11 @@ from pathlib import Path
 from contract import paper
 
 from .case import make_case
-from .reference import continuum_references, short
+from .reference import GOLD_3D, continuum_references, short
 from .report import Section, Table, figure, mm, pct
 
 ROOT = Path(__file__).resolve().parent.parent
 GOLD_2D = ROOT / "tests" / "gold" / "fem_cantilever.json"
-GOLD_3D = ROOT / "tests" / "gold" / "fem_cantilever_3d.json"
 
 
 def _width(h: float, k: float) -> float:
