@@ -26,6 +26,7 @@ RANKS ?= 1
 MPIEXEC := mpiexec --oversubscribe --allow-run-as-root -x PYTHONPATH -x OMP_NUM_THREADS -x OPENBLAS_NUM_THREADS
 study-full: study
 	$(if $(filter 1,$(RANKS)),,$(MPIEXEC) -n $(RANKS)) $(PY) -m reference_fem gold --3d --out reports/data/solid3d
+	$(PY) -m studies run pendulum-3d
 
 bench: setup
 	$(PY) -m studies.bench table3
@@ -37,6 +38,7 @@ bench-penalty: setup
 # Exudyn in a separate venv (.venv-peers), never in .venv
 bench-peers: setup
 	bash tools/setup_peers.sh && $(PY) -m studies.peers.compare
+	$(PY) -m studies.peers.work_precision
 
 clean-venv:
 	rm -rf .venv

@@ -61,3 +61,57 @@ def test_missing_output_time_is_an_error():
     o["tip_history"] = o["tip_history"][:-1]
     with pytest.raises(RuntimeError, match="t = 0.5"):
         compare.tip_differences(o["tip_history"], fake_peer()["tip_history"])
+
+
+# -- work-precision (studies.peers.work_precision), without Exudyn ----------------------------
+def test_work_precision_error_is_zero_on_the_reference_and_the_report_picks_the_cheapest(tmp_path):
+    from studies.pendulum import continuum_pendulum
+    from studies.peers import work_precision as wp
+
+    ref = continuum_pendulum()[("yeoh", "plane-stress")]
+    tips = [{"t": t, "x": x, "y": y} for t, (x, y) in sorted(ref.tips.items())]
+    assert wp.error(tips) == 0.0
+    moved = [{**h, "x": h["x"] + 0.0035} for h in tips]          # 3.5 mm = 1 % of L at every t > 0
+    assert abs(wp.error(moved) - 0.01) < 1e-12
+
+    def rec(solver, element, n, t, e):
+        return {"solver": solver, "element": element, "elements": n, "dt": 1e-3, "rho_inf": 0.5,
+                "status": "converged", "time_s": t, "error": e}
+    recs = [rec("ancf", "HB2n-12", 8, 0.02, 0.02), rec("ancf", "HB2n-12", 32, 0.2, 0.005),
+            rec("ancf", "HB2n-16", 32, 0.1, 0.009), rec("exudyn", "ANCFCable2D", 8, 0.01, 0.006)]
+    assert wp.cheapest(recs, "ancf", None, 0.01)["element"] == "HB2n-16"
+    assert wp.cheapest(recs, "exudyn", None, 0.001) is None
+    text = wp.report(recs, tmp_path)
+    assert "| 1 % | HB2n-16 x 32, dt 1 ms | 0.1000 | 0.900 | 8 elements, dt 1 ms | 0.0100 | 0.600 | 10.00 |" in text
+    assert (tmp_path / "peers_work_precision.png").exists()
+
+
+def test_work_precision_keeps_finished_points_and_skips_them_on_a_rerun(tmp_path, monkeypatch):
+    from types import SimpleNamespace
+    from studies.peers import work_precision as wp
+
+    calls = []
+
+    def fake(*args):
+        calls.append(args)
+        return {"status": "converged", "reason": None, "time_s": 0.01, "cpu_s": 0.01, "tip_history": None}
+    monkeypatch.setattr(wp, "ours", lambda element, n, dt, rho, rep: fake("ancf", element, n, dt))
+    monkeypatch.setattr(wp, "exudyn", lambda n, dt, rho, rep, py: fake("exudyn", n, dt))
+    a = SimpleNamespace(out=tmp_path, force=False, counts=[4, 8], steps_per_output=[20], element=["HB2n-12"],
+                        rho_inf=0.5, repeats=1, peer_python=None)
+    assert len(wp.run(a)) == 4 and len(calls) == 4
+    assert len(wp.run(a)) == 4 and len(calls) == 4          # nothing recomputed
+    a.force = True
+    assert len(wp.run(a)) == 4 and len(calls) == 8
+
+
+def test_work_precision_does_not_count_accuracy_by_cancellation():
+    from studies.peers import work_precision as wp
+
+    def rec(dt, e, t):
+        return {"solver": "exudyn", "element": "ANCFCable2D", "elements": 8, "dt": dt, "rho_inf": 0.5,
+                "status": "converged", "time_s": t, "error": e}
+    recs = [rec(5e-3, 0.0005, 0.01), rec(2.5e-3, 0.0013, 0.02), rec(1.25e-3, 0.0009, 0.04)]
+    # 5 ms reaches 0.1 % only by luck (the 2.5 ms step loses it); 1.25 ms is the first that holds
+    assert wp.cheapest(recs, "exudyn", None, 0.001)["dt"] == 1.25e-3
+    assert wp.cheapest(recs, "exudyn", None, 0.002)["dt"] == 5e-3

@@ -1,0 +1,220 @@
+"""Who is cheaper at equal accuracy: our pendulum and Exudyn's ANCF cable pendulum on one
+work-precision diagram, timed side by side in one run (``make bench-peers``, issue 10).
+
+    .venv/bin/python -m studies.peers.work_precision [--counts 8 16 32 64]
+        [--element HB2n-12 --element HB2n-16] [--rho-inf 0.5] [--repeats 3] [--out reports]
+
+Grid: the element counts, and the step ladder dt = 0.1 s / k for k = 20, 40, 80, 160,
+320 (5 ms halving to 0.3125 ms: every step lands on the output times 0.1 ... 0.5 s, as
+Exudyn's fixed step must). Each (solver, element, count, step) is one run: the median of
+``--repeats`` warm runs (ours: ``wall_s`` of :func:`ancf.run.run_scene`, the solve
+alone; Exudyn: ``SolveDynamic`` alone, see exudyn_pendulum.py), Exudyn's and ours in
+turn for each point. Error: max over t = 0.1 ... 0.5 s of |r(t) - r_ref(t)| / L against
+the converged continuum plane-stress pendulum (tests/gold/fem_pendulum.json), the
+reference of the accuracy-cost diagram. Exudyn's cable is linear elastic (E = 6 C10) and
+Euler-Bernoulli: its error has a floor set by its physics, not by its mesh or step.
+
+Records go to ``<out>/data/peers/peers-work-precision.jsonl`` as each point finishes (an
+interrupted run keeps them; a rerun skips the points it has, ``--force`` redoes all);
+the table ``<out>/peers_work_precision.md`` and the figure ``.png`` are drawn from that
+file alone (``--report-only`` redraws them).
+"""
+from __future__ import annotations
+
+import os
+
+for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_v, "1")                 # one thread, before numpy loads
+
+import argparse
+import json
+import statistics
+import sys
+import time
+from pathlib import Path
+
+from .compare import PEER_PYTHON, peer
+
+ROOT = Path(__file__).resolve().parents[2]
+STEPS_PER_OUTPUT = (20, 40, 80, 160, 320)           # dt = 0.1 s / k
+ACCURACIES = (0.01, 0.001)
+NAME = "peers-work-precision"
+
+
+def key(r: dict) -> tuple:
+    return (r["solver"], r["element"], r["elements"], round(r["dt"], 12), r["rho_inf"])
+
+
+def ours(element: str, n: int, dt: float, rho_inf: float, repeats: int) -> dict:
+    from ancf.run import run_scene
+    from contract.scene import scene_from_dict
+    from studies.pendulum import pendulum_dict
+
+    scene = scene_from_dict(pendulum_dict(element, n, "plane-stress", dt, rho_inf=rho_inf))
+    recs = [run_scene(scene)[0] for _ in range(repeats + 1)][1:]     # one untimed warm-up
+    last = recs[-1]
+    ok = last["status"] == "converged"
+    return {"status": last["status"], "reason": last.get("reason"),
+            "time_s": statistics.median(r["wall_s"] for r in recs) if ok else None,
+            "cpu_s": statistics.median(r["cpu_s"] for r in recs) if ok else None,
+            "ndof": last["ndof"], "newton_iterations": last.get("newton_iterations"),
+            "tip_history": last.get("tip_history") if ok else None}
+
+
+def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path) -> dict:
+    try:
+        p = peer(dt, rho_inf, repeats, python, elements=n)
+    except RuntimeError as e:
+        return {"status": "failed", "reason": str(e).splitlines()[0][:300], "time_s": None, "cpu_s": None,
+                "tip_history": None}
+    return {"status": "converged", "reason": None, "time_s": p["solve_median_s"], "cpu_s": p["solve_cpu_median_s"],
+            "ndof": p["counters"].get("ODE2_coordinates"), "newton_iterations": p["counters"]["newtonSteps"],
+            "tip_history": p["tip_history"], "exudyn": p["settings"]["exudyn"]}
+
+
+def error(tips: list[dict] | None) -> float | None:
+    """max over the output times after 0 of |r - r_ref| / L against the continuum
+    plane-stress Yeoh pendulum; None without tips or gold."""
+    from studies.pendulum import continuum_pendulum, tip_errors
+
+    ref = continuum_pendulum().get(("yeoh", "plane-stress"))
+    if not tips or ref is None:
+        return None
+    e = tip_errors({round(h["t"], 9): (h["x"], h["y"]) for h in tips}, ref.tips)
+    return max(e.values()) if e else None
+
+
+def read(path: Path) -> list[dict]:
+    return [json.loads(ln) for ln in path.read_text().splitlines() if ln.strip()] if path.exists() else []
+
+
+def run(a) -> list[dict]:
+    path = a.out / "data" / "peers" / f"{NAME}.jsonl"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if a.force and path.exists():
+        path.unlink()
+    have = {key(r) for r in read(path)}
+    for n in a.counts:
+        for k in a.steps_per_output:
+            dt = 0.1 / k
+            todo = [("exudyn", "ANCFCable2D")] + [("ancf", e) for e in a.element]
+            for solver, element in todo:
+                base = {"solver": solver, "element": element, "elements": n, "dt": dt, "rho_inf": a.rho_inf,
+                        "law": "yeoh", "formulation": "plane-stress" if solver == "ancf" else "linear cable"}
+                if key(base) in have:
+                    continue
+                t0 = time.perf_counter()
+                res = (exudyn(n, dt, a.rho_inf, a.repeats, a.peer_python) if solver == "exudyn"
+                       else ours(element, n, dt, a.rho_inf, a.repeats))
+                rec = {**base, **res, "error": error(res.get("tip_history")), "repeats": a.repeats,
+                       "host_load": os.getloadavg()[0]}
+                with path.open("a") as f:
+                    f.write(json.dumps(rec) + "\n")
+                e = rec["error"]
+                print(f"{solver:7s} {element:12s} x{n:3d} dt {dt * 1e3:7.4f} ms  {rec['status']:9s} "
+                      f"time {rec['time_s'] or float('nan'):8.4f} s  error {100 * e if e is not None else float('nan'):8.4f} %"
+                      f"  ({time.perf_counter() - t0:.1f} s)", flush=True)
+    return read(path)
+
+
+def holds(r: dict, recs: list[dict], accuracy: float) -> bool:
+    """Does run ``r`` reach ``accuracy``, and does every finer step of its mesh too? A
+    coarse step's error can cancel the mesh's (numerical dissipation against stiffness):
+    such a run is accurate by luck, and a finer step would lose it."""
+    same = [q for q in recs if (q["solver"], q["element"], q["elements"]) == (r["solver"], r["element"], r["elements"])
+            and q["dt"] <= r["dt"]]
+    return all(q["error"] is not None and q["error"] <= accuracy for q in same)
+
+
+def cheapest(recs: list[dict], solver: str, element: str | None, accuracy: float) -> dict | None:
+    """The fastest run of ``solver`` (and ``element``) that :func:`holds` ``accuracy``."""
+    ok = [r for r in recs if r["solver"] == solver and (element is None or r["element"] == element)
+          and r["time_s"] and holds(r, recs, accuracy)]
+    return min(ok, key=lambda r: r["time_s"]) if ok else None
+
+
+def report(recs: list[dict], out: Path) -> str:
+    """The table (markdown) and the figure from the records."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    els = list(dict.fromkeys(r["element"] for r in recs if r["solver"] == "ancf"))
+    lines = ["# Work-precision: our pendulum against Exudyn's ANCF cable",
+             "",
+             "Generated by `python -m studies.peers.work_precision` (`make bench-peers`) from "
+             f"`data/peers/{NAME}.jsonl`; see the module's docstring for the method. Error: max over t = 0.1 ... 0.5 s "
+             "of |r - r_ref| / L against the converged continuum plane-stress Yeoh pendulum; time: median warm "
+             "solve wall time, both solvers in one run, one thread. A run counts for an accuracy only if every "
+             "finer step of its mesh reaches it too (no accuracy by cancellation of step and mesh errors).",
+             "",
+             "| accuracy | cheapest ours | time (s) | error (%) | cheapest Exudyn cable | time (s) | error (%) | "
+             "ours / Exudyn |",
+             "|---|---|---|---|---|---|---|---|"]
+    for a in ACCURACIES:
+        o, p = cheapest(recs, "ancf", None, a), cheapest(recs, "exudyn", None, a)
+        fo = (f"{o['element']} x {o['elements']}, dt {o['dt'] * 1e3:g} ms | {o['time_s']:.4f} | "
+              f"{100 * o['error']:.3f}") if o else "none | - | -"
+        fp = (f"{p['elements']} elements, dt {p['dt'] * 1e3:g} ms | {p['time_s']:.4f} | "
+              f"{100 * p['error']:.3f}") if p else "none | - | -"
+        ratio = f"{o['time_s'] / p['time_s']:.2f}" if o and p else "-"
+        lines.append(f"| {100 * a:g} % | {fo} | {fp} | {ratio} |")
+    floor = [r["error"] for r in recs if r["solver"] == "exudyn" and r["error"] is not None]
+    if floor:
+        lines += ["", f"Exudyn's smallest error over the grid: {100 * min(floor):.3f} % of L (the cable's physics: "
+                  "linear elastic E = 6 C10, no thickness deformation)."]
+    lines += ["", "| solver | element | n | dt (ms) | status | time (s) | error (%) |", "|---|---|---|---|---|---|---|"]
+    for r in sorted(recs, key=lambda r: (r["solver"], r["element"], r["elements"], -r["dt"])):
+        lines.append(f"| {r['solver']} | {r['element']} | {r['elements']} | {r['dt'] * 1e3:g} | {r['status']} | "
+                     + (f"{r['time_s']:.4f}" if r["time_s"] else "-") + " | "
+                     + (f"{100 * r['error']:.4f}" if r["error"] is not None else "-") + " |")
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    markers = {"ANCFCable2D": "s", **{e: m for e, m in zip(els, "o^vD")}}
+    for solver, element in [("exudyn", "ANCFCable2D")] + [("ancf", e) for e in els]:
+        for n in sorted({r["elements"] for r in recs if (r["solver"], r["element"]) == (solver, element)}):
+            ser = sorted([r for r in recs if (r["solver"], r["element"], r["elements"]) == (solver, element, n)
+                          and r["error"] is not None and r["time_s"]], key=lambda r: -r["dt"])
+            if ser:
+                ax.plot([r["time_s"] for r in ser], [r["error"] for r in ser], marker=markers[element], ms=3, lw=0.8,
+                        ls="--" if solver == "exudyn" else "-",
+                        label=f"{'Exudyn cable' if solver == 'exudyn' else 'ours ' + element} x {n}")
+    for a in ACCURACIES:
+        ax.axhline(a, color="grey", lw=0.6, ls=":")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.grid(True, alpha=0.3)
+    ax.set_xlabel("solve wall time, median warm (s)")
+    ax.set_ylabel("max over t of |r - r_ref| / L")
+    ax.set_title("pendulum, Yeoh: ours (plane stress) vs Exudyn ANCF cable; step 5 ms halving", fontsize=9)
+    ax.legend(fontsize=5, ncol=3)
+    fig.tight_layout()
+    fig.savefig(out / "peers_work_precision.png", dpi=150)
+    plt.close(fig)
+    lines += ["", "![work-precision](peers_work_precision.png)", ""]
+    text = "\n".join(lines)
+    (out / "peers_work_precision.md").write_text(text)
+    return text
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m studies.peers.work_precision", description=__doc__.splitlines()[0])
+    ap.add_argument("--counts", type=int, nargs="+", default=[8, 16, 32, 64])
+    ap.add_argument("--element", action="append", help="our element (repeatable; default HB2n-12 and HB2n-16)")
+    ap.add_argument("--rho-inf", type=float, default=0.5, help="generalized-alpha spectral radius (default 0.5, "
+                    "Table 4's)")
+    ap.add_argument("--steps-per-output", type=int, nargs="+", default=list(STEPS_PER_OUTPUT),
+                    help="the step ladder: dt = 0.1 s / k for each k (default 20 40 80 160 320)")
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--peer-python", type=Path, default=PEER_PYTHON)
+    ap.add_argument("--out", type=Path, default=ROOT / "reports")
+    ap.add_argument("--force", action="store_true", help="redo every point")
+    ap.add_argument("--report-only", action="store_true", help="redraw the table and figure from the records")
+    a = ap.parse_args(argv)
+    a.element = a.element or ["HB2n-12", "HB2n-16"]
+    recs = read(a.out / "data" / "peers" / f"{NAME}.jsonl") if a.report_only else run(a)
+    print(report(recs, a.out))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
