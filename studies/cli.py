@@ -116,8 +116,9 @@ def main(argv: list[str] | None = None) -> int:
                    help="default: mpi under mpiexec, else a local process pool")
     r.add_argument("--workers", type=int, default=2, help="pool size (default 2)")
     r.add_argument("--no-progress", action="store_true")
-    r.add_argument("--timeout", type=float, default=DEFAULT_TIMEOUT_S,
-                   help=f"seconds per solver run before it is stopped and recorded as failed (default {DEFAULT_TIMEOUT_S:g})")
+    r.add_argument("--timeout", type=float, default=None,
+                   help="seconds per solver run before it is stopped and recorded as failed (default: the "
+                        f"study's grid key timeout_s, else {DEFAULT_TIMEOUT_S:g})")
     rp = sub.add_parser("report", help="rebuild tables, figures and README from records")
     rp.add_argument("--tiny", action="store_true")
     rp.add_argument("--out")

@@ -91,6 +91,7 @@ def _run_once(case: Case, timeout_s: float | None = None) -> tuple[dict, float]:
         if isinstance(e, CaseTimeout):
             rec["reason"] = f"timeout: stopped after {timeout_s:g} s"
             rec["timed_out"] = True
+            rec["timeout_s"] = float(timeout_s)
     finally:
         if armed:
             signal.setitimer(signal.ITIMER_REAL, 0)

@@ -42,7 +42,7 @@ def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = F
         cases = study.cases()
         s = run_cases(study.name, cases, store_for(out, study.name), executor, workers,
                       force=force and study.name in explicit, progress=progress,
-                      timeout_s=timeout_s or DEFAULT_TIMEOUT_S)
+                      timeout_s=timeout_s or study.grid.get("timeout_s") or DEFAULT_TIMEOUT_S)
         times[study.name] = s.seconds
         log(f"{study.name}: {s.cases} cases, {s.reused} reused, {s.computed} computed, "
             f"{s.failed} failed, {s.seconds:.1f} s")

@@ -79,12 +79,19 @@ def _mark_worker_death(case: Case, exc: BaseException) -> dict:
     return annotate(rec, case, time.perf_counter())
 
 
-def pending(cases: Sequence[Case], store: RecordStore, force: bool = False) -> list[Case]:
-    """The cases that need a run: all with ``force``, else those without a reusable record."""
+def pending(cases: Sequence[Case], store: RecordStore, force: bool = False,
+            timeout_s: float | None = None) -> list[Case]:
+    """The cases that need a run: all with ``force``, else those without a reusable
+    record. A run stopped by a timeout is reusable only under a timeout no longer than
+    the one that stopped it."""
     if force:
         return list(cases)
     have = store.read()
-    return [c for c in cases if c.id not in have or have[c.id].get("transient")]
+
+    def stale(r: dict) -> bool:
+        return bool(r.get("transient")) or (bool(r.get("timed_out")) and (
+            not timeout_s or timeout_s > r.get("timeout_s", 0.0)))
+    return [c for c in cases if c.id not in have or stale(have[c.id])]
 
 
 def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: str | None = None,
@@ -92,7 +99,7 @@ def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: s
               timeout_s: float | None = DEFAULT_TIMEOUT_S) -> RunSummary:
     t0 = time.perf_counter()
     cases = list(dict.fromkeys(cases))  # the same case twice runs once
-    todo = pending(cases, store, force)
+    todo = pending(cases, store, force, timeout_s)
     summary = RunSummary(study, cases=len(cases), reused=len(cases) - len(todo))
     launched = [c for c in todo if c.options.get("mpi_ranks")]
     pooled = [c for c in todo if not c.timing and c not in launched]

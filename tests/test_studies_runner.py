@@ -270,3 +270,14 @@ def test_a_run_beyond_the_time_limit_is_stopped_and_recorded(tmp_path, fake_solv
     assert time.perf_counter() - t0 < 5 and s.failed == 1
     rec = store.read()[case.id]
     assert rec["status"] == "failed" and rec["timed_out"] and "timeout" in rec["reason"]
+    # reused under the same limit; rerun under a longer one (and then it finishes)
+    assert run_cases("t", [case], store, executor="serial", progress=False, timeout_s=0.3).computed == 0
+    from contract.record import new_record
+
+    def quick(scene):
+        rec = new_record("fake", scene)
+        rec.update(status="converged", reason=None, tip={"ux": -0.01, "uy": -0.1})
+        return rec
+    fake_solver.behaviour = quick
+    s = run_cases("t", [case], store, executor="serial", progress=False, timeout_s=30.0)
+    assert s.computed == 1 and store.read()[case.id]["status"] == "converged"
