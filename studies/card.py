@@ -13,7 +13,9 @@ names the four paper elements) writes ``<out>/cards/<element>.md`` with its figu
    for three laws in plane stress and plane strain, default quadrature: observed order
    (successive differences) and plateau (the finest mesh against the continuum);
 5. **locking**: plane strain with penalty alpha = 10 ... 1e5 C10 against the exactly
-   incompressible continuum;
+   incompressible continuum; and **shear locking**: a slender cantilever under a uniform
+   load in the linear regime against beam theory (Timoshenko), at fixed element counts
+   for three slendernesses L / h (a locking-free element's error does not depend on it);
 6. **pendulum** error against the continuum gold (tests/gold/fem_pendulum.json);
 7. **cost**: serial warm timings of the plane-stress refinement, beside every other
    element that has a card in the same output directory;
@@ -52,6 +54,7 @@ GRID = {
     "timing": {"repeats": 3, "budget_s": 1.0},
     "locking": {"count": 64, "factors": (10.0, 1e2, 1e3, 1e4, 1e5)},
     "pendulum": {"counts": (8, 16, 32, 64), "dt": 5e-4, "t_end": 0.5, "formulation": "plane-stress"},
+    "slender": {"slenderness": (35.0, 70.0, 140.0), "counts": (4, 8, 16, 32)},
     "rules": ((2, 2), (3, 2), (3, 3), (5, 3)),
     "aspects": (10.0, 3.0, 1.0, 0.3, 0.1, 0.05, 0.025, 0.01),
     "patch_aspects": (4.0, 1.0, 0.3, 0.1, 0.05),
@@ -61,6 +64,7 @@ TINY = {
     "timing": {"repeats": 1, "budget_s": 0.2},
     "locking": {"count": 8, "factors": (10.0, 1e3)},
     "pendulum": {"counts": (4,), "dt": 1e-3, "t_end": 0.1, "formulation": "plane-stress"},
+    "slender": {"slenderness": (35.0, 140.0), "counts": (8,)},
     "rules": ((3, 2), (3, 3)), "aspects": (1.0, 0.1), "patch_aspects": (1.0, 0.1),
 }
 
@@ -97,11 +101,41 @@ def cases(element: str, tiny: bool = False, imports=()) -> list[Case]:
                                        penalty=k * c10, name=f"cantilever-{law}-plane-strain-{element}-"
                                        f"{lk['count']}-qdef-face-penalty{k:g}C10")
             out.append(make_case(study, "ancf", s, opts or None))
+    sl = g["slender"]
+    for ratio in sl["slenderness"]:
+        for n in sl["counts"]:
+            out.append(make_case(study, "ancf", slender_scene(element, ratio, n), opts or None))
     pd = g["pendulum"]
     for n in pd["counts"]:
         out.append(make_case(study, "ancf", pendulum_dict(element, n, pd["formulation"], pd["dt"],
                                                           t_end=pd["t_end"]), opts or None))
     return out
+
+
+# The shear-locking probe: the pendulum's beam (L = 350 mm, w = 7 mm) as a cantilever of
+# height L / ratio, Neo-Hookean in plane stress (small-strain E = 3 mu, G = mu), under a
+# uniform load that deflects the tip by 1e-4 L (linear regime).
+SLENDER = {"length": 0.350, "width": 0.007, "law": "neo-hookean", "deflection": 1e-4}
+
+
+def beam_theory(ratio: float) -> tuple[float, float]:
+    """(gravity g in m/s^2, tip deflection in m) of the probe of slenderness L / h =
+    ``ratio`` by Timoshenko's beam: q L^4 / (8 E I) + q L^2 / (2 kappa G A), kappa = 5/6."""
+    L, w = SLENDER["length"], SLENDER["width"]
+    h = L / ratio
+    m = paper.materials()[SLENDER["law"]]
+    mu = 2.0 * m["C10"]
+    E, A, I = 3.0 * mu, h * w, w * h ** 3 / 12.0
+    q = SLENDER["deflection"] * L * 8.0 * E * I / L ** 4      # the bending part alone: 1e-4 L
+    return q / (m["density"] * A), q * L ** 4 / (8.0 * E * I) + q * L ** 2 / (2.0 * 5.0 / 6.0 * mu * A)
+
+
+def slender_scene(element: str, ratio: float, n: int) -> dict:
+    g, _ = beam_theory(ratio)
+    d = paper.cantilever_scene(SLENDER["law"], "plane-stress", element, n, quadrature=None, gravity=g,
+                               name=f"slender-{element}-{n}-Lh{ratio:g}")
+    d["beam"] = {"length": SLENDER["length"], "height": SLENDER["length"] / ratio, "width": SLENDER["width"]}
+    return d
 
 
 def measure_checks(element: str, tiny: bool = False) -> dict:
