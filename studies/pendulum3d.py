@@ -127,8 +127,8 @@ def report(ctx) -> Section:
         tips = _tips(fin)
         d = {m: _dist_mm(tips, cont[(law, m)].tips)[1] for m in MODELS if (law, m) in cont}
         nx, ny, nz = _mesh(fin)
-        txt = ", ".join(f"{d[m]:.3f} mm of the continuum {m} pendulum" for m in d)
-        lines.append(f"- {law}, finest 3D mesh {nx} x {ny} x {nz}: the tip stays within {txt} "
+        txt = ", ".join(f"{d[m]:.3f} mm from the continuum {m} pendulum" for m in d)
+        lines.append(f"- {law}, finest 3D mesh {nx} x {ny} x {nz}: the tip is at most {txt} "
                      f"(max over t = 0.1 ... {g['t_end']:g} s; the pendulum is {1e3 * LENGTH:.0f} mm long).")
     sec.text = "\n".join(lines)
     return sec
