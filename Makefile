@@ -20,8 +20,9 @@ study: setup
 	$(PY) -m studies card paper HB2n-20 --import examples.transversely_cubic
 
 # make study, then the heavy 3D levels (issue 11): the converged 3D cantilever of the
-# three laws (graded 16x1x1 ... 64x4x4, 2 to 4 min per law here) into reports/data/solid3d;
-# RANKS=N runs it under mpiexec on N ranks (README, "The real beam in 3D")
+# three laws (graded 16x1x1 ... 64x4x4, 2 to 4 min per law here) into reports/data/solid3d
+# (RANKS=N runs it under mpiexec on N ranks; README, "The real beam in 3D"), and the
+# study pendulum-3d (three 3D pendulum levels, about 19 min here; not in `make study`)
 RANKS ?= 1
 MPIEXEC := mpiexec --oversubscribe --allow-run-as-root -x PYTHONPATH -x OMP_NUM_THREADS -x OPENBLAS_NUM_THREADS
 study-full: study
