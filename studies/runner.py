@@ -83,14 +83,14 @@ def pending(cases: Sequence[Case], store: RecordStore, force: bool = False,
             timeout_s: float | None = None) -> list[Case]:
     """The cases that need a run: all with ``force``, else those without a reusable
     record. A run stopped by a timeout is reusable only under a timeout no longer than
-    the one that stopped it."""
+    the one that stopped it (a record from before that was written down: the default)."""
     if force:
         return list(cases)
     have = store.read()
 
     def stale(r: dict) -> bool:
         return bool(r.get("transient")) or (bool(r.get("timed_out")) and (
-            not timeout_s or timeout_s > r.get("timeout_s", 0.0)))
+            not timeout_s or timeout_s > r.get("timeout_s", DEFAULT_TIMEOUT_S)))
     return [c for c in cases if c.id not in have or stale(have[c.id])]
 
 
