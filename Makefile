@@ -18,6 +18,7 @@ test-slow: setup
 study: setup
 	$(PY) -m studies run all
 	$(PY) -m studies card paper HB2n-20 --import examples.transversely_cubic
+	$(PY) -m studies card HB2n-20xy --import examples.cubic_slope
 
 # make study, then the heavy 3D levels (issue 11): the converged 3D cantilever of the
 # three laws (graded 16x1x1 ... 64x4x4, 2 to 4 min per law here) into reports/data/solid3d
@@ -39,7 +40,8 @@ bench-penalty: setup
 # Exudyn in a separate venv (.venv-peers), never in .venv
 bench-peers: setup
 	bash tools/setup_peers.sh && $(PY) -m studies.peers.compare
-	$(PY) -m studies.peers.work_precision
+	$(PY) -m studies.peers.work_precision --import examples.cubic_slope \
+		--element HB2n-12 --element HB2n-16 --element HB2n-20xy
 
 clean-venv:
 	rm -rf .venv

@@ -2,7 +2,8 @@
 work-precision diagram, timed side by side in one run (``make bench-peers``, issue 10).
 
     .venv/bin/python -m studies.peers.work_precision [--counts 8 16 32 64]
-        [--element HB2n-12 --element HB2n-16] [--rho-inf 0.5] [--repeats 3] [--out reports]
+        [--element HB2n-12 --element HB2n-16] [--import MODULE] [--rho-inf 0.5] [--repeats 3]
+        [--out reports]
 
 Grid: the element counts, and the step ladder dt = 0.1 s / k for k = 20, 40, 80, 160,
 320 (5 ms halving to 0.3125 ms: every step lands on the output times 0.1 ... 0.5 s, as
@@ -27,6 +28,7 @@ for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_v, "1")                 # one thread, before numpy loads
 
 import argparse
+import importlib
 import json
 import statistics
 import sys
@@ -207,10 +209,14 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--peer-python", type=Path, default=PEER_PYTHON)
     ap.add_argument("--out", type=Path, default=ROOT / "reports")
+    ap.add_argument("--import", dest="imports", action="append", default=[],
+                    help="a module that registers a user's element (repeatable)")
     ap.add_argument("--force", action="store_true", help="redo every point")
     ap.add_argument("--report-only", action="store_true", help="redraw the table and figure from the records")
     a = ap.parse_args(argv)
     a.element = a.element or ["HB2n-12", "HB2n-16"]
+    for m in a.imports:
+        importlib.import_module(m)
     recs = read(a.out / "data" / "peers" / f"{NAME}.jsonl") if a.report_only else run(a)
     print(report(recs, a.out))
     return 0
