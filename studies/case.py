@@ -7,6 +7,7 @@ the options held as canonical JSON. Its :attr:`Case.id` is a hash of
 - the solver's source hash (:func:`studies.solvers.source_hash`: the .py files of the
   package that solves it),
 - the numpy / numba / dolfinx versions (:func:`versions`),
+- with an ``imports`` option (a user's element or law), those modules' source files,
 
 so that a record can be reused exactly while none of these changed. The study name is
 not part of the id: the records of each study live in their own file.
@@ -18,6 +19,7 @@ import json
 from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib import metadata
+from pathlib import Path
 from typing import Any, Mapping
 
 from .solvers import SOLVERS, get_solver, source_hash
@@ -89,11 +91,28 @@ class Case:
                 "name": self.name, "options": self.options}
 
 
+def _imports_hash(modules) -> str | None:
+    """sha256 over the source files of the modules a case imports (a user's element or
+    law): a record depends on them as on the solver's own sources. None without any."""
+    if not modules:
+        return None
+    import importlib.util
+
+    h = hashlib.sha256()
+    for m in sorted(modules):
+        spec = importlib.util.find_spec(m)
+        origin = Path(spec.origin) if spec and spec.origin else None
+        h.update(m.encode() + b"\0" + (origin.read_bytes() if origin and origin.exists() else b"?") + b"\0")
+    return h.hexdigest()
+
+
 def _fresh_id(solver: str, scene_json: str, options_json: str) -> str:
-    ident = canonical({"solver": solver, "scene": json.loads(scene_json),
-                       "options": json.loads(options_json), "source": source_hash(solver),
-                       "versions": versions()})
-    return hashlib.sha256(ident.encode()).hexdigest()[:20]
+    options = json.loads(options_json)
+    ident = {"solver": solver, "scene": json.loads(scene_json), "options": options,
+             "source": source_hash(solver), "versions": versions()}
+    if options.get("imports"):
+        ident["imports_source"] = _imports_hash(options["imports"])
+    return hashlib.sha256(canonical(ident).encode()).hexdigest()[:20]
 
 
 case_id = lru_cache(maxsize=None)(_fresh_id)   # sources are read once per process

@@ -34,3 +34,12 @@ def test_eight_elements_reach_a_tenth_of_a_percent_on_the_pendulum():
         assert rec["status"] == "converged"
         errs[el] = error(rec["tip_history"])
     assert errs[ELEMENT] < 1e-3 < 1e-2 < errs["HB2n-16"]
+
+
+def test_the_declared_rules_pass_the_rank_tests_and_the_cheaper_ones_fail():
+    from ancf.rank import rank_test, strain_test
+
+    def ok(rule, aspect):
+        return rank_test(ELEMENT, rule, aspect)["passes"] and strain_test(ELEMENT, rule, aspect)["passes"]
+    assert all(ok((4, 2), a) for a in (10.0, 3.0, 1.0)) and not ok((3, 2), 10.0)
+    assert all(ok((3, 3), a) for a in (0.9, 0.3, 0.1, 0.01)) and not ok((4, 2), 0.5) and not ok((3, 2), 0.3)

@@ -281,3 +281,21 @@ def test_a_run_beyond_the_time_limit_is_stopped_and_recorded(tmp_path, fake_solv
     fake_solver.behaviour = quick
     s = run_cases("t", [case], store, executor="serial", progress=False, timeout_s=30.0)
     assert s.computed == 1 and store.read()[case.id]["status"] == "converged"
+
+
+def test_a_case_id_follows_the_source_of_the_module_it_imports(tmp_path, monkeypatch):
+    """A user's element module is part of what a record depends on: edit it, and the case
+    is a new one (the study reruns it) rather than a stale record reused."""
+    import sys
+    from studies import case as case_mod
+
+    mod = tmp_path / "my_user_element.py"
+    mod.write_text("X = 1\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    scene = small_cases()[0].scene
+    a = case_mod._fresh_id("ancf", json.dumps(scene), json.dumps({"imports": ["my_user_element"]}))
+    mod.write_text("X = 2\n")
+    b = case_mod._fresh_id("ancf", json.dumps(scene), json.dumps({"imports": ["my_user_element"]}))
+    c = case_mod._fresh_id("ancf", json.dumps(scene), json.dumps({}))
+    assert a != b and c not in (a, b)
+    sys.modules.pop("my_user_element", None)
