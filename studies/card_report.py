@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .card import cases, checks_path, grid_for, slug
+from .card import beam_theory, cases, checks_path, grid_for, slug
 from .pendulum import FEM_GOLD, continuum_pendulum, describe_dynamic, tip_errors
 from .reference import MATCHING, gold_references, short
 from .report import figure, mm, vec_error
@@ -192,10 +192,6 @@ def shear_locking(recs) -> dict:
     "order": log2 of the stoutest beam's error ratio over the last doubling of n (None
     without two counts), "converges": False if that error stays above 1 % and does not
     shrink (order < 0.2)}."""
-    import math
-
-    from .card import beam_theory
-
     rows: dict[int, dict[float, float]] = {}
     for r in recs:
         if not _is_slender(r) or r["status"] != "converged" or not r.get("tip"):
