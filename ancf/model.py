@@ -131,6 +131,12 @@ class BeamModel:
         from .tape import trace
         return trace(self.material)
 
+    @cached_property
+    def static_kernel(self):
+        """The arrays of the compiled static Newton (:mod:`ancf.staticloop`)."""
+        from .staticloop import StaticKernel
+        return StaticKernel(self)
+
     def energy_derivatives(self, a: np.ndarray, J: np.ndarray) -> np.ndarray:
         """W and its (a, J) partials, (6, *a.shape), by the compiled tape (the numpy
         :meth:`Material.energy_jet` is the reference)."""

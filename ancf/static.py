@@ -22,6 +22,7 @@ from typing import Callable
 
 import numpy as np
 
+from . import staticloop
 from .loadpath import Attempt, PathCounts, PathFailure, follow
 from .model import BeamModel, InadmissibleState
 from .stability import check_stability
@@ -38,6 +39,20 @@ class NewtonResult:
 
 def newton(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol: float,
            max_iterations: int, utol: float = 1e-9, line_search: bool = False) -> NewtonResult:
+    """Solve f_int(u) = target on the free dofs, starting at u0 (fixed dofs stay as in u0):
+    :func:`newton_reference`'s iteration, compiled (:mod:`ancf.staticloop`). An attempt
+    whose unpivoted LDL^T meets a zero pivot is redone by :func:`newton_reference`, whose
+    pivoted LU decides whether the tangent is singular."""
+    outcome, u, its, residuals = model.static_kernel.newton(u0, target, atol, max_iterations, utol, line_search)
+    if outcome == staticloop.CONVERGED:
+        return NewtonResult(u, True, its, residuals)
+    if outcome != staticloop.UNPIVOTED:
+        return NewtonResult(u, False, its, residuals, staticloop.REASONS[outcome])
+    return newton_reference(model, u0, target, atol, max_iterations, utol, line_search)
+
+
+def newton_reference(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol: float,
+                     max_iterations: int, utol: float = 1e-9, line_search: bool = False) -> NewtonResult:
     """Solve f_int(u) = target on the free dofs, starting at u0 (fixed dofs stay as in u0).
 
     Converged when the residual norm is at most ``atol`` (N), or when the last Newton
