@@ -130,6 +130,14 @@ def _line_search(model, u, du, target, R0, free) -> float:
     return lo if lo > 0 else 0.5 * hi
 
 
+# The residual tolerance is at least this many times eps |f_int|_terms (the internal force
+# assembled from the magnitudes of its terms, ancf.staticloop.StaticKernel.roundoff_floor,
+# at the reference state): the residual's round-off. Measured on slender cantilevers
+# (L/h 70 and 140, gravity scaled to the linear regime, where rtol |f_ext| is 1e-15 N):
+# Newton's residual stalls at 0.2 (pivoted LU) to 1.1 (compiled loop) times that
+# estimate, above rtol |f_ext|; 10 leaves a margin.
+ROUNDOFF_FLOOR = 10.0
+
 # The energy descent retries only increments at most this large (of the whole path);
 # larger failing increments are cut first, which is cheaper.
 DESCENT_BELOW = 1e-2
@@ -192,7 +200,9 @@ def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
     n_relax = 0
     f0 = np.where(free, model.internal_force(u), 0.0)
     scale = max(np.linalg.norm(f_ext[free]), np.linalg.norm(f0), 1e-30)
-    atol = rtol * scale
+    # never below the force's round-off (small loads on a stiff section: rtol |f_ext|
+    # can lie under it, and then only luck in the last digits converges)
+    atol = max(rtol * scale, ROUNDOFF_FLOOR * model.static_kernel.roundoff_floor(u))
 
     def finish(status, reason, u, verdict=None, stability=None):
         return StaticResult(u, status, reason, counts.newton_iterations, counts.accepted,

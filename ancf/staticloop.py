@@ -25,7 +25,8 @@ import numpy as np
 from numba import njit
 
 from .kernels import INADMISSIBLE, OK, assemble_fused, col_constrain, col_ldlt, col_ldlt_solve, envelope, \
-    step_scratch
+    point_gradients, step_scratch
+from .tape import tape_batch
 
 # Outcomes of :func:`newton` (a converged attempt is CONVERGED).
 CONVERGED, NON_FINITE, DIVERGING, NO_CONVERGENCE, UNPIVOTED, NOT_ADMISSIBLE = range(6)
@@ -146,6 +147,38 @@ def newton(dN, w, dofs, ops, consts, first, fixed, target, u, atol, utol, hbeam,
     return NO_CONVERGENCE, max_it, nres
 
 
+@njit(cache=True)
+def force_magnitude(u, dN, w, dofs, ops, consts, out):
+    """out (n,) <- the internal force assembled from the magnitudes of its terms,
+    sum |w dN_s,j| (|2 W_a F_ij| + |W_J (cof F)_ij|): what the force's round-off is
+    relative to. Returns OK, or INADMISSIBLE if det F <= 0 somewhere."""
+    ne = dofs.shape[0]
+    nq, ns = dN.shape[0], dN.shape[1]
+    chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], nq)
+    W = R[ops.shape[0] - 1]
+    out[:] = 0.0
+    for e0 in range(0, ne, chunk):
+        e1 = min(ne, e0 + chunk)
+        m = point_gradients(u, u, 0.0, dN, dofs, e0, e1, Fb, ab, Jb)
+        if m < 0:
+            return INADMISSIBLE
+        tape_batch(ops, consts, ab, Jb, R, m, 1)
+        p = 0
+        for e in range(e0, e1):
+            for q in range(nq):
+                a2, aj, wq = abs(2.0 * W[1, p]), abs(W[2, p]), w[q]
+                M0 = wq * (a2 * abs(Fb[p, 0]) + aj * abs(Fb[p, 3]))
+                M1 = wq * (a2 * abs(Fb[p, 1]) + aj * abs(Fb[p, 2]))
+                M2 = wq * (a2 * abs(Fb[p, 2]) + aj * abs(Fb[p, 1]))
+                M3 = wq * (a2 * abs(Fb[p, 3]) + aj * abs(Fb[p, 0]))
+                for s in range(ns):
+                    g0, g1 = abs(dN[q, s, 0]), abs(dN[q, s, 1])
+                    out[dofs[e, 2 * s]] += g0 * M0 + g1 * M1
+                    out[dofs[e, 2 * s + 1]] += g0 * M2 + g1 * M3
+                p += 1
+    return OK
+
+
 class StaticKernel:
     """The arrays :func:`newton` reads, for one model (built once per model)."""
 
@@ -165,3 +198,13 @@ class StaticKernel:
         outcome, its, nres = newton(*self.data, np.ascontiguousarray(target, dtype=float), u, float(atol),
                                     float(utol), self.hbeam, int(max_iterations), bool(line_search), residuals)
         return int(outcome), u, int(its), [float(x) for x in residuals[:nres]]
+
+    def roundoff_floor(self, u: np.ndarray) -> float:
+        """eps ||sum of |terms| of f_int(u)||_2 over the free dofs (N): the size of the
+        force's round-off; nan if det F <= 0 at u."""
+        dN, w, dofs, ops, consts, _, fixed = self.data
+        out = np.empty(len(u))
+        if force_magnitude(np.ascontiguousarray(u, dtype=float), dN, w, dofs, ops, consts, out) != OK:
+            return float("nan")
+        out[fixed] = 0.0
+        return float(np.finfo(float).eps * np.linalg.norm(out))

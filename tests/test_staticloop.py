@@ -95,3 +95,45 @@ def test_failures_name_their_reason():
     out = newton(model, np.zeros(model.mesh.n_dof), f, atol * 1e-30, 2)
     ref = newton_reference(model, np.zeros(model.mesh.n_dof), f, atol * 1e-30, 2)
     assert not out.converged and out.reason == ref.reason == "no convergence within max_iterations"
+
+
+def test_residual_tolerance_respects_the_roundoff_floor():
+    """A slender cantilever under a linear-regime load (L/h = 70, the card's shear-locking
+    probe): rtol |f_ext| (9e-15 N) lies below the force's round-off. The residual of
+    converged Newton iterates stalls between 0.01 and ROUNDOFF_FLOOR times the estimate
+    eps |f_int|_terms (measured 0.2 to 1.1), so the floor neither accepts an unconverged
+    state (a floor 100 times the stall) nor leaves the tolerance unreachable; with it the
+    whole load path converges (without it, the compiled loop's increments stalled and
+    the path failed)."""
+    from ancf.static import ROUNDOFF_FLOOR, solve_static
+    from studies.card import slender_scene
+    s = scene_from_dict(slender_scene("HB2n-12", 70, 8))
+    model = build_model(s)
+    f = sum(external_loads(model, s).values())
+    u0 = np.zeros(model.mesh.n_dof)
+    floor = model.static_kernel.roundoff_floor(u0)
+    free = np.ones(len(f), bool)
+    free[model.fixed] = False
+    assert 1e-8 * np.linalg.norm(f[free]) < floor
+    for loop in (newton, newton_reference):
+        tail = loop(model, u0, f, 0.0, 12, utol=-1.0).residuals[-4:]   # no correction stop
+        assert 0.01 * floor < min(tail) and max(tail) < ROUNDOFF_FLOOR * floor
+    res = solve_static(model, f)
+    assert res.status == "converged" and res.newton_iterations < 30
+
+
+def test_slender_path_converges_above_the_floor(monkeypatch):
+    """HB2n-20 (examples/transversely_cubic.py) on the same probe: with the floor the
+    path converges in a few iterations; without it (ROUNDOFF_FLOOR = 0) the compiled
+    loop's increments stall at the round-off and the path fails (the card's 7 slender
+    cells failed so before the floor)."""
+    import examples.transversely_cubic  # noqa: F401 (registers HB2n-20)
+    from ancf import static
+    from studies.card import slender_scene
+    s = scene_from_dict(slender_scene("HB2n-20", 70, 8))
+    model = build_model(s)
+    f = sum(external_loads(model, s).values())
+    res = static.solve_static(model, f)
+    assert res.status == "converged" and res.newton_iterations < 30
+    monkeypatch.setattr(static, "ROUNDOFF_FLOOR", 0.0)
+    assert static.solve_static(build_model(s), f).status == "failed"
