@@ -236,8 +236,12 @@ def test_ctrl_c_is_one_line_and_exit_130(tmp_path, module):
         .replace("load_steps = 10     # initial number of increments; stepping stays adaptive", "") \
         .replace('left = "clamp"      # "clamp" | "pin"\nclamp = "face"      # "face" | "all"', 'left = "pin"')
     scene.write_text(d)
+    # the child gets SIGINT's default disposition: under a shell's background job (`make
+    # test &`) SIGINT is ignored, Python then installs no KeyboardInterrupt handler, and
+    # the run would finish (exit 0) whatever the harness does
     p = subprocess.Popen([sys.executable, "-m", module, "run", str(scene), "--quiet"], cwd=ROOT,
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     time.sleep(6 if module == "ancf" else 20)
     p.send_signal(signal.SIGINT)
     out, err = p.communicate(timeout=60)

@@ -65,15 +65,23 @@ def test_3d_with_fixed_side_faces_is_the_2d_plane_strain_solution(law):
     """u_z = 0 on z = +-w/2: the 16 x 1 x 1 Q2/Q1 solution is the 16 x 1 plane-strain one,
     extruded (the 3D space contains it and the discrete equations are the same). An
     independent check of the 3D invariants, the pressure term, quadrature, loads and clamp
-    against the 2D code's gold level. Both runs stop by the same Newton test on the same
-    path, so they agree to round-off (6e-14 measured); 1e-10 leaves room for the BLAS."""
+    against the 2D code, run here on the gold file's level 0 (16 x 1). Both runs stop by
+    the same Newton test on the same load path, so they agree to round-off (6e-14
+    measured); 1e-10 leaves room for the BLAS. (Against the gold file's stored tip the
+    agreement is only the Newton tolerance's, ~1e-10, once the load-path rule changes:
+    1.1e-10 after the increments grew after 6 iterations instead of 4; the gold level
+    itself is held by tests/test_reference_fem_cantilever.py within REGRESSION_RTOL.)"""
+    from reference_fem.gold import base_settings, cantilever
     from reference_fem.run import run_scene
 
     rec = run_scene(_scene(law, cells_length=16, cells_height=1, cells_width=1, side_faces="plane-strain"))
     gold = GOLD_2D["cases"][f"{law}/plane-strain"]["levels"][0]
     assert (gold["cells_length"], gold["cells_height"]) == (16, 1)
+    flat = run_scene(cantilever(law, "plane-strain"), base_settings("plane-strain", "mixed"))
+    assert flat["status"] == "converged" and flat["continuum_model"] == "plane-strain"
     assert rec["status"] == "converged" and rec["continuum_model"] == "3d"
-    assert _rel(rec["tip"], gold["tip"]) < 1e-10
+    assert _rel(rec["tip"], flat["tip"]) < 1e-10
+    assert _rel(flat["tip"], gold["tip"]) < REGRESSION_RTOL
     assert abs(rec["tip_uz"]) < 1e-12
 
 
