@@ -13,6 +13,10 @@ solver); :func:`increment_solver` is ANCF's attempt of one increment.
 An increment whose Newton fails (or meets an inadmissible state) is retried from the
 last state with a line search, then (once the increment is small) by a shifted-Newton
 energy descent, and only then cut by the load-path rule.
+
+The Newton iterations run compiled (:mod:`ancf.staticloop`); :func:`newton_reference`
+is the Python loop they reproduce and are tested against. The residual tolerance never
+lies below the force's own round-off (:data:`ROUNDOFF_FLOOR`).
 """
 from __future__ import annotations
 
