@@ -132,6 +132,17 @@ class BeamModel:
         return trace(self.material)
 
     @cached_property
+    def fused(self) -> tuple:
+        """What the compiled loops (:mod:`ancf.steploop`, :mod:`ancf.staticloop`) read of
+        the model: shape-function gradients, weights, element dofs, the law's tape (ops,
+        consts) and the band envelope (:func:`ancf.kernels.envelope`), contiguous."""
+        from .kernels import envelope
+        ops, consts = self._tape
+        return (np.ascontiguousarray(self._dN), np.ascontiguousarray(self._w, dtype=float),
+                np.ascontiguousarray(self._dofs, dtype=np.int64), np.ascontiguousarray(ops),
+                np.ascontiguousarray(consts, dtype=float), envelope(self._dofs, self.mesh.n_dof))
+
+    @cached_property
     def static_kernel(self):
         """The arrays of the compiled static Newton (:mod:`ancf.staticloop`)."""
         from .staticloop import StaticKernel

@@ -25,7 +25,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .kernels import INADMISSIBLE, OK, assemble_fused, col_constrain, col_ldlt, col_ldlt_solve, envelope, \
+from .kernels import INADMISSIBLE, OK, assemble_fused, col_constrain, col_ldlt, col_ldlt_solve, \
     point_gradients, step_scratch
 from .tape import tape_batch
 
@@ -181,11 +181,7 @@ class StaticKernel:
     """The arrays :func:`newton` reads, for one model (built once per model)."""
 
     def __init__(self, model):
-        ops, consts = model._tape
-        self.data = (np.ascontiguousarray(model._dN), np.ascontiguousarray(model._w, dtype=float),
-                     np.ascontiguousarray(model._dofs, dtype=np.int64), np.ascontiguousarray(ops),
-                     np.ascontiguousarray(consts, dtype=float), envelope(model._dofs, model.mesh.n_dof),
-                     np.ascontiguousarray(model.fixed, dtype=np.int64))
+        self.data = model.fused + (np.ascontiguousarray(model.fixed, dtype=np.int64),)
         self.hbeam = float(model.mesh.height)
         self.bandwidth = int(model.mesh.bandwidth)
 

@@ -65,7 +65,7 @@ from numba import njit
 
 from . import timeloop
 from .kernels import (INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, col_constrain,
-                      col_ldlt, col_ldlt_solve, col_matvec, assemble_fused, envelope, step_scratch,
+                      col_ldlt, col_ldlt_solve, col_matvec, assemble_fused, step_scratch,
                       strain_energy_fused)
 
 NEWTON = ("chord", "full", "modified")
@@ -313,12 +313,9 @@ class CompiledLoop:
         if newton not in NEWTON:
             raise ValueError(f"newton: {newton!r} is not one of {', '.join(NEWTON)}")
         b = model.mesh.bandwidth
-        ops, consts = model._tape
         self.n, self.b = model.mesh.n_dof, b
-        self.data = (np.ascontiguousarray(model._dN), np.ascontiguousarray(model._w, dtype=float),
-                     np.ascontiguousarray(model._dofs, dtype=np.int64), np.ascontiguousarray(ops),
-                     np.ascontiguousarray(consts, dtype=float), column_band(M.ab, b),
-                     envelope(model._dofs, model.mesh.n_dof), np.ascontiguousarray(f_ext, dtype=float),
+        dN, w, dofs, ops, consts, first = model.fused
+        self.data = (dN, w, dofs, ops, consts, column_band(M.ab, b), first, np.ascontiguousarray(f_ext, dtype=float),
                      np.ascontiguousarray(model.mesh.reference, dtype=float),
                      np.ascontiguousarray(model.fixed, dtype=np.int64))
         c = coefficients

@@ -170,18 +170,13 @@ def tape_batch(ops, consts, a, J, R, m, order):
             for d in range(nc):
                 for p in range(m):
                     Rk[d, p] = 0.0
-            if op == VAR_A:
+            if op == VAR_A or op == VAR_J:       # the variable, and its unit partial
+                v, slot = (a, 1) if op == VAR_A else (J, 2)
                 for p in range(m):
-                    Rk[0, p] = a[p]
+                    Rk[0, p] = v[p]
                 if nc > 1:
                     for p in range(m):
-                        Rk[1, p] = 1.0
-            elif op == VAR_J:
-                for p in range(m):
-                    Rk[0, p] = J[p]
-                if nc > 1:
-                    for p in range(m):
-                        Rk[2, p] = 1.0
+                        Rk[slot, p] = 1.0
             else:
                 for p in range(m):
                     Rk[0, p] = c
