@@ -47,6 +47,14 @@ def _vals(d: dict | None) -> list:
     return [mm(d["tip"]["ux"]), mm(d["tip"]["uy"])]
 
 
+
+def _deviations(rec, ref) -> list:
+    """(ux, uy) deviations in % of a converged record's tip from ref (ux, uy), or None."""
+    tip = rec["tip"] if rec and rec["status"] == "converged" else None
+    if not (tip and ref):
+        return [None, None]
+    return [pct(rel_dev(tip["ux"], ref[0])), pct(rel_dev(tip["uy"], ref[1]))]
+
 def report(ctx) -> Section:
     g = ctx.study.grid
     laws, els, forms = g["laws"], g["elements"], g["formulations"]
@@ -87,11 +95,7 @@ def report(ctx) -> Section:
         for el in els:
             row = [el, form, reference_for(form, el, laws[0], refs)[1]]
             for law in laws:
-                d = got.get((el, form, law))
-                ref, _ = reference_for(form, el, law, refs)
-                tip = d["tip"] if d and d["status"] == "converged" else None
-                row += [pct(rel_dev(tip["ux"], ref[0])) if tip and ref else None,
-                        pct(rel_dev(tip["uy"], ref[1])) if tip and ref else None]
+                row += _deviations(got.get((el, form, law)), reference_for(form, el, law, refs)[0])
             rows.append(row)
     sec.table(ctx, Table("table3_deviation", hdr, rows, {j: "+.2f" for j in range(3, len(hdr))}),
               "Deviation of each cell, (ours - reference) / |reference|: `paper` against the paper's own cell, "
@@ -104,10 +108,7 @@ def report(ctx) -> Section:
             for el in els:
                 row = [el, form]
                 for law in laws:
-                    d, ref = got.get((el, form, law)), solid.get(law)
-                    tip = d["tip"] if d and d["status"] == "converged" else None
-                    row += [pct(rel_dev(tip["ux"], ref[0])) if tip and ref else None,
-                            pct(rel_dev(tip["uy"], ref[1])) if tip and ref else None]
+                    row += _deviations(got.get((el, form, law)), solid.get(law))
                 rows.append(row)
         sec.table(ctx, Table("table3_vs_3d", hdr, rows, {j: "+.2f" for j in range(2, len(hdr))}),
                   "Deviation of each cell from the real 3D beam, (ours - 3D) / |3D|: the converged 3D continuum "
