@@ -55,6 +55,7 @@ def _deviations(rec, ref) -> list:
         return [None, None]
     return [pct(rel_dev(tip["ux"], ref[0])), pct(rel_dev(tip["uy"], ref[1]))]
 
+
 def report(ctx) -> Section:
     g = ctx.study.grid
     laws, els, forms = g["laws"], g["elements"], g["formulations"]
