@@ -6,3 +6,7 @@ formulation says which invariants a law sees (:mod:`ancf.formulations`); a scene
 :mod:`ancf.build` checks the names and turns them into objects.
 """
 __version__ = "0.1.0"
+
+from . import compiled_cache as _compiled_cache
+
+_compiled_cache.configure()      # before any compiled function is defined

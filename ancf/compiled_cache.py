@@ -1,0 +1,58 @@
+"""numba's disk cache, in a directory named by a digest of the package's source.
+
+numba checks a cached function against the time stamp of its own file only. A compiled
+function that calls compiled code of another module (the step loop and the static loop
+inline :func:`ancf.kernels.assemble_fused`) is loaded from its cache after that other
+module has changed, and runs the old code. Measured: after an edit of
+``ancf/kernels.py`` the step loop kept running the old assembly until its cache files
+were removed (``tests/test_compiled_cache.py`` shows the same with two small modules).
+
+So :func:`configure` (called by ``ancf/__init__.py``, before any compiled function is
+defined) points numba at ``<base>/numba-<digest>``, the digest taken over every module
+of the package: an edit anywhere starts a fresh cache (one compilation), and an
+unchanged package loads its compiled code as before. ``<base>`` is ``$NUMBA_CACHE_DIR``
+if set, else the package's ``__pycache__``, else (not writable) ``~/.cache/ancf``.
+numba has one cache directory per process, so other packages' cached functions defined
+after this call are stored there too.
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+from pathlib import Path
+
+PACKAGE = Path(__file__).resolve().parent
+
+
+def source_digest(package: Path = PACKAGE) -> str:
+    """sha256 over the names and bytes of the package's modules (16 hex digits)."""
+    h = hashlib.sha256()
+    for p in sorted(Path(package).glob("*.py")):
+        h.update(p.name.encode() + b"\0" + p.read_bytes() + b"\0")
+    return h.hexdigest()[:16]
+
+
+def _writable(d: Path) -> bool:
+    try:
+        d.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return False
+    return os.access(d, os.W_OK)
+
+
+def cache_dir(package: Path = PACKAGE) -> Path:
+    """Where numba caches the package's compiled code (see the module docstring)."""
+    name = f"numba-{source_digest(package)}"
+    for base in (os.environ.get("NUMBA_CACHE_DIR"), Path(package) / "__pycache__", Path.home() / ".cache" / "ancf"):
+        if base and _writable(Path(base) / name):
+            return Path(base) / name
+    return Path(package) / "__pycache__" / name      # numba then warns that it cannot cache
+
+
+def configure(package: Path = PACKAGE) -> Path:
+    """Point numba's cache at :func:`cache_dir` and return it."""
+    import numba
+
+    d = cache_dir(package)
+    numba.config.CACHE_DIR = str(d)
+    return d
