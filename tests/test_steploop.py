@@ -9,6 +9,7 @@ from ancf.banded import Banded
 from ancf.build import build_integrator, build_model, external_loads
 from ancf.kernels import (OK, assemble_fused, col_constrain, col_ldlt, col_ldlt_solve, envelope,
                           step_scratch, strain_energy_fused)
+from ancf.elements import ELEMENTS
 from ancf.laws import LAWS, Law, register_law
 from ancf.steploop import column_band
 from ancf.timeloop import integrate
@@ -129,6 +130,43 @@ def test_a_user_registered_element_and_law_run_through_the_compiled_loop(user_el
     assert cc.status == py.status == "converged"
     assert integ._loop.stats["steps"] == cc.steps
     assert tip_difference(py, cc) < TIP
+
+
+@pytest.mark.parametrize("element", sorted(ELEMENTS))
+def test_fused_tangent_of_every_element_in_either_dof_numbering(element):
+    """The fused kernel's force and upper band equal the model's kernel for every
+    registered element, with the mesh's numbering (each element's dofs contiguous: the
+    kernel's direct scatter) and with the numbering reversed (dofs descending: its
+    general scatter), which permutes f and K."""
+    sc = scene(material=paper.material_table("mooney-rivlin", "plane-stress"), element=element, n=3)
+    model = build_model(sc)
+    n, b = model.mesh.n_dof, model.mesh.bandwidth
+    u, un = (1e-4 * np.random.default_rng(5).standard_normal(n) for _ in range(2))
+    f_ref, K_ref = model.internal_force_and_tangent(0.6 * u + 0.4 * un)
+    ops, consts = model._tape
+    scratch = step_scratch(ops.shape[0], model._dN.shape[0])
+    rev = n - 1 - np.arange(n)
+    for dofs, perm in ((model._dofs.astype(np.int64), np.arange(n)), ((n - 1 - model._dofs).astype(np.int64), rev)):
+        f, Kc = np.empty(n), np.empty((n, b + 1))
+        assert assemble_fused(u[perm], un[perm], 0.4, model._dN, model._w, dofs, ops, consts, f, Kc, True,
+                              *scratch) == OK
+        np.testing.assert_allclose(f, f_ref[perm], rtol=0, atol=1e-12 * np.abs(f_ref).max())
+        dense = np.zeros((n, n))
+        for j in range(n):
+            for r in range(max(0, j - b), j + 1):
+                dense[r, j] = dense[j, r] = Kc[j, b + r - j]
+        expect = _dense(K_ref.ab, b)[np.ix_(perm, perm)]
+        np.testing.assert_allclose(dense, expect, rtol=0, atol=1e-12 * np.abs(expect).max())
+
+
+def _dense(ab, b):
+    """The symmetric matrix of a LAPACK general band ab (2 b + 1, n)."""
+    n = ab.shape[1]
+    out = np.zeros((n, n))
+    for j in range(n):
+        for i in range(max(0, j - b), min(n, j + b + 1)):
+            out[i, j] = ab[b + i - j, j]
+    return out
 
 
 @pytest.mark.parametrize("law", ["neo-hookean", "mooney-rivlin", "yeoh"])
