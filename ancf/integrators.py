@@ -34,15 +34,29 @@ class Integrator:
     # evaluation and leaves ~1e-12 of the state, far below the 0.1 mm step criterion.
     utol = 1e-6
 
-    # a compiled ``advance`` (many steps per call, :mod:`ancf.steploop`); None: Python steps
-    advance = None
+    # the compiled loop (:mod:`ancf.steploop`) steps this method; False: Python steps only
+    compiled = False
+
+    @cached_property
+    def _loop(self):
+        from .steploop import CompiledLoop
+        return CompiledLoop(self.model, self.M, self.f_ext, self.coefficients(self.rho_inf), self.newton,
+                            self.newton_rtol, self.max_iterations, self.utol,
+                            discrete_gradient=isinstance(self, DiscreteGradient))
+
+    @property
+    def advance(self):
+        """Compiled steps from s towards t_out (:meth:`ancf.steploop.CompiledLoop.advance`),
+        for a :class:`BeamModel` (another model steps in Python); None: Python steps."""
+        return self._loop.advance if self.compiled and isinstance(self.model, BeamModel) else None
 
     def __init__(self, model: BeamModel, M: Banded, loads: dict[str, np.ndarray], rho_inf: float = 0.5,
                  newton_rtol: float = 1e-8, max_iterations: int = 25, line_points: int = 4,
                  newton: str = "chord"):
         """``loads``: the dead load vectors Q by effect ("gravity", "tip_force"), N.
-        ``newton``: the compiled loop's Newton variant (:data:`ancf.steploop.NEWTON`); the
-        Python steps (discrete gradient, adaptive steps) are full Newton."""
+        ``newton``: the compiled loop's Newton variant (:data:`ancf.steploop.NEWTON`) of
+        the generalized-alpha family; the discrete gradient (compiled or not) and the
+        Python steps (adaptive steps) are full Newton."""
         self.model, self.M, self.loads = model, M, loads
         self.newton = newton
         self.f_ext = sum(loads.values(), np.zeros(model.mesh.n_dof))
@@ -84,6 +98,8 @@ class Integrator:
     # -- what the loop asks for ----------------------------------------------------------
     def initial_state(self, u0: np.ndarray) -> State:
         """At rest at u0; a0 from M a0 = Q_K - f_int(u0) on the free dofs."""
+        if self.advance is not None:
+            self._loop.reset()               # a new run: no factorisation kept
         r = np.where(self.free, self.f_ext - self.model.internal_force(u0), 0.0)
         a0 = self.M_constrained().solve(r)
         return State(0.0, u0.copy(), np.zeros_like(u0), a0)
@@ -126,6 +142,7 @@ class GeneralizedAlpha(Integrator):
 
     name = "generalized-alpha"
     alpha_family = True
+    compiled = True
 
     @classmethod
     def coefficients(cls, rho_inf: float) -> dict:
@@ -133,22 +150,6 @@ class GeneralizedAlpha(Integrator):
         af = rho_inf / (rho_inf + 1)
         return {"alpha_m": am, "alpha_f": af, "gamma": 0.5 - am + af, "beta": 0.25 * (1 - am + af) ** 2}
 
-    @cached_property
-    def _loop(self):
-        from .steploop import CompiledLoop
-        return CompiledLoop(self.model, self.M, self.f_ext, self.coefficients(self.rho_inf), self.newton,
-                            self.newton_rtol, self.max_iterations, self.utol)
-
-    def initial_state(self, u0: np.ndarray) -> State:
-        if self.advance is not None:
-            self._loop.reset()               # a new run: no factorisation kept
-        return super().initial_state(u0)
-
-    @property
-    def advance(self):
-        """Compiled steps from s towards t_out (:meth:`ancf.steploop.CompiledLoop.advance`),
-        for a :class:`BeamModel` (another model steps in Python)."""
-        return self._loop.advance if isinstance(self.model, BeamModel) else None
 
     def step(self, s: State, dt: float) -> tuple[State | None, int]:
         am, af, g, b = self.alpha_m, self.alpha_f, self.gamma, self.beta
@@ -221,6 +222,7 @@ class DiscreteGradient(Integrator):
     K(u_m) / 2 + 2 M / dt^2 (exact as du -> 0)."""
 
     name = "discrete-gradient"
+    compiled = True
 
     @classmethod
     def coefficients(cls, rho_inf: float) -> dict:

@@ -1,4 +1,5 @@
-"""The compiled time loop of the generalized-alpha family (generalized-alpha, Newmark).
+"""The compiled time loop of the generalized-alpha family (generalized-alpha, Newmark)
+and of the discrete-gradient scheme (:func:`step_dg`).
 
 :func:`advance` integrates from the current time to the next output time in one numba
 call: predictor, Newton iterations (fused assembly, banded LDL^T with envelope and
@@ -64,9 +65,9 @@ import numpy as np
 from numba import njit
 
 from . import timeloop
+from .dgkernel import assemble_dg, dg_scratch
 from .kernels import (INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, col_constrain,
-                      col_ldlt, col_ldlt_solve, col_matvec, assemble_fused, step_scratch,
-                      strain_energy_fused)
+                      col_ldlt, col_ldlt_solve, col_matvec, assemble_fused, step_scratch, strain_energy_fused)
 
 NEWTON = ("chord", "full", "modified")
 STATUS = {NEWTON_FAILED: "Newton failed", SINGULAR: "singular step matrix", INADMISSIBLE: "det F <= 0"}
@@ -91,7 +92,8 @@ COUNTER_NAMES = ("steps", "iterations", "residuals", "tangents", "factorisations
                  "indefinite_factorisations", "full_newton_fallbacks")
 
 # Integer Newton settings (``inewton``) and float ones (``fnewton``).
-I_MAX_IT, I_MODIFIED, I_STOP, I_MAX_MODIFIED, I_ENERGY_EVERY, I_JAC_PER_STEP = range(6)
+I_MAX_IT, I_MODIFIED, I_STOP, I_MAX_MODIFIED, I_ENERGY_EVERY, I_JAC_PER_STEP, I_SCHEME = range(7)
+ALPHA_FAMILY, DISCRETE_GRADIENT = 0, 1            # inewton[I_SCHEME]
 STOP_RESIDUAL, STOP_BOTH = 0, 1
 F_RTOL, F_UTOL, F_KAPPA, F_HBEAM, F_ELIMIT = range(5)
 
@@ -201,6 +203,74 @@ def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewt
 
 
 @njit(cache=True)
+def step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton, fnewton, u_n, v_n, a_n, h,
+            u, v, a, S, counters, wk, scratch):
+    """One discrete-gradient step (:class:`ancf.integrators.DiscreteGradient`, its Python
+    step compiled, the same iterations): Newton on
+    R = M (2 (u - u_n) / h^2 - 2 v_n / h) + f_dg(u_n, u) - f_ext with the tangent
+    K(u_m) / 2 + 2 M / h^2 at every iteration; stops on the residual
+    |R| <= rtol (|f_ext| + |M a_n|) or on a correction below 1e-3 utol of the state (its
+    Jacobian is not exact: a linear rate, so the tighter test). Returns (status,
+    iterations) with the Python step's count."""
+    max_it = inewton[I_MAX_IT]
+    rtol, utol, hbeam = fnewton[F_RTOL], fnewton[F_UTOL], fnewton[F_HBEAM]
+    n = u.shape[0]
+    f, Ma_n, r, du, Mv = wk[0], wk[1], wk[2], wk[3], wk[4]
+    c = 2.0 / (h * h)
+    for i in range(n):
+        u[i] = u_n[i] + h * v_n[i] + 0.5 * h * h * a_n[i]
+    col_matvec(Mc, first, a_n, Ma_n)
+    col_matvec(Mc, first, v_n, Mv)
+    tol = rtol * max(_norm2_free(f_ext, is_free) + _norm2_free(Ma_n, is_free), 1e-30)
+    it = 0
+    while True:
+        status = assemble_dg(u_n, u, dN, w, dofs, ops, consts, f, S, *scratch)
+        counters[C_RESIDUALS] += 1
+        counters[C_TANGENTS] += 1
+        if status != OK:
+            return status, it
+        for i in range(n):
+            du[i] = u[i] - u_n[i]
+        col_matvec(Mc, first, du, r)
+        for i in range(n):
+            r[i] = (c * r[i] - 2.0 / h * Mv[i] + f[i] - f_ext[i]) if is_free[i] else 0.0
+        rn = _norm2_free(r, is_free)
+        if not rn < 1e300:
+            return NEWTON_FAILED, it
+        if rn <= tol:
+            it += 1
+            break
+        if it == max_it:
+            return NEWTON_FAILED, it
+        for j in range(S.shape[0]):
+            for k in range(S.shape[1]):
+                S[j, k] = 0.5 * S[j, k] + c * Mc[j, k]
+        col_constrain(S, fixed)
+        counters[C_FACTORS] += 1
+        negative = col_ldlt(S, first, wk[5])
+        if negative < 0:
+            return SINGULAR, it
+        if negative > 0:
+            counters[C_INDEFINITE] += 1
+        for i in range(n):
+            du[i] = -r[i]
+        col_ldlt_solve(S, first, du)
+        counters[C_SOLVES] += 1
+        it += 1
+        umax, dumax = 0.0, 0.0
+        for i in range(n):
+            u[i] += du[i]
+            umax = max(umax, abs(u[i]))
+            dumax = max(dumax, abs(du[i]))
+        if dumax <= 1e-3 * utol * max(umax, hbeam):
+            break
+    for i in range(n):
+        v[i] = 2.0 / h * (u[i] - u_n[i]) - v_n[i]
+        a[i] = (v[i] - v_n[i]) / h
+    return OK, it
+
+
+@njit(cache=True)
 def energy(u, v, dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, tmp, chunk, R, Fb, ab, Jb):
     """Kinetic + strain + gravity potential (J); the gravity potential is
     -f_ext . (q_ref + u) as in ancf.integrators.Integrator.energies."""
@@ -230,6 +300,8 @@ def advance(dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, fixed, coef, inew
         is_free[k] = False
     wk = np.empty((6, n))
     chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
+    dg = inewton[I_SCHEME] == DISCRETE_GRADIENT
+    scratch = dg_scratch(ops.shape[0], dN.shape[0]) if dg else dg_scratch(1, 192)   # (unused: tiny)
     un, vn, an = np.empty(n), np.empty(n), np.empty(n)
     every = inewton[I_ENERGY_EVERY]
     t, h = tstate[0], tstate[1]
@@ -242,10 +314,14 @@ def advance(dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, fixed, coef, inew
         un[:] = u
         vn[:] = v
         an[:] = a
-        status, its = step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
-                           un, vn, an, step_h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, False)
+        if dg:
+            status, its = step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton, fnewton,
+                                  un, vn, an, step_h, u, v, a, S, counters, wk, scratch)
+        else:
+            status, its = step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
+                               un, vn, an, step_h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, False)
         counters[C_ITERATIONS] += its
-        if status != OK and status != SINGULAR and inewton[I_MODIFIED] != 0:
+        if status != OK and status != SINGULAR and inewton[I_MODIFIED] != 0 and not dg:
             # a reused factorisation failed (divergence, det F <= 0, no convergence):
             # redo the step from the predictor with full Newton before rejecting it
             counters[C_FALLBACKS] += 1
@@ -309,7 +385,10 @@ class CompiledLoop:
     """The arrays and settings of :func:`advance` for one model and integrator."""
 
     def __init__(self, model, M, f_ext: np.ndarray, coefficients: dict, newton: str = "chord",
-                 rtol: float = 1e-8, max_iterations: int = 25, utol: float = 1e-6):
+                 rtol: float = 1e-8, max_iterations: int = 25, utol: float = 1e-6,
+                 discrete_gradient: bool = False):
+        """``discrete_gradient``: step by :func:`step_dg` (full Newton; ``newton`` and the
+        coefficients do not apply), else by :func:`step` with ``newton``."""
         if newton not in NEWTON:
             raise ValueError(f"newton: {newton!r} is not one of {', '.join(NEWTON)}")
         b = model.mesh.bandwidth
@@ -321,7 +400,8 @@ class CompiledLoop:
         c = coefficients
         self.coef = np.array([c["alpha_m"], c["alpha_f"], c["beta"], c["gamma"]], dtype=float)
         self.newton = newton
-        self.inewton = np.zeros(6, np.int64)
+        self.inewton = np.zeros(7, np.int64)
+        self.inewton[I_SCHEME] = DISCRETE_GRADIENT if discrete_gradient else ALPHA_FAMILY
         self.inewton[I_MAX_IT] = max_iterations
         self.inewton[I_MODIFIED] = int(newton != "full")
         self.inewton[I_STOP] = STOP_BOTH if newton == "full" else STOP_RESIDUAL
