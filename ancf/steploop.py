@@ -112,6 +112,48 @@ def _norm2_free(x, is_free):
 
 
 @njit(cache=True)
+def _residual(Mc, first, c, u, u_ref, base, f, f_ext, is_free, du, r):
+    """r = c M (u - u_ref) + base + f - f_ext on the free dofs (0 on the fixed ones);
+    returns |r|_2. du: work."""
+    for i in range(u.shape[0]):
+        du[i] = u[i] - u_ref[i]
+    col_matvec(Mc, first, du, r)
+    for i in range(u.shape[0]):
+        r[i] = (c * r[i] + base[i] + f[i] - f_ext[i]) if is_free[i] else 0.0
+    return _norm2_free(r, is_free)
+
+
+@njit(cache=True)
+def _factorise(S, k, Mc, c, fixed, first, wk, counters):
+    """In place S <- k S + c M, constrained and factorised (:func:`col_ldlt`); returns
+    its count (negative: singular)."""
+    for j in range(S.shape[0]):
+        for m in range(S.shape[1]):
+            S[j, m] = k * S[j, m] + c * Mc[j, m]
+    col_constrain(S, fixed)
+    counters[C_FACTORS] += 1
+    negative = col_ldlt(S, first, wk)
+    if negative > 0:
+        counters[C_INDEFINITE] += 1
+    return negative
+
+
+@njit(cache=True)
+def _correct(S, first, r, du, u, counters):
+    """u += du = -S^-1 r with S factorised; returns (max |u|, max |du|)."""
+    for i in range(u.shape[0]):
+        du[i] = -r[i]
+    col_ldlt_solve(S, first, du)
+    counters[C_SOLVES] += 1
+    umax, dumax = 0.0, 0.0
+    for i in range(u.shape[0]):
+        u[i] += du[i]
+        umax = max(umax, abs(u[i]))
+        dumax = max(dumax, abs(du[i]))
+    return umax, dumax
+
+
+@njit(cache=True)
 def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
          u_n, v_n, a_n, h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, full):
     """One step u_n, v_n, a_n -> u, v, a of size h. S holds the current factorisation
@@ -147,12 +189,7 @@ def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewt
             counters[C_TANGENTS] += 1
         if status != OK:
             return status, it
-        for i in range(n):
-            du[i] = u[i] - u_pred[i]
-        col_matvec(Mc, first, du, r)
-        for i in range(n):
-            r[i] = (c * r[i] + Ma_n[i] + f[i] - f_ext[i]) if is_free[i] else 0.0
-        rn = _norm2_free(r, is_free)
+        rn = _residual(Mc, first, c, u, u_pred, Ma_n, f, f_ext, is_free, du, r)
         if not rn < 1e300:
             return NEWTON_FAILED, it
         if rn <= tol:
@@ -168,31 +205,15 @@ def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewt
                 return status, it
         if refactor:
             # S = (1 - af) K + c M, constrained, factorised in place
-            for j in range(S.shape[0]):
-                for k in range(S.shape[1]):
-                    S[j, k] = (1.0 - af) * S[j, k] + c * Mc[j, k]
-            col_constrain(S, fixed)
-            counters[C_FACTORS] += 1
-            negative = col_ldlt(S, first, wk[5])
-            if negative < 0:
+            if _factorise(S, 1.0 - af, Mc, c, fixed, first, wk[5], counters) < 0:
                 fstate[1] = 0.0
                 return SINGULAR, it
-            if negative > 0:
-                counters[C_INDEFINITE] += 1
             fstate[0], fstate[1] = h, 1.0
             since = 0
         r_prev = rn
-        for i in range(n):
-            du[i] = -r[i]
-        col_ldlt_solve(S, first, du)
-        counters[C_SOLVES] += 1
+        umax, dumax = _correct(S, first, r, du, u, counters)
         since += 1
         it += 1
-        umax, dumax = 0.0, 0.0
-        for i in range(n):
-            u[i] += du[i]
-            umax = max(umax, abs(u[i]))
-            dumax = max(dumax, abs(du[i]))
         if dumax <= (utol if stop == STOP_BOTH else ROUNDOFF * utol) * max(umax, hbeam):
             break
     for i in range(n):
@@ -222,6 +243,8 @@ def step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton,
     col_matvec(Mc, first, a_n, Ma_n)
     col_matvec(Mc, first, v_n, Mv)
     tol = rtol * max(_norm2_free(f_ext, is_free) + _norm2_free(Ma_n, is_free), 1e-30)
+    for i in range(n):
+        Mv[i] *= -2.0 / h                             # the residual's constant part, -2 M v_n / h
     it = 0
     while True:
         status = assemble_dg(u_n, u, dN, w, dofs, ops, consts, f, S, *scratch)
@@ -229,12 +252,7 @@ def step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton,
         counters[C_TANGENTS] += 1
         if status != OK:
             return status, it
-        for i in range(n):
-            du[i] = u[i] - u_n[i]
-        col_matvec(Mc, first, du, r)
-        for i in range(n):
-            r[i] = (c * r[i] - 2.0 / h * Mv[i] + f[i] - f_ext[i]) if is_free[i] else 0.0
-        rn = _norm2_free(r, is_free)
+        rn = _residual(Mc, first, c, u, u_n, Mv, f, f_ext, is_free, du, r)
         if not rn < 1e300:
             return NEWTON_FAILED, it
         if rn <= tol:
@@ -242,26 +260,10 @@ def step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton,
             break
         if it == max_it:
             return NEWTON_FAILED, it
-        for j in range(S.shape[0]):
-            for k in range(S.shape[1]):
-                S[j, k] = 0.5 * S[j, k] + c * Mc[j, k]
-        col_constrain(S, fixed)
-        counters[C_FACTORS] += 1
-        negative = col_ldlt(S, first, wk[5])
-        if negative < 0:
+        if _factorise(S, 0.5, Mc, c, fixed, first, wk[5], counters) < 0:
             return SINGULAR, it
-        if negative > 0:
-            counters[C_INDEFINITE] += 1
-        for i in range(n):
-            du[i] = -r[i]
-        col_ldlt_solve(S, first, du)
-        counters[C_SOLVES] += 1
+        umax, dumax = _correct(S, first, r, du, u, counters)
         it += 1
-        umax, dumax = 0.0, 0.0
-        for i in range(n):
-            u[i] += du[i]
-            umax = max(umax, abs(u[i]))
-            dumax = max(dumax, abs(du[i]))
         if dumax <= 1e-3 * utol * max(umax, hbeam):
             break
     for i in range(n):
