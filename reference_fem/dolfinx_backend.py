@@ -250,22 +250,83 @@ def fixed_dof_count(bcs, comm=COMM) -> int:
     return int(comm.allreduce(sum(bc.dof_indices()[1] for bc in bcs)))
 
 
+LINEAR_SOLVERS = ("direct", "iterative")
+# PETSc options prefix of the iterative solver's KSP: every default below can be overridden
+# from the command line or PETSC_OPTIONS, e.g. -fem_ksp_monitor, -fem_ksp_rtol 1e-8,
+# -fem_fieldsplit_u_pc_type hypre, -fem_pc_fieldsplit_schur_fact_type upper.
+OPTIONS_PREFIX = "fem_"
+# Relative Krylov tolerance. The Newton loop stops at ||R|| <= rtol r_ref (rtol 1e-8 by
+# default) and starts every increment from ||R|| <= r_ref; a linear residual <= 1e-10 ||R||
+# adds <= 1e-10 r_ref to the next Newton residual, 1 % of the smallest target: the Newton
+# iterations (and so the load path) are those of the direct solver.
+KRYLOV_RTOL = 1e-10
+# Absolute floor: 1e-12 x the first right-hand side solved (~ r_ref / load_steps in statics:
+# the first Newton update of the first increment): 1e-4 of the Newton target, and above the
+# round-off floor of the last, already tiny, Newton residuals (where a purely relative 1e-10
+# would stagnate). Not the largest one: a diverging trial increment would raise the floor
+# above later Newton residuals, whose updates then stay zero.
+KRYLOV_ATOL_FACTOR = 1e-12
+KRYLOV_MAX_IT = 1000
+AL_GAMMA = 3.0
+# Defaults of the iterative solver (options database, set only where the user has not):
+# FGMRES on the monolithic matrix; PCFIELDSPLIT Schur (full factorisation) over the
+# displacement and pressure dofs; displacement block: one V-cycle of GAMG with the
+# rigid-body modes as near-nullspace; Schur block: see ITERATIVE_SCHUR_DEFAULTS.
+ITERATIVE_DEFAULTS = {
+    "ksp_type": "fgmres",
+    "ksp_gmres_restart": "200",
+    "pc_fieldsplit_schur_fact_type": "full",
+    "fieldsplit_u_ksp_type": "preonly",
+    "fieldsplit_u_pc_type": "gamg",
+    "fieldsplit_u_pc_gamg_threshold": "0.02",
+    "fieldsplit_u_mg_levels_ksp_type": "chebyshev",
+    "fieldsplit_u_mg_levels_ksp_max_it": "4",
+    "fieldsplit_u_mg_levels_pc_type": "sor",
+    "fieldsplit_p_ksp_type": "preonly",
+    "fieldsplit_p_pc_type": "jacobi",
+}
+
+
+def _set_defaults(prefix: str, defaults: dict) -> None:
+    opts = PETSc.Options()
+    for k, v in defaults.items():
+        if not opts.hasName(prefix + k):
+            opts.setValue(prefix + k, v)
+
+
 class NonlinearSystem:
-    """R(w) = 0 with homogeneous Dirichlet conditions; Newton increments by LU (MUMPS).
+    """R(w) = 0 with homogeneous Dirichlet conditions; Newton increments by LU (MUMPS)
+    or, with ``linear_solver = "iterative"``, by a Krylov method (:meth:`_iterative`).
 
-    ``unknown``: the function of W solved for (default ``disc.w``)."""
+    ``unknown``: the function of W solved for (default ``disc.w``). ``pressure_scale``:
+    the iterative solver's Schur-complement approximation -pressure_scale M (M the mass
+    matrix of the scaled pressure; the modulus mu of p = mu phat), or None for PETSc's
+    "selfp" (the system of the initial acceleration, whose (u, u) block is a mass
+    matrix)."""
 
-    def __init__(self, disc: Discretisation, residual, bcs, unknown=None):
+    def __init__(self, disc: Discretisation, residual, bcs, unknown=None, linear_solver: str = "direct",
+                 pressure_scale: float | None = None):
+        if linear_solver not in LINEAR_SOLVERS:
+            raise ValueError(f"linear_solver: {linear_solver!r}; allowed: {LINEAR_SOLVERS}")
         self.disc = disc
         self.w = disc.w if unknown is None else unknown
         self.bcs = list(bcs)
+        self.linear_solver = linear_solver
+        self.pressure_scale = pressure_scale
         jacobian = ufl.derivative(residual, self.w, disc.trial)
         self.R = dolfinx.fem.form(residual)
         self.K = dolfinx.fem.form(jacobian)
         self.b = dolfinx.fem.petsc.create_vector(self.R)
         self.A = dolfinx.fem.petsc.create_matrix(self.K)
         self.dx = self.b.duplicate()
-        self.ksp = self._lu(disc.comm)
+        self.krylov_iterations: list[int] = []   # per Newton update (iterative solver)
+        self._rhs_max = 0.0
+        if linear_solver == "iterative":
+            self._split_sets()
+        self.ksp = self._new_ksp()
+
+    def _new_ksp(self):
+        return self._lu(self.disc.comm) if self.linear_solver == "direct" else self._iterative()
 
     @staticmethod
     def _lu(comm=COMM):
@@ -275,6 +336,145 @@ class NonlinearSystem:
         pc.setType("lu")
         pc.setFactorSolverType("mumps")
         return ksp
+
+    # -- the iterative solver ------------------------------------------------------------
+    def _split_sets(self) -> None:
+        """Index sets (global PETSc rows, owned) of the displacement and the pressure dofs,
+        the rigid-body modes as the displacement block's near-nullspace, and the assembled
+        pressure mass matrix (on the pressure rows)."""
+        disc, W = self.disc, self.disc.W
+        comm = disc.comm
+        gdim = disc.mesh.geometry.dim
+        imap = W.dofmap.index_map
+        n_owned, offset = imap.size_local * W.dofmap.index_map_bs, imap.local_range[0] * W.dofmap.index_map_bs
+        if disc.pressure:
+            V, u_all = W.sub(0).collapse()
+            u_all = np.asarray(u_all, dtype=np.int64)    # V dof (node-major) -> W dof
+            nodes = u_all.reshape(-1, gdim)
+            nodes = nodes[(nodes < n_owned).all(axis=1)]
+            # PCFIELDSPLIT wants sorted sets; a node's components are consecutive in W,
+            # so sorting by node keeps the blocks (block size gdim for GAMG)
+            u_map = nodes[np.argsort(nodes[:, 0])].reshape(-1)
+            if not (np.diff(u_map) > 0).all():
+                raise RuntimeError("displacement dofs of a node are not consecutive in W")
+            _, p_map = W.sub(1).collapse()
+            p_map = np.asarray(p_map, dtype=np.int64)
+            p_map = np.sort(p_map[p_map < n_owned])
+            self.is_u = PETSc.IS().createGeneral((u_map + offset).astype(PETSc.IntType), comm=comm)
+            self.is_u.setBlockSize(gdim)
+            self.is_p = PETSc.IS().createGeneral((p_map + offset).astype(PETSc.IntType), comm=comm)
+        else:
+            V, u_all = W, np.arange(len(self.w.x.array))
+            self.is_u = self.is_p = None
+        # rigid-body modes: translations and rotations about the coordinate axes
+        x = V.tabulate_dof_coordinates()[:, :gdim]
+        modes = [np.eye(gdim)[i] * np.ones_like(x) for i in range(gdim)]
+        rot = [(0, 1)] if gdim == 2 else [(0, 1), (1, 2), (2, 0)]
+        for i, j in rot:
+            m = np.zeros_like(x)
+            m[:, i], m[:, j] = -x[:, j], x[:, i]
+            modes.append(m)
+        vecs = []
+        for m in modes:
+            f = dolfinx.fem.Function(W)
+            f.x.array[u_all] = m.reshape(-1)
+            v = f.vector
+            if disc.pressure:
+                sub = v.getSubVector(self.is_u)
+                vecs.append(sub.copy())
+                v.restoreSubVector(self.is_u, sub)
+            else:
+                vecs.append(v.copy())
+        # orthonormalise (GAMG wants a well-conditioned basis)
+        for i, v in enumerate(vecs):
+            for u in vecs[:i]:
+                v.axpy(-v.dot(u), u)
+            v.normalize()
+        self.near_nullspace = PETSc.NullSpace().create(vectors=vecs, comm=comm)
+        self.M = None
+        if disc.pressure:
+            _, q = ufl.split(disc.test)
+            _, p = ufl.split(disc.trial)
+            Mform = dolfinx.fem.form(p * q * disc.dx)
+            full = dolfinx.fem.petsc.assemble_matrix(Mform)
+            full.assemble()
+            self.M = full.createSubMatrix(self.is_p, self.is_p)
+            full.destroy()
+            lumped = dolfinx.fem.petsc.assemble_vector(dolfinx.fem.form(q * disc.dx))
+            lumped.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+            self.lumped = lumped    # row sums of the pressure mass at the pressure rows, 0 elsewhere
+            self.is_u.compose("nearnullspace", self.near_nullspace)
+        self._Sp = None
+        self.P = None
+
+    @property
+    def schur(self) -> str:
+        """The Schur approach: "al" (default; see :meth:`_iterative`), "mass" (-mu M), or
+        "selfp" (no pressure scale given); option -fem_schur."""
+        if self.pressure_scale is None:
+            return "selfp"
+        return PETSc.Options().getString(OPTIONS_PREFIX + "schur", "al")
+
+    def _iterative(self):
+        """A Krylov solver (FGMRES) with PCFIELDSPLIT (Schur) on the mixed matrix, or GAMG
+        with the rigid-body modes on a displacement-only one; options prefix
+        :data:`OPTIONS_PREFIX` (``setFromOptions`` last: the user's options win)."""
+        ksp = PETSc.KSP().create(self.disc.comm)
+        ksp.setOptionsPrefix(OPTIONS_PREFIX)
+        _set_defaults(OPTIONS_PREFIX, ITERATIVE_DEFAULTS)
+        ksp.setTolerances(rtol=KRYLOV_RTOL, atol=0.0, max_it=KRYLOV_MAX_IT)
+        pc = ksp.getPC()
+        if self.disc.pressure:
+            pc.setType("fieldsplit")
+            if self.schur == "al":
+                pc.setFieldSplitIS(("p", self.is_p), ("u", self.is_u))
+            else:
+                pc.setFieldSplitIS(("u", self.is_u), ("p", self.is_p))
+            pc.setFieldSplitType(PETSc.PC.CompositeType.SCHUR)
+        else:
+            pc.setType("gamg")
+        return ksp
+
+    def _configure(self) -> None:
+        """Per assembled matrix: the Schur preconditioner's matrix, tolerances."""
+        pc = self.ksp.getPC()
+        schur = self.schur if self.disc.pressure else None
+        if schur == "al":
+            gamma = PETSc.Options().getReal(OPTIONS_PREFIX + "al_gamma", AL_GAMMA)
+            if self.P is None:
+                self.P = self.A.duplicate(copy=True)
+                self._D = self.lumped.copy()
+                self._D.scale(-self.pressure_scale / gamma)
+            else:
+                self.A.copy(self.P, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
+            self.P.setDiagonal(self._D, addv=PETSc.InsertMode.ADD_VALUES)
+            self.ksp.setOperators(self.A, self.P)
+            pc.setFieldSplitSchurPreType(PETSc.PC.SchurPreType.SELFP)
+        elif schur == "selfp":
+            pc.setFieldSplitSchurPreType(PETSc.PC.SchurPreType.SELFP)
+        elif schur is not None:
+            if True:
+                if self._Sp is None:
+                    # -mu M + the Jacobian's own (p, p) block (zero for the exact
+                    # constraint, the constant -mu^2/alpha M of the penalty)
+                    self._Sp = self.A.createSubMatrix(self.is_p, self.is_p)
+                    self._Sp.axpy(-self.pressure_scale, self.M)
+                pc.setFieldSplitSchurPreType(PETSc.PC.SchurPreType.USER, self._Sp)
+        else:
+            self.A.setNearNullSpace(self.near_nullspace)
+        rtol, _, dtol, max_it = self.ksp.getTolerances()
+        self.ksp.setTolerances(rtol=rtol, atol=KRYLOV_ATOL_FACTOR * self._rhs_max, divtol=dtol, max_it=max_it)
+        self.ksp.setFromOptions()
+        if schur == "al":
+            # the displacement block is the Schur complement of the diagonal pressure
+            # block, assembled by selfp inside PCFIELDSPLIT: its near-nullspace can be set
+            # only once the split exists
+            self.ksp.setUp()
+            _, sub = pc.getFieldSplitSubKSP()
+            Su = sub.getOperators()[1]
+            if Su.getNearNullSpace() is None or Su.getNearNullSpace().handle != self.near_nullspace.handle:
+                Su.setNearNullSpace(self.near_nullspace)
+                Su.assemble()   # a new state: GAMG (set up by setUp) is rebuilt with the modes
 
     @property
     def any_rank(self):
@@ -304,13 +504,20 @@ class NonlinearSystem:
         dolfinx.fem.petsc.assemble_matrix(self.A, self.K, bcs=self.bcs)
         self.A.assemble()
         self.ksp.setOperators(self.A)
+        if self.linear_solver == "iterative":
+            if self._rhs_max == 0.0:
+                self._rhs_max = float(self.b.norm())
+            self._configure()
+            self.dx.set(0.0)
         self.ksp.solve(self.b, self.dx)
         reason = self.ksp.getConvergedReason()
+        if self.linear_solver == "iterative":
+            self.krylov_iterations.append(self.ksp.getIterationNumber())
         if reason < 0:
-            # a failed factorisation sticks to the PC (every later solve fails at once,
-            # however small the next load increment): start from a fresh one
+            # a failed factorisation (or Krylov solve) sticks to the PC (every later solve
+            # fails at once, however small the next load increment): start from a fresh one
             self.ksp.destroy()
-            self.ksp = self._lu(self.disc.comm)
+            self.ksp = self._new_ksp()
             raise ArithmeticError(f"linear solve failed (PETSc reason {reason})")
         self.x.axpy(-1.0, self.dx)
         self.x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
