@@ -250,22 +250,273 @@ def fixed_dof_count(bcs, comm=COMM) -> int:
     return int(comm.allreduce(sum(bc.dof_indices()[1] for bc in bcs)))
 
 
+LINEAR_SOLVERS = ("direct", "iterative")
+# PETSc options prefix of the iterative solver's KSP: every default below can be overridden
+# from the command line or PETSC_OPTIONS, e.g. -fem_ksp_monitor, -fem_ksp_rtol 1e-8,
+# -fem_fieldsplit_u_pc_type hypre, -fem_pc_fieldsplit_schur_fact_type upper.
+OPTIONS_PREFIX = "fem_"
+# Relative Krylov tolerance. The Newton loop stops at ||R|| <= rtol r_ref (rtol 1e-8 by
+# default) and starts every increment from ||R|| <= r_ref; a linear residual <= 1e-10 ||R||
+# adds <= 1e-10 r_ref to the next Newton residual, 1 % of the smallest target: the Newton
+# iterations (and so the load path) are those of the direct solver.
+KRYLOV_RTOL = 1e-10
+# Absolute floor: 1e-12 x the first right-hand side solved (~ r_ref / load_steps in statics:
+# the first Newton update of the first increment): 1e-4 of the Newton target, and above the
+# round-off floor of the last, already tiny, Newton residuals (where a purely relative 1e-10
+# would stagnate). Not the largest one: a diverging trial increment would raise the floor
+# above later Newton residuals, whose updates then stay zero.
+KRYLOV_ATOL_FACTOR = 1e-12
+KRYLOV_MAX_IT = 1000
+AL_GAMMA = 3.0
+# Defaults of the iterative solver (options database, set only where the user has not):
+# FGMRES on the monolithic matrix. The fieldsplit_* keys apply to the PCFIELDSPLIT
+# variants only (-fem_schur al-fieldsplit | mass, and the initial-acceleration system of
+# dynamics, "selfp"): Schur (full factorisation) over the displacement and pressure dofs,
+# displacement block: one V-cycle of GAMG with the rigid-body modes. The default
+# (-fem_schur al) is ALPreconditioner (PMG_DEFAULTS).
+ITERATIVE_DEFAULTS = {
+    "ksp_type": "fgmres",
+    "ksp_gmres_restart": "200",
+    # classical Gram-Schmidt with a second pass always: without it the Arnoldi basis loses
+    # orthogonality on these ill-conditioned systems (cond ~1e7-1e8: slender bending) and
+    # FGMRES stalls near 1e-5 relative until the restart (measured 8 x 1 x 1: max 234 ->
+    # 44 iterations per Newton update)
+    "ksp_gmres_cgs_refinement_type": "refine_always",
+    "pc_fieldsplit_schur_fact_type": "full",
+    "fieldsplit_u_ksp_type": "preonly",
+    "fieldsplit_u_pc_type": "gamg",
+    "fieldsplit_u_pc_gamg_threshold": "0.02",
+    "fieldsplit_u_mg_levels_ksp_type": "chebyshev",
+    "fieldsplit_u_mg_levels_ksp_max_it": "4",
+    "fieldsplit_u_mg_levels_pc_type": "sor",
+    "fieldsplit_p_ksp_type": "preonly",
+    "fieldsplit_p_pc_type": "jacobi",
+}
+
+
+# The default preconditioner ("-fem_schur al"): :class:`ALPreconditioner`, a Python PC on
+# the monolithic matrix. Its displacement solve (options prefix fem_pmg_) is one V-cycle of
+# a two-level p-multigrid: 6 Chebyshev/Jacobi sweeps (pre and post) on the degree-2
+# augmented block, and the Galerkin product P^T A P on the vector degree-1 space of the
+# same mesh (P the interpolation matrix) as the coarse level, factored by MUMPS (1/8 of
+# the displacement unknowns, ~1/7 of the nonzeros per row). The coarse level may be
+# indefinite (Newton iterates off the equilibrium path: measured), so no CG there.
+# Scalable but weaker (measured, notes/iterative-fieldsplit.md): GMRES to 1e-3 with GAMG
+# on the coarse level, -fem_pmg_mg_coarse_ksp_type gmres -fem_pmg_mg_coarse_ksp_rtol 1e-3
+# -fem_pmg_mg_coarse_pc_type gamg -fem_pmg_mg_coarse_pc_gamg_square_graph 0
+# -fem_pmg_mg_coarse_pc_gamg_threshold 0.05 -fem_pmg_mg_coarse_mg_levels_ksp_max_it 4
+# (the rigid-body modes of the degree-1 nodes are attached to the coarse matrix).
+PMG_PREFIX = OPTIONS_PREFIX + "pmg_"
+PMG_DEFAULTS = {
+    "ksp_type": "preonly",
+    "mg_levels_ksp_type": "chebyshev",
+    "mg_levels_pc_type": "jacobi",
+    "mg_levels_ksp_max_it": "6",
+    "mg_coarse_ksp_type": "preonly",
+    "mg_coarse_pc_type": "lu",
+    "mg_coarse_pc_factor_mat_solver_type": "mumps",
+}
+
+
+def _set_defaults(prefix: str, defaults: dict) -> None:
+    opts = PETSc.Options()
+    for k, v in defaults.items():
+        if not opts.hasName(prefix + k):
+            opts.setValue(prefix + k, v)
+
+
+def _rigid_body_modes(x: np.ndarray, gdim: int, template) -> PETSc.NullSpace:
+    """Orthonormal rigid-body modes of the nodes ``x`` (owned, (n, >= gdim), node-major
+    vectors laid out like ``template``)."""
+    modes = [np.eye(gdim)[i] * np.ones((len(x), gdim)) for i in range(gdim)]
+    for i, j in ([(0, 1)] if gdim == 2 else [(0, 1), (1, 2), (2, 0)]):
+        m = np.zeros((len(x), gdim))
+        m[:, i], m[:, j] = -x[:, j], x[:, i]
+        modes.append(m)
+    vecs = []
+    for m in modes:
+        v = template.duplicate()
+        v.setArray(m.reshape(-1))
+        for u in vecs:
+            v.axpy(-v.dot(u), u)
+        v.normalize()
+        vecs.append(v)
+    return PETSc.NullSpace().create(vectors=vecs, comm=template.getComm())
+
+
+def _prolongation(disc: Discretisation, u_map: np.ndarray, bc_dofs: np.ndarray):
+    """The interpolation of the vector degree-1 Lagrange space of the mesh into the
+    displacement space, as a matrix whose rows are the displacement block's (the owned
+    displacement dofs of W, ``u_map`` its sorted local indices, global rows from
+    the rank's offset) and whose columns are the degree-1 space's global dofs; rows of the
+    Dirichlet dofs ``bc_dofs`` (local indices of W) are zero. Returns the matrix and
+    the owned degree-1 node coordinates."""
+    W, comm = disc.W, disc.comm
+    gdim = disc.mesh.geometry.dim
+    V2, u_all = W.sub(0).collapse()
+    u_all = np.asarray(u_all, dtype=np.int64)
+    V1 = dolfinx.fem.VectorFunctionSpace(disc.mesh, ("Lagrange", 1))
+    interp = dolfinx.cpp.fem.petsc.interpolation_matrix(V1._cpp_object, V2._cpp_object)
+    interp.assemble()
+    ai, aj, av = interp.getValuesCSR()
+    n2 = V2.dofmap.index_map.size_local * gdim
+    if len(ai) - 1 != n2 or n2 != len(u_map):
+        raise RuntimeError("interpolation matrix rows are not the owned displacement dofs")
+    pos = np.full(len(disc.w.x.array), -1, dtype=np.int64)
+    pos[u_map] = np.arange(len(u_map))
+    rows = pos[u_all[:n2]]          # row of the V2 dof j in the displacement block
+    bc_rows = pos[bc_dofs]
+    bc_rows = bc_rows[bc_rows >= 0]
+    if (rows < 0).any():
+        raise RuntimeError("an owned displacement dof of V2 is not owned in W")
+    order = np.argsort(rows)        # block row i is V2 row order[i]
+    lengths = np.diff(ai)[order]
+    row_of = np.repeat(np.arange(n2), lengths)
+    starts = np.repeat(ai[:-1][order], lengths)
+    offsets = np.arange(len(row_of)) - np.repeat(np.cumsum(lengths) - lengths, lengths)
+    idx = starts + offsets
+    cols, vals = aj[idx], av[idx].copy()
+    vals[np.isin(row_of, bc_rows)] = 0.0
+    keep = np.abs(vals) > 1e-14
+    row_of, cols, vals = row_of[keep], cols[keep], vals[keep]
+    indptr = np.concatenate([[0], np.cumsum(np.bincount(row_of, minlength=n2))])
+    n1 = V1.dofmap.index_map.size_local * gdim
+    N1 = V1.dofmap.index_map.size_global * gdim
+    P = PETSc.Mat().createAIJ(size=((n2, PETSc.DECIDE), (n1, N1)), comm=comm,
+                              csr=(indptr.astype(PETSc.IntType), cols.astype(PETSc.IntType), vals))
+    P.assemble()
+    interp.destroy()
+    x1 = V1.tabulate_dof_coordinates()[:V1.dofmap.index_map.size_local, :gdim]
+    return P, x1
+
+
+class ALPreconditioner:
+    """The augmented-Lagrangian block preconditioner of the Newton matrix K = [[A, B^T],
+    [B, 0]] (displacement u, scaled pressure p), a Python PC (petsc4py) on the monolithic
+    matrix: the exact inverse of [[A, B^T], [B, -(s/gamma) M_L]] (M_L the lumped pressure
+    mass, s the pressure scale mu) by block elimination of the diagonal pressure block,
+
+        y_u = A_gamma^-1 (r_u + (gamma/s) B^T M_L^-1 r_p),  A_gamma = A + (gamma/s) B^T M_L^-1 B,
+        y_p = -(gamma/s) M_L^-1 (r_p - B y_u),
+
+    with A_gamma^-1 replaced by a KSP of prefix fem_pmg_ (default one two-level p-multigrid
+    V-cycle, :data:`PMG_DEFAULTS`: the interpolation ``prolong`` from the vector degree-1
+    space, whose rigid-body modes ``coarse_modes`` GAMG is given)."""
+
+    def __init__(self, is_u, is_p, lumped, scale: float, gamma: float, prolong, coarse_x, gdim: int):
+        self.is_u, self.is_p, self.gamma, self.scale = is_u, is_p, gamma, scale
+        self.prolong, self.coarse_x, self.gdim = prolong, coarse_x, gdim
+        lp = lumped.getSubVector(is_p)
+        self.dinv = lp.copy()                      # -(gamma/s) M_L^-1
+        self.dinv.reciprocal()
+        self.dinv.scale(-gamma / scale)
+        lumped.restoreSubVector(is_p, lp)
+        self.ksp = None
+        self.Auu = self.Aup = self.Apu = self.Aug = self.coarse = None
+        self.inner_iterations = 0
+
+    def setUp(self, pc):
+        A = pc.getOperators()[0]
+        self.Auu = A.createSubMatrix(self.is_u, self.is_u, submat=self.Auu)
+        self.Aup = A.createSubMatrix(self.is_u, self.is_p, submat=self.Aup)
+        self.Apu = A.createSubMatrix(self.is_p, self.is_u, submat=self.Apu)
+        scaled = self.Apu.copy()
+        d = self.dinv.copy()
+        d.scale(-1.0)
+        scaled.diagonalScale(L=d)
+        bt = self.Aup.matMult(scaled)
+        scaled.destroy()
+        if self.Aug is not None:
+            self.Aug.destroy()
+        self.Aug = self.Auu.copy()
+        self.Aug.axpy(1.0, bt, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
+        bt.destroy()
+        self.Aug.setBlockSize(self.gdim)
+        if self.coarse is not None:
+            self.coarse.destroy()
+        self.coarse = self.Aug.ptap(self.prolong)
+        self.coarse.setBlockSize(self.gdim)
+        self.coarse.setNearNullSpace(_rigid_body_modes(self.coarse_x, self.gdim, self.coarse.createVecRight()))
+        # a new inner solver per matrix: a reused one keeps stale state (measured on 16 x 1
+        # x 1: 26 -> 61 mean FGMRES iterations, growing along the load path; not traced,
+        # suspect the Chebyshev smoother's eigenvalue bounds)
+        if self.ksp is not None:
+            self.ksp.destroy()
+        _set_defaults(PMG_PREFIX, PMG_DEFAULTS)
+        self.ksp = PETSc.KSP().create(A.getComm())
+        self.ksp.setOptionsPrefix(PMG_PREFIX)
+        mg = self.ksp.getPC()
+        mg.setType("mg")
+        mg.setMGLevels(2)
+        mg.setMGType(PETSc.PC.MGType.MULTIPLICATIVE)
+        mg.setMGInterpolation(1, self.prolong)
+        self.ksp.setFromOptions()
+        self.ru, self.yu = self.Aug.createVecs()
+        self.tp = self.dinv.duplicate()
+        self.ksp.setOperators(self.Aug)
+        mg = self.ksp.getPC()
+        mg.getMGSmoother(1).setOperators(self.Aug)
+        mg.getMGCoarseSolve().setOperators(self.coarse)
+        self.ksp.setUp()
+
+    def apply(self, pc, r, y):
+        ru, rp = r.getSubVector(self.is_u), r.getSubVector(self.is_p)
+        tp, tu = self.tp, self.ru
+        tp.pointwiseMult(self.dinv, rp)        # D^-1 r_p
+        self.Aup.mult(tp, tu)
+        tu.aypx(-1.0, ru)                      # r_u - B^T D^-1 r_p
+        self.ksp.solve(tu, self.yu)
+        self.inner_iterations += self.ksp.getIterationNumber()
+        self.Apu.mult(self.yu, tp)
+        tp.aypx(-1.0, rp)
+        r.restoreSubVector(self.is_u, ru)
+        r.restoreSubVector(self.is_p, rp)
+        yu, yp = y.getSubVector(self.is_u), y.getSubVector(self.is_p)
+        self.yu.copy(yu)
+        yp.pointwiseMult(self.dinv, tp)        # D^-1 (r_p - B y_u)
+        y.restoreSubVector(self.is_u, yu)
+        y.restoreSubVector(self.is_p, yp)
+
+    def destroy(self, pc=None):
+        for m in (self.ksp, self.Auu, self.Aup, self.Apu, self.Aug, self.coarse):
+            if m is not None:
+                m.destroy()
+        self.ksp = self.Auu = self.Aup = self.Apu = self.Aug = self.coarse = None
+
+
 class NonlinearSystem:
-    """R(w) = 0 with homogeneous Dirichlet conditions; Newton increments by LU (MUMPS).
+    """R(w) = 0 with homogeneous Dirichlet conditions; Newton increments by LU (MUMPS)
+    or, with ``linear_solver = "iterative"``, by a Krylov method (:meth:`_iterative`).
 
-    ``unknown``: the function of W solved for (default ``disc.w``)."""
+    ``unknown``: the function of W solved for (default ``disc.w``). ``pressure_scale``:
+    the iterative solver's Schur-complement approximation -pressure_scale M (M the mass
+    matrix of the scaled pressure; the modulus mu of p = mu phat), or None for PETSc's
+    "selfp" (the system of the initial acceleration, whose (u, u) block is a mass
+    matrix)."""
 
-    def __init__(self, disc: Discretisation, residual, bcs, unknown=None):
+    def __init__(self, disc: Discretisation, residual, bcs, unknown=None, linear_solver: str = "direct",
+                 pressure_scale: float | None = None):
+        if linear_solver not in LINEAR_SOLVERS:
+            raise ValueError(f"linear_solver: {linear_solver!r}; allowed: {LINEAR_SOLVERS}")
         self.disc = disc
         self.w = disc.w if unknown is None else unknown
         self.bcs = list(bcs)
+        self.linear_solver = linear_solver
+        self.pressure_scale = pressure_scale
         jacobian = ufl.derivative(residual, self.w, disc.trial)
         self.R = dolfinx.fem.form(residual)
         self.K = dolfinx.fem.form(jacobian)
         self.b = dolfinx.fem.petsc.create_vector(self.R)
         self.A = dolfinx.fem.petsc.create_matrix(self.K)
         self.dx = self.b.duplicate()
-        self.ksp = self._lu(disc.comm)
+        self.krylov_iterations: list[int] = []   # per Newton update (iterative solver)
+        self._rhs_max = 0.0
+        if linear_solver == "iterative":
+            self._split_sets()
+        self.ksp = self._new_ksp()
+
+    def _new_ksp(self):
+        return self._lu(self.disc.comm) if self.linear_solver == "direct" else self._iterative()
 
     @staticmethod
     def _lu(comm=COMM):
@@ -275,6 +526,146 @@ class NonlinearSystem:
         pc.setType("lu")
         pc.setFactorSolverType("mumps")
         return ksp
+
+    # -- the iterative solver ------------------------------------------------------------
+    def _split_sets(self) -> None:
+        """Index sets (global PETSc rows, owned) of the displacement and the pressure dofs,
+        the rigid-body modes as the displacement block's near-nullspace, and the assembled
+        pressure mass matrix (on the pressure rows)."""
+        disc, W = self.disc, self.disc.W
+        comm = disc.comm
+        gdim = disc.mesh.geometry.dim
+        imap = W.dofmap.index_map
+        n_owned, offset = imap.size_local * W.dofmap.index_map_bs, imap.local_range[0] * W.dofmap.index_map_bs
+        if disc.pressure:
+            V, u_all = W.sub(0).collapse()
+            u_all = np.asarray(u_all, dtype=np.int64)    # V dof (node-major) -> W dof
+            nodes = u_all.reshape(-1, gdim)
+            owned = np.nonzero((nodes < n_owned).all(axis=1))[0]
+            # PCFIELDSPLIT wants sorted sets; a node's components are consecutive in W,
+            # so sorting by node keeps the blocks (block size gdim for GAMG)
+            owned_nodes = owned[np.argsort(nodes[owned, 0])]
+            u_map = nodes[owned_nodes].reshape(-1)
+            if not (np.diff(u_map) > 0).all():
+                raise RuntimeError("displacement dofs of a node are not consecutive in W")
+            _, p_map = W.sub(1).collapse()
+            p_map = np.asarray(p_map, dtype=np.int64)
+            p_map = np.sort(p_map[p_map < n_owned])
+            self.is_u = PETSc.IS().createGeneral((u_map + offset).astype(PETSc.IntType), comm=comm)
+            self.is_u.setBlockSize(gdim)
+            self.is_p = PETSc.IS().createGeneral((p_map + offset).astype(PETSc.IntType), comm=comm)
+        else:
+            V = W
+            self.is_u = self.is_p = None
+        # rigid-body modes of the owned displacement nodes, in the displacement block's
+        # layout (node-major: the order of is_u, or W's own without a pressure)
+        x = V.tabulate_dof_coordinates()[:, :gdim]
+        template = dolfinx.fem.Function(W).vector
+        if disc.pressure:
+            sub = template.getSubVector(self.is_u)
+            layout = sub.copy()
+            template.restoreSubVector(self.is_u, sub)
+            x = x[owned_nodes]
+        else:
+            layout = template.copy()
+            x = x[: n_owned // gdim]
+        self.near_nullspace = _rigid_body_modes(x, gdim, layout)
+        self.M = None
+        if disc.pressure:
+            _, q = ufl.split(disc.test)
+            _, p = ufl.split(disc.trial)
+            Mform = dolfinx.fem.form(p * q * disc.dx)
+            full = dolfinx.fem.petsc.assemble_matrix(Mform)
+            full.assemble()
+            self.M = full.createSubMatrix(self.is_p, self.is_p)
+            full.destroy()
+            lumped = dolfinx.fem.petsc.assemble_vector(dolfinx.fem.form(q * disc.dx))
+            lumped.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+            self.lumped = lumped    # row sums of the pressure mass at the pressure rows, 0 elsewhere
+            self.is_u.compose("nearnullspace", self.near_nullspace)
+            bc_dofs = np.concatenate([bc.dof_indices()[0][:bc.dof_indices()[1]] for bc in self.bcs] or
+                                     [np.zeros(0, dtype=np.int64)])
+            self.prolong, self.coarse_x = _prolongation(disc, u_map, bc_dofs)
+        self._Sp = None
+        self.P = None
+
+    @property
+    def schur(self) -> str:
+        """The Schur approach: "al" (default: :class:`ALPreconditioner`), "al-fieldsplit"
+        (the same augmented matrix through PCFIELDSPLIT/selfp with GAMG on the displacement
+        block: the previous default, kept for comparison), "mass" (-mu M), or "selfp" (no
+        pressure scale given); option -fem_schur."""
+        if self.pressure_scale is None:
+            return "selfp"
+        return PETSc.Options().getString(OPTIONS_PREFIX + "schur", "al")
+
+    def _iterative(self):
+        """A Krylov solver (FGMRES) with PCFIELDSPLIT (Schur) on the mixed matrix, or GAMG
+        with the rigid-body modes on a displacement-only one; options prefix
+        :data:`OPTIONS_PREFIX` (``setFromOptions`` last: the user's options win)."""
+        ksp = PETSc.KSP().create(self.disc.comm)
+        ksp.setOptionsPrefix(OPTIONS_PREFIX)
+        _set_defaults(OPTIONS_PREFIX, ITERATIVE_DEFAULTS)
+        ksp.setTolerances(rtol=KRYLOV_RTOL, atol=0.0, max_it=KRYLOV_MAX_IT)
+        pc = ksp.getPC()
+        if self.disc.pressure and self.schur == "al":
+            gamma = PETSc.Options().getReal(OPTIONS_PREFIX + "al_gamma", AL_GAMMA)
+            self.al = ALPreconditioner(self.is_u, self.is_p, self.lumped, self.pressure_scale, gamma,
+                                       self.prolong, self.coarse_x, self.disc.mesh.geometry.dim)
+            pc.setType("python")
+            pc.setPythonContext(self.al)
+        elif self.disc.pressure:
+            pc.setType("fieldsplit")
+            if self.schur == "al-fieldsplit":
+                pc.setFieldSplitIS(("p", self.is_p), ("u", self.is_u))
+            else:
+                pc.setFieldSplitIS(("u", self.is_u), ("p", self.is_p))
+            pc.setFieldSplitType(PETSc.PC.CompositeType.SCHUR)
+        else:
+            pc.setType("gamg")
+        return ksp
+
+    def _configure(self) -> None:
+        """Per assembled matrix: the Schur preconditioner's matrix, tolerances."""
+        pc = self.ksp.getPC()
+        schur = self.schur if self.disc.pressure else None
+        if schur == "al":
+            pass    # ALPreconditioner.setUp, at the solve
+        elif schur == "al-fieldsplit":
+            gamma = PETSc.Options().getReal(OPTIONS_PREFIX + "al_gamma", AL_GAMMA)
+            if self.P is None:
+                self.P = self.A.duplicate(copy=True)
+                self._D = self.lumped.copy()
+                self._D.scale(-self.pressure_scale / gamma)
+            else:
+                self.A.copy(self.P, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
+            self.P.setDiagonal(self._D, addv=PETSc.InsertMode.ADD_VALUES)
+            self.ksp.setOperators(self.A, self.P)
+            pc.setFieldSplitSchurPreType(PETSc.PC.SchurPreType.SELFP)
+        elif schur == "selfp":
+            pc.setFieldSplitSchurPreType(PETSc.PC.SchurPreType.SELFP)
+        elif schur is not None:
+            if self._Sp is None:
+                # -mu M + the Jacobian's own (p, p) block (zero for the exact
+                # constraint, the constant -mu^2/alpha M of the penalty)
+                self._Sp = self.A.createSubMatrix(self.is_p, self.is_p)
+                self._Sp.axpy(-self.pressure_scale, self.M)
+            pc.setFieldSplitSchurPreType(PETSc.PC.SchurPreType.USER, self._Sp)
+        else:
+            self.A.setNearNullSpace(self.near_nullspace)
+        rtol, _, dtol, max_it = self.ksp.getTolerances()
+        self.ksp.setTolerances(rtol=rtol, atol=KRYLOV_ATOL_FACTOR * self._rhs_max, divtol=dtol, max_it=max_it)
+        self.ksp.setFromOptions()
+        if schur == "al-fieldsplit":
+            # the displacement block is the Schur complement of the diagonal pressure
+            # block, assembled by selfp inside PCFIELDSPLIT: its near-nullspace can be set
+            # only once the split exists
+            self.ksp.setUp()
+            _, sub = pc.getFieldSplitSubKSP()
+            Su = sub.getOperators()[1]
+            if Su.getNearNullSpace() is None or Su.getNearNullSpace().handle != self.near_nullspace.handle:
+                Su.setNearNullSpace(self.near_nullspace)
+                Su.assemble()   # a new state: GAMG (set up by setUp) is rebuilt with the modes
 
     @property
     def any_rank(self):
@@ -304,13 +695,20 @@ class NonlinearSystem:
         dolfinx.fem.petsc.assemble_matrix(self.A, self.K, bcs=self.bcs)
         self.A.assemble()
         self.ksp.setOperators(self.A)
+        if self.linear_solver == "iterative":
+            if self._rhs_max == 0.0:
+                self._rhs_max = float(self.b.norm())
+            self._configure()
+            self.dx.set(0.0)
         self.ksp.solve(self.b, self.dx)
         reason = self.ksp.getConvergedReason()
+        if self.linear_solver == "iterative":
+            self.krylov_iterations.append(self.ksp.getIterationNumber())
         if reason < 0:
-            # a failed factorisation sticks to the PC (every later solve fails at once,
-            # however small the next load increment): start from a fresh one
+            # a failed factorisation (or Krylov solve) sticks to the PC (every later solve
+            # fails at once, however small the next load increment): start from a fresh one
             self.ksp.destroy()
-            self.ksp = self._lu(self.disc.comm)
+            self.ksp = self._new_ksp()
             raise ArithmeticError(f"linear solve failed (PETSc reason {reason})")
         self.x.axpy(-1.0, self.dx)
         self.x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)

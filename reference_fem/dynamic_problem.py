@@ -40,7 +40,7 @@ from ancf.timeloop import Energies
 
 from . import dolfinx_backend as backend
 from .newton import newton
-from .setup import Setup
+from .setup import Setup, system
 
 
 class DynamicProblem:
@@ -76,7 +76,7 @@ class DynamicProblem:
         row = s.model.constraint_row(s, s.gradient(s.model.constraint_displacement(u, u_f)), lam, q)
         if row is not None:
             R = R + row
-        self.system = backend.NonlinearSystem(d, R, s.bcs)
+        self.system = system(s, R)
         self.load_norm = backend.VectorNorm(work, s.bcs) if work is not None else (lambda: 0.0)
         self.inertia_norm = backend.VectorNorm(self.rho * ufl.dot(an, v) * d.dx, s.bcs)
 
@@ -92,7 +92,9 @@ class DynamicProblem:
         work = s.external_work(v)
         if work is not None:
             R0 = R0 - work
-        self.start = backend.NonlinearSystem(d, R0, s.bcs, unknown=self.w0)
+        # (u, u) block: the mass matrix, so selfp (B diag(M)^-1 B^T) is the Schur complement's
+        # spectral equivalent
+        self.start = system(s, R0, unknown=self.w0, pressure_scale=None)
 
     def _energy_forms(self) -> None:
         """Energies (full beam) of the state held in (ue, ve)."""

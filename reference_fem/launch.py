@@ -10,7 +10,8 @@
   thread per rank (threaded BLAS under MPI oversubscribes the cores), and
   ``LD_LIBRARY_PATH`` if set (an OpenBLAS in place of Debian's reference BLAS, README);
 - ``btl_vader_single_copy_mechanism none``: containers often forbid the cross-memory
-  attach OpenMPI's shared-memory transport uses by default.
+  attach OpenMPI's shared-memory transport uses by default;
+- ``mpi_yield_when_idle 1``: waiting ranks yield their core (a busy machine).
 
 Every rank runs the same command; rank 0 writes the record (:mod:`reference_fem.cli`).
 """
@@ -30,6 +31,9 @@ def environment(base: dict | None = None) -> dict:
     env.setdefault("OMP_NUM_THREADS", "1")
     env.setdefault("OPENBLAS_NUM_THREADS", "1")
     env.setdefault("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
+    # ranks waiting in a collective yield the core instead of spinning: with 2 ranks on a
+    # 2-core machine where another process runs, spinning ranks starve each other
+    env.setdefault("OMPI_MCA_mpi_yield_when_idle", "1")
     return env
 
 

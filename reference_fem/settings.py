@@ -33,6 +33,13 @@ Keys (all optional except ``model`` for ``paper`` scenes):
   refinement sequence monotone; README, "The real beam in 3D");
 - ``side_faces``: "free" (default) | "plane-strain" (u_z = 0 on both faces z = +-w/2:
   the 3D problem then contains the 2D plane-strain solution exactly; a check).
+
+Any model:
+
+- ``linear_solver``: "direct" (default: MUMPS LU of every Newton increment) |
+  "iterative" (FGMRES with a Schur-complement fieldsplit and algebraic multigrid,
+  :class:`reference_fem.dolfinx_backend.NonlinearSystem`; PETSc options with the prefix
+  ``fem_`` override its defaults). Records of "direct" do not name it.
 """
 from __future__ import annotations
 
@@ -50,11 +57,12 @@ CELLS_3D = ("hexahedron", "tetrahedron")
 INCOMPRESSIBILITY = ("mixed", "penalty")
 MODELS = ("plane-strain", "plane-stress", "3d")
 SIDE_FACES = ("free", "plane-strain")
+LINEAR_SOLVERS = ("direct", "iterative")
 # The scene's formulations and whether the scene carries a penalty (the scene language
 # both solvers read: `paper` and `plane-strain` do, `plane-stress` does not).
 FORMULATIONS = {"paper": True, "plane-strain": True, "plane-stress": False}
 KEYS = ("cells_height", "cells_length", "aspect", "cell", "degree", "quadrature_degree",
-        "incompressibility", "model", "cells_width", "progression", "side_faces")
+        "incompressibility", "model", "cells_width", "progression", "side_faces", "linear_solver")
 KEYS_3D = ("cells_width", "progression", "side_faces")
 
 # Defaults: chosen by the convergence study in reports/reference_fem.md so that the
@@ -85,6 +93,7 @@ class FemSettings:
     cells_width: int | None = None   # 3D only
     progression: float = 1.0         # 3D only
     side_faces: str = "free"         # 3D only
+    linear_solver: str = "direct"    # "direct" | "iterative"
 
     def cells(self, gdim: int = 2) -> tuple[int, ...]:
         """Cells along x and across the height (and across the width in 3D)."""
@@ -106,6 +115,8 @@ class FemSettings:
         if self.model != "3d":   # 2D records keep their keys
             for k in KEYS_3D:
                 d.pop(k)
+        if self.linear_solver == "direct":   # records of the direct solver keep their keys
+            d.pop("linear_solver")
         return d
 
 
@@ -185,12 +196,13 @@ def fem_settings(scene: Scene) -> FemSettings:
         nx = max(1, round(b.length / b.height * ny / aspect))
     qdeg = _int("quadrature_degree", t.get("quadrature_degree", default_quadrature_degree(degree)), 1,
                 4 * MAX_DEGREE)
+    solver = _choice("linear_solver", t.get("linear_solver", "direct"), LINEAR_SOLVERS)
     if model != "3d":
-        return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg)
+        return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg, linear_solver=solver)
     b = scene.beam
     nz = _int("cells_width", t.get("cells_width", max(1, math.ceil(ny * b.width / (1.5 * b.height) - 1e-9))))
     q = t.get("progression", 1.0)
     if isinstance(q, bool) or not isinstance(q, (int, float)) or not 0 < q < float("inf"):
         raise SceneError(f"fem.progression: must be a positive number (cell-to-cell growth along x), got {q!r}")
     side = _choice("side_faces", t.get("side_faces", "free"), SIDE_FACES)
-    return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg, nz, float(q), side)
+    return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg, nz, float(q), side, solver)

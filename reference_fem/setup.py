@@ -47,6 +47,7 @@ class Setup:
     penalty: float | None = None          # Pa, for models with a penalty
     width: float = 1.0                    # factor from the problem's energies to the full beam's
     effects: list = field(default_factory=list)
+    linear_solver: str = "direct"         # of the Newton increments (FemSettings.linear_solver)
 
     def __post_init__(self):
         d = self.disc
@@ -116,7 +117,8 @@ def set_up(scene: Scene, settings: FemSettings) -> Setup:
     traction = None if loads.tip_force is None else g.vector(loads.tip_force) / (b.height * b.width)
     effects = ["elastic", *model.effects] + [k for k in ("gravity", "tip_force") if getattr(loads, k) is not None]
     return Setup(model, get_law_ufl(m.law), disc, dict(m.constants), supports(disc, scene, settings, model),
-                 body, traction, g.at_right(b), m.penalty, g.width_factor(b), effects)
+                 body, traction, g.at_right(b), m.penalty, g.width_factor(b), effects,
+                 settings.linear_solver)
 
 
 @dataclass
@@ -143,4 +145,12 @@ def static_problem(s: Setup) -> Problem:
     if work is not None:
         Pi = Pi - t * work
     residual = ufl.derivative(Pi, d.w, d.test)
-    return Problem(s, backend.NonlinearSystem(d, residual, s.bcs), t)
+    return Problem(s, system(s, residual), t)
+
+
+def system(s: Setup, residual, unknown=None, pressure_scale: str | None = "mu") -> backend.NonlinearSystem:
+    """The nonlinear system of ``residual`` with the set-up's supports and linear solver;
+    the iterative solver approximates the Schur complement by -mu M (``pressure_scale =
+    "mu"``) or by PETSc's selfp (None)."""
+    return backend.NonlinearSystem(s.disc, residual, s.bcs, unknown=unknown, linear_solver=s.linear_solver,
+                                   pressure_scale=s.mu if pressure_scale == "mu" else None)
