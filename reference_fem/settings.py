@@ -37,8 +37,9 @@ Keys (all optional except ``model`` for ``paper`` scenes):
 Any model:
 
 - ``linear_solver``: "direct" (default: MUMPS LU of every Newton increment) |
-  "iterative" (FGMRES with a Schur-complement fieldsplit and algebraic multigrid,
-  :class:`reference_fem.dolfinx_backend.NonlinearSystem`; PETSc options with the prefix
+  "iterative" (FGMRES with the augmented-Lagrangian block preconditioner and a two-level
+  p-multigrid on its displacement block,
+  :class:`reference_fem.dolfinx_backend.ALPreconditioner`; PETSc options with the prefix
   ``fem_`` override its defaults). Records of "direct" do not name it.
 """
 from __future__ import annotations
