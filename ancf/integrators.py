@@ -10,6 +10,11 @@ counters); an integrator here is a stepper for it. To add a method:
    fails) and optionally ``error(state, new, dt)``, a local error estimate in m;
 4. list it in :data:`INTEGRATORS` (scenes name it; unknown names list these).
 
+A method whose step the compiled loop runs says so in ``compiled`` (the
+generalized-alpha family by its coefficients, as Newmark does; the discrete gradient);
+a subclass of one of them with a step of its own sets ``compiled = None``, or the
+compiled loop would step it instead.
+
 The state holds displacements u (m and -), velocities v and accelerations a of the
 nodal coordinates.
 """
@@ -34,15 +39,16 @@ class Integrator:
     # evaluation and leaves ~1e-12 of the state, far below the 0.1 mm step criterion.
     utol = 1e-6
 
-    # the compiled loop (:mod:`ancf.steploop`) steps this method; False: Python steps only
-    compiled = False
+    # which step of the compiled loop (:mod:`ancf.steploop`) this method is:
+    # "alpha-family" (from its coefficients) or "discrete-gradient"; None: Python steps only
+    compiled: str | None = None
 
     @cached_property
     def _loop(self):
         from .steploop import CompiledLoop
         return CompiledLoop(self.model, self.M, self.f_ext, self.coefficients(self.rho_inf), self.newton,
                             self.newton_rtol, self.max_iterations, self.utol,
-                            discrete_gradient=isinstance(self, DiscreteGradient))
+                            discrete_gradient=self.compiled == "discrete-gradient")
 
     @property
     def advance(self):
@@ -142,14 +148,13 @@ class GeneralizedAlpha(Integrator):
 
     name = "generalized-alpha"
     alpha_family = True
-    compiled = True
+    compiled = "alpha-family"
 
     @classmethod
     def coefficients(cls, rho_inf: float) -> dict:
         am = (2 * rho_inf - 1) / (rho_inf + 1)
         af = rho_inf / (rho_inf + 1)
         return {"alpha_m": am, "alpha_f": af, "gamma": 0.5 - am + af, "beta": 0.25 * (1 - am + af) ** 2}
-
 
     def step(self, s: State, dt: float) -> tuple[State | None, int]:
         am, af, g, b = self.alpha_m, self.alpha_f, self.gamma, self.beta
@@ -222,7 +227,7 @@ class DiscreteGradient(Integrator):
     K(u_m) / 2 + 2 M / dt^2 (exact as du -> 0)."""
 
     name = "discrete-gradient"
-    compiled = True
+    compiled = "discrete-gradient"
 
     @classmethod
     def coefficients(cls, rho_inf: float) -> dict:
