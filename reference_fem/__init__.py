@@ -14,7 +14,8 @@ Modules, one concept each:
 - :mod:`.energies`: the laws in UFL and their invariants;
 - :mod:`.models`: the continuum models as strategies (invariants, incompressibility,
   geometry); :mod:`.geometry`: the gmsh meshes and where supports and the tip are;
-- :mod:`.dolfinx_backend`: every DOLFINx call;
+- :mod:`.dolfinx_backend`: every DOLFINx call; :mod:`.krylov`: the iterative Newton
+  solver's PETSc side (options, the augmented-Lagrangian preconditioner);
 - :mod:`.setup`: scene -> spaces, law, model, supports, loads; the static problem;
 - :mod:`.dynamic_problem`: the forms of one time step; :mod:`.dynamics`: its stepper;
 - :mod:`.newton`: Newton and static load stepping (no dolfinx);

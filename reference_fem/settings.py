@@ -39,7 +39,7 @@ Any model:
 - ``linear_solver``: "direct" (default: MUMPS LU of every Newton increment) |
   "iterative" (FGMRES with the augmented-Lagrangian block preconditioner and a two-level
   p-multigrid on its displacement block,
-  :class:`reference_fem.dolfinx_backend.ALPreconditioner`; PETSc options with the prefix
+  :class:`reference_fem.krylov.ALPreconditioner`; PETSc options with the prefix
   ``fem_`` override its defaults). Records of "direct" do not name it.
 """
 from __future__ import annotations

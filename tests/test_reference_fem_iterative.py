@@ -1,6 +1,6 @@
 """The iterative linear solver of reference_fem (issue 11): [fem] linear_solver =
 "iterative" (FGMRES with the augmented-Lagrangian block preconditioner
-reference_fem.dolfinx_backend.ALPreconditioner: the pressure eliminated through its
+reference_fem.krylov.ALPreconditioner: the pressure eliminated through its
 lumped mass, one two-level p-multigrid V-cycle Q2 -> Q1 on the augmented displacement
 block) gives the direct solver's answer, on one rank and on two.
 
