@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from contract.budget import Estimate, check_budget
+from contract.capacity import Estimate, check_budget
 from contract.errors import SceneError
 from contract.scene import MaterialSpec, Scene, check_names
 
@@ -17,7 +17,7 @@ from .integrators import INTEGRATORS
 from .laws import LAWS, get_law
 from .material import Material
 from .mesh import Mesh, fixed_dofs
-from .model import BeamModel
+from .beam import BeamModel
 from .quadrature import gauss
 from .rank import default_quadrature, rule_warnings
 

@@ -22,14 +22,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from .build import build_material
-from .elements import KINDS, ElementSpec, get_element
-from .formulations import FORMULATIONS
-from .mesh import Mesh, fixed_dofs
-from .model import BeamModel
-from .quadrature import gauss
 from contract import paper
 from contract.scene import MaterialSpec
+
+from .build import build_material
+from .elements import KINDS, ElementSpec, get_element
+from .beam import BeamModel
+from .formulations import FORMULATIONS
+from .mesh import Mesh, fixed_dofs
+from .quadrature import gauss
 
 GEOMETRIES = ((0.160 / 16, 0.005), (0.160 / 640, 0.005), (0.350 / 4, 0.005))   # (l_e, h), m
 HS = np.array([4e-6, 2e-6, 1e-6])                                               # Taylor steps

@@ -12,7 +12,7 @@ import time
 
 T_IMPORT = time.perf_counter()
 
-# One BLAS / OpenMP thread, set before numpy loads (free here; ancf.run limits an already
+# One BLAS / OpenMP thread, set before numpy loads (free here; ancf.simulation limits an already
 # loaded BLAS with threadpoolctl): a banded system of a few hundred unknowns only pays
 # for a thread pool (issue 10 measured 0.61 s of solve against 0.33 s with one thread).
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
@@ -24,12 +24,12 @@ def _s(v, fmt: str = ".3f") -> str:
 
 
 def _run(args) -> int:
-    from contract.cli import Progress, check_output_dir, check_output_file, safe_name
+    from contract.console import Progress, check_output_dir, check_output_file, safe_name
     from contract.record import sanitize, write_record
     from contract.scene import load_scene
 
     from .build import budget
-    from .run import run_scene
+    from .simulation import run_scene
 
     scene = load_scene(args.scene)
     json_out = check_output_file(args.json, "--json")
@@ -89,7 +89,7 @@ def _list(registry: dict) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from contract.cli import command
+    from contract.console import command
 
     p = argparse.ArgumentParser(prog="ancf", description="2D ANCF beams with hyperelastic laws")
     sub = p.add_subparsers(dest="command", required=True)

@@ -9,7 +9,7 @@ were removed (``tests/test_compiled_cache.py`` shows the same with two small mod
 
 So :func:`configure` (called by ``ancf/__init__.py``, before any compiled function is
 defined) points numba at ``<base>/numba-<digest>``, the digest taken over every module
-of the package: an edit anywhere starts a fresh cache (one compilation), and an
+of the package and of ``mechanics`` (whose step rules the step loop compiles): an edit anywhere starts a fresh cache (one compilation), and an
 unchanged package loads its compiled code as before. ``<base>`` is ``$NUMBA_CACHE_DIR``
 if set, else the package's ``__pycache__``, else (not writable) ``~/.cache/ancf``.
 numba has one cache directory per process, so other packages' cached functions defined
@@ -22,13 +22,20 @@ import os
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
+# the sibling packages whose functions ancf's compiled code compiles or inlines
+# (the time loop's step rules are compiled into the step loop)
+COMPILED_FROM = ("mechanics",)
 
 
 def source_digest(package: Path = PACKAGE) -> str:
-    """sha256 over the names and bytes of the package's modules (16 hex digits)."""
+    """sha256 over the names and bytes of the modules of ``package`` and of its sibling
+    packages named in :data:`COMPILED_FROM` (16 hex digits)."""
     h = hashlib.sha256()
-    for p in sorted(Path(package).glob("*.py")):
-        h.update(p.name.encode() + b"\0" + p.read_bytes() + b"\0")
+    package = Path(package)
+    siblings = [package.parent / name for name in COMPILED_FROM if (package.parent / name).is_dir()]
+    for d in [package, *siblings]:
+        for p in sorted(Path(d).glob("*.py")):
+            h.update(d.name.encode() + b"/" + p.name.encode() + b"\0" + p.read_bytes() + b"\0")
     return h.hexdigest()[:16]
 
 

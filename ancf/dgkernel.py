@@ -1,6 +1,6 @@
 """The discrete-gradient scheme's assembly, compiled (:func:`assemble_dg`, stepped by
-:func:`ancf.steploop.step_dg`): the numpy version is
-:meth:`ancf.model.BeamModel.discrete_gradient_force_and_tangent`, which it is tested
+:func:`ancf.compiled_steps.step_dg`): the numpy version is
+:meth:`ancf.beam.BeamModel.discrete_gradient_force_and_tangent`, which it is tested
 against. It runs the tape at 13 (a, J) pairs per quadrature point and then the fused
 kernel's element loop (:func:`ancf.kernels.element_terms`), so a registered element or
 law needs no new compiled code here either."""
@@ -35,7 +35,7 @@ GAUSS3_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
 def assemble_dg(u0, u1, dN, w, dofs, ops, consts, f, Kc, chunk, R, Fb, ab, Jb, F0, F1, aL, JL, RL, W):
     """The discrete-gradient force f_dg(u0, u1) into f and the tangent at the midpoint
     F_m = (F0 + F1) / 2 with the discrete-gradient W^_a, W^_J in its first-order terms
-    (not yet halved) into Kc: :meth:`ancf.model.BeamModel.discrete_gradient_force_and_tangent`
+    (not yet halved) into Kc: :meth:`ancf.beam.BeamModel.discrete_gradient_force_and_tangent`
     compiled. W^_a = [int_0^1 W_a(a0 + s da, J0) + W_a(a0 + s da, J1) ds] / 2 and W^_J
     alike, by 3-point Gauss in s; the second derivatives at (a_m, J_m). Returns OK or
     INADMISSIBLE (det F <= 0 at u0 or u1). Scratch: :func:`dg_scratch`."""

@@ -1,6 +1,6 @@
 """Implicit integrators of M a + f_int(u) = Q_K for the ANCF beam: one step each.
 
-:func:`ancf.timeloop.integrate` owns the loop (landing, rejection, energy check,
+:func:`mechanics.time_loop.integrate` owns the loop (landing, rejection, energy check,
 counters); an integrator here is a stepper for it. To add a method:
 
 1. subclass :class:`Integrator` and give it a ``name``;
@@ -24,9 +24,10 @@ from functools import cached_property
 
 import numpy as np
 
+from mechanics.time_loop import Energies, Output, State, acceleration_error
+
 from .banded import Banded
-from .model import BeamModel, InadmissibleState
-from .timeloop import Energies, Output, State, acceleration_error
+from .beam import BeamModel, InadmissibleState
 
 
 class Integrator:
@@ -39,20 +40,20 @@ class Integrator:
     # evaluation and leaves ~1e-12 of the state, far below the 0.1 mm step criterion.
     utol = 1e-6
 
-    # which step of the compiled loop (:mod:`ancf.steploop`) this method is:
+    # which step of the compiled loop (:mod:`ancf.compiled_steps`) this method is:
     # "alpha-family" (from its coefficients) or "discrete-gradient"; None: Python steps only
     compiled: str | None = None
 
     @cached_property
     def _loop(self):
-        from .steploop import CompiledLoop
+        from .compiled_steps import CompiledLoop
         return CompiledLoop(self.model, self.M, self.f_ext, self.coefficients(self.rho_inf), self.newton,
                             self.newton_rtol, self.max_iterations, self.utol,
                             discrete_gradient=self.compiled == "discrete-gradient")
 
     @property
     def advance(self):
-        """Compiled steps from s towards t_out (:meth:`ancf.steploop.CompiledLoop.advance`),
+        """Compiled steps from s towards t_out (:meth:`ancf.compiled_steps.CompiledLoop.advance`),
         for a :class:`BeamModel` (another model steps in Python); None: Python steps."""
         return self._loop.advance if self.compiled and isinstance(self.model, BeamModel) else None
 
@@ -60,7 +61,7 @@ class Integrator:
                  newton_rtol: float = 1e-8, max_iterations: int = 25, line_points: int = 4,
                  newton: str = "chord"):
         """``loads``: the dead load vectors Q by effect ("gravity", "tip_force"), N.
-        ``newton``: the compiled loop's Newton variant (:data:`ancf.steploop.NEWTON`) of
+        ``newton``: the compiled loop's Newton variant (:data:`ancf.compiled_steps.NEWTON`) of
         the generalized-alpha family; the discrete gradient (compiled or not) and the
         Python steps (adaptive steps) are full Newton."""
         self.model, self.M, self.loads = model, M, loads

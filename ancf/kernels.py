@@ -6,7 +6,7 @@ evaluates per call (deformation gradients and the law's (a, J) derivatives from
 :class:`ancf.jet.Jet`), and does the chain rule to P and A, the element integrals
 B^T P and B^T A B and the scatter into the force vector and the band storage, in one
 pass. A newly registered element or law goes through it without new code; the numpy
-implementation in :mod:`ancf.model` is the reference it is tested against.
+implementation in :mod:`ancf.beam` is the reference it is tested against.
 """
 from __future__ import annotations
 
@@ -131,7 +131,7 @@ def band_ldlt_inertia(upper, b, shift):
     return neg, small, growth
 
 
-# -- the fused step kernels of the compiled time loop (:mod:`ancf.steploop`) ---------------
+# -- the fused step kernels of the compiled time loop (:mod:`ancf.compiled_steps`) ---------------
 # Status codes of the compiled loop (the fused assembly returns OK or INADMISSIBLE).
 OK, NEWTON_FAILED, SINGULAR, INADMISSIBLE, ENERGY_GROWTH, BUDGET = range(6)
 #

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .model import BeamModel
+from .beam import BeamModel
 
 
 def deformed_grid(model: BeamModel, u: np.ndarray, nx: int = 4, ny: int = 2):

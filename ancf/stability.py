@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .model import BeamModel
+from .beam import BeamModel
 
 
 @dataclass

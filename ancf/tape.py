@@ -153,7 +153,7 @@ def evaluate(ops, consts, a, J):
     return out
 
 
-# -- batched replay: the compiled step loop (:mod:`ancf.steploop`) ---------------------------
+# -- batched replay: the compiled step loop (:mod:`ancf.compiled_steps`) ---------------------------
 @njit(cache=True, fastmath=FASTMATH)
 def tape_batch(ops, consts, a, J, R, m, order):
     """Replay the energy tape at m points (a, J) = (F:F, det F) in jet arithmetic.

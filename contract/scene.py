@@ -5,7 +5,7 @@ The contract both solvers read: the structure and types of a scene are checked h
 :class:`SceneError` naming the field and the allowed values). The names a solver
 resolves (element, law and its constants, formulation, integrator) are kept as
 strings and checked by each solver's ``check`` against its own registries
-(:func:`ancf.build.check`, :func:`reference_fem.run.check`), so this module imports no
+(:func:`ancf.build.check`, :func:`reference_fem.simulation.check`), so this module imports no
 solver. Each solver ignores the other's table (``[ancf]``, ``[fem]``). Every key is
 documented in README.md.
 """
@@ -28,7 +28,7 @@ ANALYSES = ("static", "dynamic")
 STATIC_KEYS = ("kind", "load_steps", "newton_rtol", "max_iterations", "wall_time")
 DYNAMIC_KEYS = ("kind", "t_end", "dt", "dt_min", "tolerance", "output_times", "integrator",
                 "rho_inf", "newton_rtol", "max_iterations", "energy_limit", "max_steps", "wall_time", "newton")
-NEWTON = ("chord", "full", "modified")   # the compiled time loop's Newton (ancf.steploop)
+NEWTON = ("chord", "full", "modified")   # the compiled time loop's Newton (ancf.compiled_steps)
 # Sane ranges: a tolerance outside them answers a different question (1e10 "converges"
 # at the first residual) or none (below round-off Newton never stops).
 NEWTON_RTOL = (1e-15, 1e-3)

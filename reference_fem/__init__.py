@@ -6,23 +6,24 @@ or incompressible plane stress (F33 = 1/det F); or the real beam in 3D
 (``[fem] model = "3d"``, hexahedra, full 3D invariants), distributed over the ranks of
 an ``mpiexec`` launch. Same scene files (``contract.scene``)
 and records (``contract.record``) as ``ancf``, the same load-path rule
-(``ancf.loadpath``) and time loop (``ancf.timeloop``).
+(``mechanics.load_path``) and time loop (``mechanics.time_loop``).
 
-Modules, one concept each:
+Modules, one concept each. Shared by every backend (no dolfinx):
 
-- :mod:`.settings`: the scene's [fem] table, validated and resolved (no dolfinx);
-- :mod:`.energies`: the laws in UFL and their invariants;
-- :mod:`.models`: the continuum models as strategies (invariants, incompressibility,
-  geometry); :mod:`.geometry`: the gmsh meshes and where supports and the tip are;
-- :mod:`.dolfinx_backend`: every DOLFINx call; :mod:`.krylov`: the iterative Newton
-  solver's PETSc side (options, the augmented-Lagrangian preconditioner);
-- :mod:`.setup`: scene -> spaces, law, model, supports, loads; the static problem;
-- :mod:`.dynamic_problem`: the forms of one time step; :mod:`.dynamics`: its stepper;
-- :mod:`.newton`: Newton and static load stepping (no dolfinx);
-- :mod:`.run`: scene -> record; :mod:`.convergence`: refinement and Richardson;
-- :mod:`.gold`, :mod:`.pendulum`, :mod:`.report`: gold data of the paper's examples, tables;
-- :mod:`.cli`: ``python -m reference_fem run | converge | gold | pendulum | report``.
-- :mod:`.launch`: the ``mpiexec`` / ``srun`` command line of a run on N ranks (no dolfinx).
+- :mod:`.settings`: the scene's [fem] table, validated and resolved;
+- :mod:`.geometry`: where supports, the tip and the probes are, per model;
+- :mod:`.statics`: Newton and static load stepping; :mod:`.stepper`: the time stepper;
+- :mod:`.simulation`: scene -> record; :mod:`.convergence`: refinement and Richardson;
+- :mod:`.gold_cantilever`, :mod:`.gold_pendulum`, :mod:`.gold_report`: gold data of the
+  paper's examples and their tables;
+- :mod:`.cli`: ``python -m reference_fem run | converge | gold | pendulum | report``;
+- :mod:`.launch`: the ``mpiexec`` / ``srun`` command line of a run on N ranks.
+
+The DOLFINx backend, :mod:`.dolfinx_backend` (the only place dolfinx is imported):
+``laws`` (the laws in UFL), ``models`` (continuum models as strategies), ``meshing``
+(gmsh), ``problem`` (scene -> spaces, law, model, supports, loads; the static problem),
+``dynamic_problem`` (the forms of one time step), ``fem`` (every DOLFINx call),
+``krylov`` (the iterative solver's PETSc side).
 
 Importing the package imports nothing heavy; dolfinx is loaded when a problem is built.
 """

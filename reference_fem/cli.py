@@ -30,11 +30,11 @@ def _s(v, fmt: str = ".3f") -> str:
 
 
 def _run(args) -> int:
-    from contract.cli import Progress, check_output_dir, check_output_file
+    from contract.console import Progress, check_output_dir, check_output_file
     from contract.record import sanitize, write_record
     from contract.scene import load_scene
 
-    from .run import budget, check, run_scene
+    from .simulation import budget, check, run_scene
 
     scene = load_scene(args.scene)
     settings = check(scene)
@@ -113,7 +113,7 @@ def _converge(args) -> int:
     from contract.scene import load_scene
 
     from .convergence import refinement_study
-    from .run import check_static
+    from .simulation import check_static
 
     scene = load_scene(args.scene)
     check_static(scene)
@@ -141,20 +141,20 @@ def _converge(args) -> int:
 
 def _gold(args) -> int:
     if args.pendulum:
-        from .pendulum import write_pendulum_gold
+        from .gold_pendulum import write_pendulum_gold
 
         path = write_pendulum_gold(Path(args.out), tuple(args.models), workers=args.workers,
                                    progress=lambda m: print(m, flush=True))
         print(f"wrote {path}")
         return 0
     if args.solid:
-        from .gold import LAWS, write_gold_3d
+        from .gold_cantilever import LAWS, write_gold_3d
 
         path = write_gold_3d(Path(args.out), args.levels or 3, laws=args.laws or LAWS,
                              progress=print if _root_after_import() else None)
         print(f"wrote {path}") if _root_after_import() else None
         return 0
-    from .gold import write_gold
+    from .gold_cantilever import write_gold
 
     path = write_gold(Path(args.out), args.levels or 5, progress=print)
     print(f"wrote {path}")
@@ -164,7 +164,7 @@ def _gold(args) -> int:
 def _pendulum(args) -> int:
     from contract.record import sanitize
 
-    from .pendulum import convergence_case
+    from .gold_pendulum import convergence_case
 
     case = convergence_case(args.law, args.model, args.dt, args.cells_height, args.aspect,
                             workers=args.workers, rho_inf=args.rho_inf, integrator=args.integrator)
@@ -187,18 +187,18 @@ def _pendulum(args) -> int:
 
 def _report(args) -> int:
     if args.pendulum:
-        from .pendulum import render as render_pendulum
+        from .gold_pendulum import render as render_pendulum
 
         print(render_pendulum(Path(args.gold or "tests/gold/fem_pendulum.json")), end="")
         return 0
-    from .report import render
+    from .gold_report import render
 
     print(render(Path(args.gold or "tests/gold/fem_cantilever.json")), end="")
     return 0
 
 
 def main(argv: list[str] | None = None) -> int:
-    from contract.cli import command
+    from contract.console import command
 
     p = argparse.ArgumentParser(prog="python -m reference_fem",
                                 description="2D and 3D continuum reference (DOLFINx) for the ANCF scenes")

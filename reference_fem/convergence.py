@@ -73,7 +73,7 @@ class Study:
 def refinement_study(scene: Scene, levels: int = 4, base: FemSettings | None = None,
                      progress=None) -> Study:
     """Solve ``scene`` on ``levels`` (>= 3) uniformly refined meshes."""
-    from .run import run_scene
+    from .simulation import run_scene
 
     if levels < 3:
         raise ValueError("levels: a convergence study needs at least 3 levels")

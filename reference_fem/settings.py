@@ -39,7 +39,7 @@ Any model:
 - ``linear_solver``: "direct" (default: MUMPS LU of every Newton increment) |
   "iterative" (FGMRES with the augmented-Lagrangian block preconditioner and a two-level
   p-multigrid on its displacement block,
-  :class:`reference_fem.krylov.ALPreconditioner`; PETSc options with the prefix
+  :class:`reference_fem.dolfinx_backend.krylov.ALPreconditioner`; PETSc options with the prefix
   ``fem_`` override its defaults). Records of "direct" do not name it.
 """
 from __future__ import annotations
@@ -51,7 +51,7 @@ from typing import Any, Mapping
 from contract.errors import SceneError, UnknownName
 from contract.scene import Scene
 
-from .models import get_model
+from .geometry import Geometry, geometry_for
 
 CELLS = ("quadrilateral", "triangle")
 CELLS_3D = ("hexahedron", "tetrahedron")
@@ -59,6 +59,9 @@ INCOMPRESSIBILITY = ("mixed", "penalty")
 MODELS = ("plane-strain", "plane-stress", "3d")
 SIDE_FACES = ("free", "plane-strain")
 LINEAR_SOLVERS = ("direct", "iterative")
+# The lowest displacement degree of each incompressibility: a pressure field (mixed,
+# penalty) is one degree lower (Taylor-Hood), so the displacement needs degree 2.
+MIN_DEGREE = {"mixed": 2, "penalty": 2, "exact": 1}
 # The scene's formulations and whether the scene carries a penalty (the scene language
 # both solvers read: `paper` and `plane-strain` do, `plane-stress` does not).
 FORMULATIONS = {"paper": True, "plane-strain": True, "plane-stress": False}
@@ -95,6 +98,16 @@ class FemSettings:
     progression: float = 1.0         # 3D only
     side_faces: str = "free"         # 3D only
     linear_solver: str = "direct"    # "direct" | "iterative"
+
+    @property
+    def geometry(self) -> Geometry:
+        """Where the supports, loads and tip are (:mod:`reference_fem.geometry`)."""
+        return geometry_for(self.model)
+
+    @property
+    def has_pressure(self) -> bool:
+        """Is a pressure field solved for (mixed and penalty models; not plane stress)?"""
+        return self.incompressibility != "exact"
 
     def cells(self, gdim: int = 2) -> tuple[int, ...]:
         """Cells along x and across the height (and across the width in 3D)."""
@@ -182,7 +195,7 @@ def fem_settings(scene: Scene) -> FemSettings:
         given = sorted(set(t) & set(KEYS_3D))
         if given:
             raise SceneError(f"fem.{given[0]}: only for fem.model = \"3d\"")
-    degree = _int("degree", t.get("degree", DEFAULT_DEGREE), get_model(model, incompressibility).min_degree,
+    degree = _int("degree", t.get("degree", DEFAULT_DEGREE), MIN_DEGREE[incompressibility],
                   MAX_DEGREE)
     ny = _int("cells_height", t.get("cells_height", DEFAULT_CELLS_HEIGHT))
     if "cells_length" in t and "aspect" in t:

@@ -10,11 +10,11 @@ way, their error against the continuum's own Richardson value.
 """
 from __future__ import annotations
 
-from .case import make_case
+from .engine.case import make_case
 from .continuum import scene as continuum_scene
 from .grid import DEFAULT, cantilever_case, qlabel
 from .reference import short, MATCHING, continuum_references, describe, variant_of
-from .report import Section, Table, figure, marker, pct, vec_error
+from .engine.report import Section, Table, figure, marker, pct, vec_error
 
 STYLE = {(2, 2): ":", (3, 2): "-", (5, 3): "--", (3, 3): "-.", DEFAULT: "-"}
 
@@ -144,7 +144,7 @@ def pendulum_points(ctx) -> list[dict]:
     """The dynamic half: every timed rung of Table 4 (element, count, step) as a point:
     its median serial warm wall time and its pendulum error max over t of |r - r_ref| / L
     against the converged continuum plane-stress pendulum (`paper` against it too)."""
-    from .pendulum import continuum_pendulum, describe_dynamic, tip_errors
+    from .pendulum_cases import continuum_pendulum, describe_dynamic, tip_errors
 
     cont = continuum_pendulum()
     out = []
@@ -159,7 +159,7 @@ def pendulum_points(ctx) -> list[dict]:
 
 
 def pendulum_part(ctx, sec: Section) -> None:
-    from .pendulum import continuum_pendulum
+    from .pendulum_cases import continuum_pendulum
 
     pts = pendulum_points(ctx)
     if not pts:

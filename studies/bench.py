@@ -14,11 +14,11 @@ import statistics
 import sys
 import time
 
-from ancf.run import run_scene
+from ancf.simulation import run_scene
 from contract import paper
 from contract.scene import scene_from_dict
 
-from .pendulum import LADDER, converged_rung, describe_dynamic, ladder, pendulum_dict
+from .pendulum_cases import LADDER, converged_rung, describe_dynamic, ladder, pendulum_dict
 
 # The setting that reproduces the paper's Table 3 (README, "Reproducing Table 3").
 PAPER_SETTING = {"quadrature": (2, 2), "clamp": "all"}
@@ -86,7 +86,7 @@ def penalty(elements=(16, 160, 640), factors=(1e1, 1e2, 1e3, 1e4, 1e5)) -> bool:
 
 def converged_step(element, n, formulation, rho_inf=0.5, dt0=LADDER["dt0"], tol=LADDER["tol"],
                    dt_floor=LADDER["dt_floor"]):
-    """The converged step of Table 4's rule (:func:`studies.pendulum.converged_rung`),
+    """The converged step of Table 4's rule (:func:`studies.pendulum_cases.converged_rung`),
     running the ladder only as far as needed; returns (dt, difference in m)."""
     rungs = []
     for dt in ladder(dt0, dt_floor):

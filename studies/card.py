@@ -39,12 +39,12 @@ import numpy as np
 
 from contract import paper
 
-from .case import Case, make_case
+from .engine.case import Case, make_case
 from .grid import DEFAULT, cantilever_case
-from .pendulum import pendulum_dict
-from .runner import run_cases
-from .solvers import source_hash
-from .store import store_for
+from .pendulum_cases import pendulum_dict
+from .engine.scheduler import run_cases
+from .engine.solvers import source_hash
+from .engine.store import store_for
 
 PAPER_ELEMENTS = ("HB2n-12", "HB3n-12", "HB2n-16", "LB2n-12")
 LAWS = ("neo-hookean", "mooney-rivlin", "yeoh")
@@ -216,6 +216,6 @@ def run_cards(elements: list[str], out: Path, tiny: bool = False, imports=(), wo
         checks_record(el, out, tiny, force)
     paths = [render(el, out, tiny, imports) for el in elements]
     if (Path(out) / "README.md").exists():   # link the cards from the results page
-        from .pipeline import build_reports
+        from .engine.pipeline import build_reports
         build_reports(Path(out), tiny, log)
     return paths

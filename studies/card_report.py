@@ -9,10 +9,10 @@ from pathlib import Path
 import numpy as np
 
 from .card import beam_theory, cases, checks_path, grid_for, slug
-from .pendulum import FEM_GOLD, continuum_pendulum, describe_dynamic, tip_errors
+from .pendulum_cases import FEM_GOLD, continuum_pendulum, describe_dynamic, tip_errors
 from .reference import MATCHING, gold_references, short
-from .report import figure, mm, vec_error
-from .store import RecordStore, store_for
+from .engine.report import figure, mm, vec_error
+from .engine.store import RecordStore, store_for
 
 ROOT = Path(__file__).resolve().parent.parent
 FEM_STATIC = ROOT / "tests" / "gold" / "fem_cantilever.json"

@@ -10,7 +10,7 @@
 - ``gold [--refresh]``: run every study in tiny mode and compare its named values with
   tests/gold/studies_tiny.json (``--refresh`` rewrites that file instead);
 - ``diff OLD NEW``: the records of two output directories compared case by case
-  (:mod:`studies.diff`): which results changed, and by how much;
+  (:mod:`studies.engine.diff`): which results changed, and by how much;
 - ``card NAME [NAME ...] [--import MODULE]``: the element report card (:mod:`studies.card`),
   ``paper`` for the four paper elements; written to ``<out>/cards/``.
 
@@ -23,11 +23,11 @@ import sys
 import time
 from pathlib import Path
 
-from contract.cli import command
+from contract.console import command
 
-from .catalog import CASES_TOML, get_study, load_catalog
-from .execute import DEFAULT_TIMEOUT_S
-from .pipeline import build_reports, resolve_out, run_studies
+from .engine.catalog import CASES_TOML, get_study, load_catalog
+from .engine.worker import DEFAULT_TIMEOUT_S
+from .engine.pipeline import build_reports, resolve_out, run_studies
 
 def _list(args) -> int:
     catalog = load_catalog(args.tiny, args.catalog)
@@ -66,7 +66,7 @@ def _report(args) -> int:
 
 
 def _diff(args) -> int:
-    from .diff import diff
+    from .engine.diff import diff
 
     changes, summary = diff(Path(args.old), Path(args.new), args.rtol, args.atol)
     for c in changes:
@@ -78,7 +78,7 @@ def _diff(args) -> int:
 
 
 def _gold(args) -> int:
-    from .gold import check_gold, refresh_gold
+    from .engine.regression import check_gold, refresh_gold
 
     out = resolve_out(args.out, True)
     if args.refresh:

@@ -11,9 +11,9 @@ from pathlib import Path
 
 from contract import paper
 
-from .case import make_case
+from .engine.case import make_case
 from .reference import short, VARIANT_LABEL, abaqus, continuum_references, gold_references
-from .report import Section, Table, mm, pct
+from .engine.report import Section, Table, mm, pct
 
 GOLD = Path(__file__).resolve().parent.parent / "tests" / "gold" / "fem_cantilever.json"
 MODELS = {"plane-strain": ("plane-strain", "mixed"), "plane-strain-penalty": ("plane-strain", "penalty"),

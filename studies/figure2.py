@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from .grid import cantilever_case, qlabel, rule
 from .reference import short, VARIANT_LABEL, abaqus, continuum_references, describe
-from .report import Section, Table, figure, marker, mm, pct, vec_error
+from .engine.report import Section, Table, figure, marker, mm, pct, vec_error
 
 CONVERGED = 0.01
 DRIFT = 1e-3      # a last refinement step that moves the tip more than this is reported

@@ -14,9 +14,9 @@ from __future__ import annotations
 
 from contract import paper
 
-from .pendulum import (LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case,
+from .pendulum_cases import (LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case,
                        tip_errors)
-from .report import Section, Table, figure, marker
+from .engine.report import Section, Table, figure, marker
 
 CONVERGED_M = 1e-3   # "converged at n": within 1 mm of the element's finest mesh at every output time
 CONTINUUM_MODEL = {"plane-stress": "plane-stress", "paper": "plane-stress", "plane-strain": "plane-strain"}

@@ -9,9 +9,9 @@ the continuum at each output time.
 """
 from __future__ import annotations
 
-from .pendulum import LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case, tip_errors
+from .pendulum_cases import LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case, tip_errors
 from .reference import short
-from .report import Section, Table, figure, linestyle
+from .engine.report import Section, Table, figure, linestyle
 
 CONTINUUM_MODEL = {"plane-stress": "plane-stress", "paper": "plane-stress", "plane-strain": "plane-strain"}
 

@@ -11,9 +11,9 @@ from __future__ import annotations
 import math
 
 from .grid import cantilever_case, qlabel, rule
-from .pendulum import LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case, tip_errors
+from .pendulum_cases import LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case, tip_errors
 from .reference import short, SOLID_LABEL, VARIANT_LABEL, abaqus, continuum_references, describe, solid_references
-from .report import Section, Table, mm, pct, vec_error
+from .engine.report import Section, Table, mm, pct, vec_error
 
 VARIANTS = ("plane-strain", "plane-strain-penalty", "plane-stress")
 

@@ -1,8 +1,9 @@
 """Grid helpers shared by the ANCF studies: element counts and one cantilever case."""
 from __future__ import annotations
 
-from .case import Case, make_case
 from contract.paper import cantilever_scene, element_count
+
+from .engine.case import Case, make_case
 
 
 def count_for(grid: dict, element: str) -> int:

@@ -12,9 +12,9 @@ from __future__ import annotations
 
 from contract import paper
 
-from .case import make_case
+from .engine.case import make_case
 from .reference import short
-from .report import Section, Table, mm, pct, vec_error
+from .engine.report import Section, Table, mm, pct, vec_error
 
 G = paper.GRAVITY
 

@@ -20,9 +20,9 @@ import math
 
 from contract import paper
 
-from .case import make_case
-from .pendulum import LENGTH, continuum_pendulum, describe_dynamic, tip_errors
-from .report import Section, Table
+from .engine.case import make_case
+from .pendulum_cases import LENGTH, continuum_pendulum, describe_dynamic, tip_errors
+from .engine.report import Section, Table
 
 MODELS = ("plane-stress", "plane-strain")
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from .grid import cantilever_case, count_for
 from .reference import short, describe, paper_tip, stability_mark
-from .report import Section, Table, mm, pct, vec_error
+from .engine.report import Section, Table, mm, pct, vec_error
 
 
 def settings(grid: dict) -> list[tuple[str, tuple[int, int]]]:

@@ -21,9 +21,9 @@ from __future__ import annotations
 
 from contract import paper
 
-from .pendulum import describe_dynamic, gold_tips, pendulum_dict
-from .case import make_case
-from .report import Section, Table
+from .pendulum_cases import describe_dynamic, gold_tips, pendulum_dict
+from .engine.case import make_case
+from .engine.report import Section, Table
 
 CONSERVATIVE = ("newmark", "discrete-gradient")
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 from .grid import cantilever_case, count_for
 from .reference import (short, MATCHING, SOLID_LABEL, VARIANT_LABEL, abaqus, continuum_references,
                         describe, paper_tip, solid_references)
-from .report import Section, Table, mm, pct, rel_dev
+from .engine.report import Section, Table, mm, pct, rel_dev
 
 
 def cases(grid: dict, tiny: bool) -> list:

@@ -2,10 +2,10 @@
 ours beside the paper's CPU time.
 
 Each (element, count, formulation) runs over the step ladder of the converged-step rule
-(:data:`studies.pendulum.LADDER`: dt0 halving, down to ``dt_floor``), every rung a
+(:data:`studies.pendulum_cases.LADDER`: dt0 halving, down to ``dt_floor``), every rung a
 timed case (serial warm runs: one warm-up, the median of up to ``repeats`` runs within
 ``budget_s``; the ``timing`` grid key). The report picks the converged step by the same
-rule as ``studies.bench.converged_step`` (:func:`studies.pendulum.converged_rung`): the
+rule as ``studies.bench.converged_step`` (:func:`studies.pendulum_cases.converged_rung`): the
 largest dt whose tip positions at all output times are within ``tol`` (0.1 mm,
 componentwise) of the dt/2 run, both converged; and shows that rung's median wall time,
 steps, Newton iterations and ndof beside the paper's CPU time
@@ -16,8 +16,8 @@ from __future__ import annotations
 
 from contract import paper
 
-from .pendulum import LADDER, converged_rung, describe_dynamic, gold_tips, ladder, pendulum_case
-from .report import Section, Table, figure
+from .pendulum_cases import LADDER, converged_rung, describe_dynamic, gold_tips, ladder, pendulum_case
+from .engine.report import Section, Table, figure
 
 DT0, TOL = LADDER["dt0"], LADDER["tol"]
 

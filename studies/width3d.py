@@ -23,9 +23,9 @@ from pathlib import Path
 
 from contract import paper
 
-from .case import make_case
+from .engine.case import make_case
 from .reference import GOLD_3D, continuum_references, short
-from .report import Section, Table, figure, mm, pct
+from .engine.report import Section, Table, figure, mm, pct
 
 ROOT = Path(__file__).resolve().parent.parent
 GOLD_2D = ROOT / "tests" / "gold" / "fem_cantilever.json"

@@ -15,9 +15,9 @@ from __future__ import annotations
 
 from contract import paper
 
-from .case import make_case
+from .engine.case import make_case
 from .reference import short
-from .report import Section, Table, mm, pct, rel_dev
+from .engine.report import Section, Table, mm, pct, rel_dev
 
 LAWS = ("neo-hookean", "mooney-rivlin", "yeoh")
 

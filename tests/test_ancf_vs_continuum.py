@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ancf.run import run_scene
+from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
 from contract import paper
 

@@ -42,7 +42,7 @@ def test_an_unknown_element_is_refused_with_the_list(tmp_path):
 
 
 def _probe(element: str, ratio: float, n: int) -> dict:
-    from ancf.run import run_scene
+    from ancf.simulation import run_scene
     from contract.scene import scene_from_dict
     from studies.card import slender_scene
 

@@ -63,10 +63,14 @@ def test_a_compiled_caller_sees_an_edited_callee(tmp_path, monkeypatch):
 
 def test_the_digest_covers_every_module_and_names_the_cache(tmp_path):
     copy = tmp_path / "ancf"
-    shutil.copytree(compiled_cache.PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    for name in ("ancf", *compiled_cache.COMPILED_FROM):
+        shutil.copytree(compiled_cache.PACKAGE.parent / name, tmp_path / name,
+                        ignore=shutil.ignore_patterns("__pycache__"))
     d0 = compiled_cache.source_digest(copy)
     assert d0 == compiled_cache.source_digest(compiled_cache.PACKAGE)
-    for p in sorted(copy.glob("*.py")):
+    modules = [p for name in ("ancf", *compiled_cache.COMPILED_FROM) for p in sorted((tmp_path / name).glob("*.py"))]
+    assert any(p.parent.name == "mechanics" for p in modules)
+    for p in modules:
         text = p.read_text()
         p.write_text(text + "\n")
         assert compiled_cache.source_digest(copy) != d0, p.name

@@ -7,8 +7,8 @@ from scipy.integrate import solve_ivp
 
 from ancf.banded import Banded
 from ancf.integrators import INTEGRATORS, DiscreteGradient, GeneralizedAlpha, Newmark
-from ancf.run import run_scene
-from ancf.timeloop import integrate
+from ancf.simulation import run_scene
+from mechanics.time_loop import integrate
 from contract import paper
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
@@ -291,7 +291,7 @@ def test_hard_cases_stay_within_the_energy_bound(label, kw, soft):
 def test_a_singular_step_matrix_is_a_rejected_step_not_a_crash(monkeypatch):
     """A LinAlgError in a step's solve (the 5 s Newmark run met one) rejects the step;
     it never escapes the integrator. (The Python loop's steps; the compiled loop's LDL^T
-    reports a singular step matrix as a rejected step: tests/test_steploop.py.)"""
+    reports a singular step matrix as a rejected step: tests/test_compiled_steps.py.)"""
     from ancf import banded
     monkeypatch.setattr(GeneralizedAlpha, "advance", None)
     calls = {"n": 0}

@@ -8,7 +8,7 @@ from ancf import checks
 from ancf.elements import ELEMENTS, ElementSpec, get_element, register_element
 from contract.errors import SceneError
 from ancf.polynomial import parse
-from ancf.run import run_scene
+from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
 from contract import paper
 

@@ -5,10 +5,10 @@ import numpy as np
 
 import examples.cubic_slope  # noqa: F401  (registers HB2n-20xy)
 from ancf import checks
-from ancf.run import run_scene
+from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
 from studies.peers.work_precision import error
-from studies.pendulum import pendulum_dict
+from studies.pendulum_cases import pendulum_dict
 
 ELEMENT = "HB2n-20xy"
 

@@ -7,10 +7,10 @@ from __future__ import annotations
 
 import pytest
 
-from studies.catalog import load_catalog
+from studies.engine.catalog import load_catalog
 from studies.hard_loads import rows_of
-from studies.pipeline import run_studies
-from studies.report import Context
+from studies.engine.pipeline import run_studies
+from studies.engine.report import Context
 
 pytestmark = pytest.mark.slow
 

@@ -31,9 +31,9 @@ from hypothesis import strategies as st
 from ancf.build import budget as ancf_budget
 from ancf.build import check as ancf_check
 from ancf.cli import main as ancf_main
-from ancf.run import run_scene
+from ancf.simulation import run_scene
 from contract import paper
-from contract.cli import safe_name
+from contract.console import safe_name
 from contract.errors import SceneError
 from contract.record import sanitize
 from contract.scene import load_scene, scene_from_dict
@@ -84,7 +84,7 @@ def test_the_20_newton_tip_force_agrees_with_the_continuum():
     """64 x HB2n-12 against the continuum's 64 x 4 Q2 (plane stress, the same scene):
     measured -155.65 / -191.34 mm against -155.60 / -191.38 mm; tolerance 0.2 % (the
     continuum's own mesh error at 64 x 4 is about 0.07 %, the ANCF mesh's similar)."""
-    from reference_fem.run import run_scene as run_fem
+    from reference_fem.simulation import run_scene as run_fem
 
     d = scene_with(loads=None, ancf={"elements": 64})
     d["loads"] = {"tip_force": [0.0, -20.0]}
@@ -113,7 +113,7 @@ def test_a_failed_continuum_factorisation_does_not_poison_the_next_increment():
     fails (PETSc reason -11) and PETSc kept the failed factorisation, so every smaller
     increment failed at once and the run ended "load increment below 1e-06 at t = 0".
     With a fresh LU after a failure it converges (ANCF 32 x HB2n-12: -157.99 / -496.30 mm)."""
-    from reference_fem.run import run_scene as run_fem
+    from reference_fem.simulation import run_scene as run_fem
 
     d = paper.cantilever_scene("neo-hookean", "plane-stress", name="nh-200N", fem={
         "cells_length": 64, "cells_height": 4, "cell": "quadrilateral", "degree": 2, "quadrature_degree": 4})
@@ -149,7 +149,7 @@ def test_ten_million_elements_are_refused_with_the_memory_they_would_need(capsys
 
 
 def test_a_large_run_is_warned_about():
-    from contract.budget import Estimate, check_budget
+    from contract.capacity import Estimate, check_budget
     w = check_budget(Estimate(2 * 10 ** 6, 1e9, 2 * 10 ** 6, "x"), "ancf", available=1.5e9)
     assert any("1e+06" in x or "2e+06 unknowns" in x for x in w) and any("time steps" in x for x in w)
     assert any("available" in x for x in w)
@@ -160,7 +160,7 @@ def test_a_large_run_is_warned_about():
     ({"degree": 20}, r"fem\.degree: must be an integer in \[1, 8\]"),
 ])
 def test_continuum_sizes_that_ran_until_killed_are_refused(fem, field):
-    from reference_fem.run import budget, check
+    from reference_fem.simulation import budget, check
     scene = scene_from_dict(scene_with(fem=fem))
     with pytest.raises(SceneError, match=field):
         budget(scene, check(scene))
@@ -173,7 +173,7 @@ def test_continuum_sizes_that_ran_until_killed_are_refused(fem, field):
     ("analysis", "kind", {"static": True}), ("fem", "cell", ["triangle"]), ("fem", "model", {"a": 1}),
 ])
 def test_a_list_or_table_where_a_name_belongs_is_one_scene_error(table, key, value):
-    from reference_fem.run import check as fem_check
+    from reference_fem.simulation import check as fem_check
     d = scene_with(**{table: {key: value}})
     if key == "integrator":
         d["analysis"] = {"kind": "dynamic", "t_end": 0.1, "dt": 1e-2, "integrator": value}
@@ -216,11 +216,11 @@ def test_output_paths_are_checked_before_the_solve(tmp_path, capsys, monkeypatch
     d = scene_with(ancf={"elements": 2000})
     scene = tmp_path / "long.toml"
     scene.write_text(SCENE.read_text().replace("elements = 16", "elements = 2000"))
-    import ancf.run
+    import ancf.simulation
 
     def refuse(*a, **k):
         raise AssertionError("the solve started before the output path was checked")
-    monkeypatch.setattr(ancf.run, "run_scene", refuse)
+    monkeypatch.setattr(ancf.simulation, "run_scene", refuse)
     code = ancf_main(["run", str(scene), option, target.format(tmp=tmp_path, file=blocker)])
     assert code == 2
     assert message in capsys.readouterr().err
@@ -270,7 +270,7 @@ def test_an_unloaded_scene_is_the_reference_state_in_both_solvers():
 
 @pytest.mark.dolfinx
 def test_an_unloaded_scene_is_the_reference_state_in_the_continuum():
-    from reference_fem.run import run_scene as run_fem
+    from reference_fem.simulation import run_scene as run_fem
     rec = sanitize(run_fem(scene_from_dict(scene_with(loads=None, fem={"cells_height": 2}))))
     assert rec["status"] == "converged" and rec["tip"] == {"ux": 0.0, "uy": 0.0}
     assert "no load" in rec["note"]
@@ -383,7 +383,7 @@ values = st.recursive(scalars, lambda inner: st.one_of(st.lists(inner, max_size=
 
 def _check_both(scene_dict) -> None:
     """Only a SceneError may come out of loading and checking a scene, in both solvers."""
-    from reference_fem.run import budget as fem_budget
+    from reference_fem.simulation import budget as fem_budget
     try:
         s = scene_from_dict(scene_dict)
     except SceneError:

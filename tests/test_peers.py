@@ -65,7 +65,7 @@ def test_missing_output_time_is_an_error():
 
 # -- work-precision (studies.peers.work_precision), without Exudyn ----------------------------
 def test_work_precision_error_is_zero_on_the_reference_and_the_report_picks_the_cheapest(tmp_path):
-    from studies.pendulum import continuum_pendulum
+    from studies.pendulum_cases import continuum_pendulum
     from studies.peers import work_precision as wp
 
     ref = continuum_pendulum()[("yeoh", "plane-stress")]

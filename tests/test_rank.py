@@ -11,10 +11,10 @@ import pytest
 from ancf.build import build_material
 from ancf.elements import ELEMENTS, get_element
 from ancf.mesh import Mesh
-from ancf.model import BeamModel
+from ancf.beam import BeamModel
 from ancf.quadrature import gauss
 from ancf.rank import ASPECTS, default_quadrature, rank_test, strain_test
-from ancf.run import run_scene
+from ancf.simulation import run_scene
 from contract import paper
 from contract.scene import MaterialSpec, scene_from_dict
 

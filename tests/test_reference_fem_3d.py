@@ -10,7 +10,7 @@ import pytest
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
 from contract import paper
-from reference_fem.gold import FILE_3D, REGRESSION_RTOL, base_settings, base_settings_3d, cantilever_3d
+from reference_fem.gold_cantilever import FILE_3D, REGRESSION_RTOL, base_settings, base_settings_3d, cantilever_3d
 from reference_fem.settings import fem_settings
 
 pytestmark = pytest.mark.dolfinx
@@ -71,8 +71,8 @@ def test_3d_with_fixed_side_faces_is_the_2d_plane_strain_solution(law):
     agreement is only the Newton tolerance's, ~1e-10, once the load-path rule changes:
     1.1e-10 after the increments grew after 6 iterations instead of 4; the gold level
     itself is held by tests/test_reference_fem_cantilever.py within REGRESSION_RTOL.)"""
-    from reference_fem.gold import base_settings, cantilever
-    from reference_fem.run import run_scene
+    from reference_fem.gold_cantilever import base_settings, cantilever
+    from reference_fem.simulation import run_scene
 
     rec = run_scene(_scene(law, cells_length=16, cells_height=1, cells_width=1, side_faces="plane-strain"))
     gold = GOLD_2D["cases"][f"{law}/plane-strain"]["levels"][0]
@@ -88,13 +88,13 @@ def test_3d_with_fixed_side_faces_is_the_2d_plane_strain_solution(law):
 # -- parallel: 1 rank against 2 ranks ----------------------------------------------------------
 def test_two_ranks_give_the_one_rank_tip_and_one_record(monkeypatch):
     """The same coarse level (16 x 1 x 1, full load path, 63 Newton iterations) in this
-    process (1 rank) and as a study case with ``mpi_ranks = 2`` (studies.execute ->
+    process (1 rank) and as a study case with ``mpi_ranks = 2`` (studies.engine.worker ->
     reference_fem.launch -> mpiexec -n 2 python -m reference_fem run): the same tip to
     round-off (the Newton decisions read global norms; measured 1e-15), the record
     written by rank 0."""
-    from reference_fem.run import run_scene
-    from studies.case import make_case
-    from studies.execute import execute
+    from reference_fem.simulation import run_scene
+    from studies.engine.case import make_case
+    from studies.engine.worker import execute
 
     scene = _scene("yeoh", cells_length=16, cells_height=1, cells_width=1)
     one = run_scene(scene)
@@ -112,7 +112,7 @@ def test_two_ranks_give_the_one_rank_tip_and_one_record(monkeypatch):
 def test_3d_gold_level_is_reproduced_and_within_the_target():
     """A fresh run of the gold's level 0 (16 x 1 x 1, graded) reproduces it; the
     Richardson values' error estimates are under 0.1 % of the tip for every law."""
-    from reference_fem.run import run_scene
+    from reference_fem.simulation import run_scene
 
     gold = json.loads(GOLD_3D_PATH.read_text())
     for law in LAWS:
@@ -134,7 +134,7 @@ def test_3d_options_tetrahedra_and_penalty():
     form (0.017 % measured; bound 0.1 %); P2/P1 tetrahedra (6 per hexahedron) converge
     to the same beam, less accurately per unknown (2.0 % from the 3D gold at this mesh;
     bound 3 %)."""
-    from reference_fem.run import run_scene
+    from reference_fem.simulation import run_scene
 
     gold = json.loads(GOLD_3D_PATH.read_text())["cases"]["yeoh/3d"]["tip"]
     mixed = run_scene(_scene("yeoh", cells_length=16, cells_height=1, cells_width=1))

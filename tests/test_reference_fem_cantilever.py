@@ -9,7 +9,7 @@ from contract import paper
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
 from reference_fem.convergence import refinement_study, richardson
-from reference_fem.gold import REGRESSION_RTOL, VARIANTS, base_settings, cantilever
+from reference_fem.gold_cantilever import REGRESSION_RTOL, VARIANTS, base_settings, cantilever
 
 pytestmark = pytest.mark.dolfinx
 
@@ -66,7 +66,7 @@ def test_small_load_against_euler_bernoulli(model, inc):
     mesh (4 cells across, Q2) adds < 0.1 % (see the convergence study). Tolerance:
     0.25 h/L + 1.6 (h/L)^2 + 1e-3 = 1.04 % at h/L = 1/32 (the deviation measured is
     -0.16 % plane stress, -0.52 % plane strain mixed, -0.33 % penalty)."""
-    from reference_fem.run import run_scene
+    from reference_fem.simulation import run_scene
 
     law = "neo-hookean"
     fem = {"cells_height": 4, "aspect": 2.0} | ({"incompressibility": inc} if inc else {})
@@ -88,7 +88,7 @@ def test_small_load_against_euler_bernoulli(model, inc):
                                           ("yeoh", "plane-stress")])
 def test_gold_levels_are_reproduced(law, variant):
     """A fresh run of stored level 2 (64 x 4) reproduces the gold file."""
-    from reference_fem.run import run_scene
+    from reference_fem.simulation import run_scene
 
     case = GOLD["cases"][f"{law}/{variant}"]
     model, inc = VARIANTS[variant]
@@ -102,7 +102,7 @@ def test_gold_levels_are_reproduced(law, variant):
 
 
 def test_defaults_are_within_half_a_percent_of_the_converged_tip():
-    from reference_fem.run import run_scene
+    from reference_fem.simulation import run_scene
 
     for law, variant in [("mooney-rivlin", "plane-stress"), ("neo-hookean", "plane-strain")]:
         model, _ = VARIANTS[variant]
@@ -158,7 +158,7 @@ cell = "triangle"
 def test_tip_force_resultant_scales_with_width(tmp_path):
     """The traction is F / (h w): the same force on half the width deflects twice as far
     (small load, linear range: 1e-3 of the bending stiffness scale)."""
-    from reference_fem.run import run_scene
+    from reference_fem.simulation import run_scene
 
     tips = []
     for width in (0.007, 0.0035):
@@ -170,10 +170,10 @@ def test_tip_force_resultant_scales_with_width(tmp_path):
 
 
 def test_pin_fixes_the_centre_node_and_needs_even_cells():
-    from reference_fem import dolfinx_backend as backend
-    from reference_fem.models import PlaneStress
+    from reference_fem.dolfinx_backend import fem as backend
+    from reference_fem.dolfinx_backend.models import PlaneStress
     from reference_fem.settings import fem_settings
-    from reference_fem.setup import supports
+    from reference_fem.dolfinx_backend.problem import supports
 
     d = paper.cantilever_scene("neo-hookean", "plane-stress", fem={"cells_height": 2, "cells_length": 8})
     d["supports"] = {"left": "pin"}

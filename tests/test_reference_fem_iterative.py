@@ -1,6 +1,6 @@
 """The iterative linear solver of reference_fem (issue 11): [fem] linear_solver =
 "iterative" (FGMRES with the augmented-Lagrangian block preconditioner
-reference_fem.krylov.ALPreconditioner: the pressure eliminated through its
+reference_fem.dolfinx_backend.krylov.ALPreconditioner: the pressure eliminated through its
 lumped mass, one two-level p-multigrid V-cycle Q2 -> Q1 on the augmented displacement
 block) gives the direct solver's answer, on one rank and on two.
 
@@ -59,8 +59,8 @@ def test_linear_solver_setting_is_validated_recorded_and_kept_by_refinement():
 
 # -- 3D: iterative = direct ----------------------------------------------------------------------
 def test_3d_iterative_tip_is_the_direct_one(monkeypatch):
-    from reference_fem import dolfinx_backend as backend
-    from reference_fem.run import run_scene
+    from reference_fem.dolfinx_backend import fem as backend
+    from reference_fem.simulation import run_scene
 
     direct = run_scene(_scene(COARSE_3D))
     counts = []
@@ -85,9 +85,9 @@ def test_3d_iterative_on_two_ranks(monkeypatch):
     """The same coarse case as a study case with mpi_ranks = 2 (mpiexec -n 2): the
     index sets, near-nullspace and Schur block are built from the owned dofs of each
     rank; the tip is the one-rank direct tip."""
-    from reference_fem.run import run_scene
-    from studies.case import make_case
-    from studies.execute import execute
+    from reference_fem.simulation import run_scene
+    from studies.engine.case import make_case
+    from studies.engine.worker import execute
 
     one = run_scene(_scene(COARSE_3D))
     scene = _scene({**COARSE_3D, "linear_solver": "iterative"})
@@ -103,7 +103,7 @@ def test_3d_iterative_on_two_ranks(monkeypatch):
 # -- 2D plane strain: mixed (the augmented-Lagrangian preconditioner), penalty (GAMG) -------------
 @pytest.mark.parametrize("incompressibility", ["mixed", "penalty"])
 def test_2d_plane_strain_iterative_tip_is_the_direct_one(incompressibility):
-    from reference_fem.run import run_scene
+    from reference_fem.simulation import run_scene
 
     fem = {"model": "plane-strain", "cells_length": 16, "cells_height": 2, "incompressibility": incompressibility}
     direct = run_scene(_scene(fem))

@@ -6,8 +6,8 @@ from ancf.build import build_material
 from ancf.laws import LAWS
 from contract import paper
 from contract.scene import MaterialSpec
-from reference_fem.energies import LAWS_UFL
-from reference_fem.models import MODELS
+from reference_fem.dolfinx_backend.laws import LAWS_UFL
+from reference_fem.dolfinx_backend.models import MODELS
 
 PENALTY = paper.PENALTY
 
@@ -46,7 +46,7 @@ def test_energy_and_stress_match_ancf(law, model, inc):
     energies reduce to ancf's psi(I1bar, I2bar) + alpha/2 (J - 1)^2, and dW/dphat = 0
     there, so P (at fixed phat) is the full derivative. Mixed: W differs from ancf's by
     the constant-in-F term alpha/2 (J - 1)^2 vs phat mu (J - 1); P agrees."""
-    from reference_fem.dolfinx_backend import PointwiseEvaluator
+    from reference_fem.dolfinx_backend.fem import PointwiseEvaluator
     import ufl
 
     mat = dict(paper.materials()[law])

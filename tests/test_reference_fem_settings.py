@@ -10,8 +10,8 @@ import pytest
 from contract import paper
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
-from reference_fem.gold import cantilever
-from reference_fem.run import check_static
+from reference_fem.gold_cantilever import cantilever
+from reference_fem.simulation import check_static
 from reference_fem.settings import DEFAULT_ASPECT, DEFAULT_CELLS_HEIGHT, fem_settings
 
 GOLD = Path(__file__).parent / "gold" / "fem_cantilever.json"
@@ -85,8 +85,8 @@ def test_refinement_studies_refuse_dynamic_scenes():
 
 
 def test_settings_and_run_modules_do_not_import_dolfinx():
-    code = ("import sys, reference_fem.settings, reference_fem.run, reference_fem.gold, reference_fem.models, "
-            "reference_fem.newton, reference_fem.convergence, reference_fem.dynamics; "
+    code = ("import sys, reference_fem.settings, reference_fem.simulation, reference_fem.gold_cantilever, reference_fem.dolfinx_backend.models, "
+            "reference_fem.statics, reference_fem.convergence, reference_fem.stepper; "
             "print('dolfinx' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"

@@ -55,11 +55,11 @@ def closed_form(law, c, model, inc, lam):
 @pytest.mark.parametrize("model, inc", [("plane-strain", "mixed"), ("plane-strain", "penalty"),
                                         ("plane-stress", "exact")])
 def test_uniaxial_tension(law, model, inc):
-    from reference_fem import dolfinx_backend as backend
-    from reference_fem.energies import get_law_ufl
-    from reference_fem.models import get_model
-    from reference_fem.newton import solve_static
-    from reference_fem.setup import Setup, static_problem
+    from reference_fem.dolfinx_backend import fem as backend
+    from reference_fem.dolfinx_backend.laws import get_law_ufl
+    from reference_fem.dolfinx_backend.models import get_model
+    from reference_fem.statics import solve_static
+    from reference_fem.dolfinx_backend.problem import Setup, static_problem
 
     c = {k: v for k, v in paper.materials()[law].items() if k != "density"}
     P11, lam2 = closed_form(law, c, model, inc, STRETCH)

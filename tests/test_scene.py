@@ -72,7 +72,7 @@ NAMES = [("material.law", "ogden"), ("material.formulation", "3d"), ("ancf.eleme
 def test_the_contract_leaves_names_to_each_solver(path, value):
     """The contract knows no solver's registry: a name (or a law's constant) only a solver
     can judge passes the loader and is refused by both solvers' checks."""
-    from reference_fem.run import check as check_fem
+    from reference_fem.simulation import check as check_fem
     scene = scene_from_dict(mutated(path, value))
     for solver_check in (check, check_fem):
         if path.startswith("ancf.") and solver_check is check_fem:

@@ -12,9 +12,9 @@ from ancf.build import build_model, external_loads
 from ancf.elements import ELEMENTS
 from ancf.formulations import FORMULATIONS
 from ancf.laws import LAWS
-from ancf.run import run_scene
+from ancf.simulation import run_scene
 from ancf.stability import SINGULAR_TOL, below, check_stability, lowest_mode
-from ancf.static import solve_static
+from ancf.statics import solve_static
 from contract import paper
 from contract.scene import scene_from_dict
 
@@ -93,8 +93,8 @@ def test_the_saddle_itself_is_called_unstable():
     scene = scene_from_dict(d)
     model = build_model(scene)
     f = sum(external_loads(model, scene).values())
-    from ancf.loadpath import PathCounts, follow
-    from ancf.static import increment_solver
+    from mechanics.load_path import PathCounts, follow
+    from ancf.statics import increment_solver
     free = np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)
     solve, state = increment_solver(model, lambda t: f * t, np.zeros(model.mesh.n_dof),
                                     1e-8 * np.linalg.norm(f[free]), 25)

@@ -9,11 +9,11 @@ import pytest
 from ancf import beam_theory as bt
 from ancf.build import build_material, build_model, external_loads
 from ancf.mesh import Mesh
-from ancf.model import BeamModel
+from ancf.beam import BeamModel
 from ancf.quadrature import gauss
-from ancf.run import run_scene
+from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
-from ancf.static import newton, solve_static
+from ancf.statics import newton, solve_static
 from ancf.elements import ELEMENTS
 from contract import paper
 

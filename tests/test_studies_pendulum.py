@@ -12,11 +12,11 @@ import shutil
 import pytest
 
 from contract import paper
-from studies import figure4, pendulum, stability, table4
+from studies import figure4, pendulum_cases as pendulum, stability, table4
 from studies.bench import converged_step
-from studies.catalog import load_catalog
-from studies.pipeline import build_reports, run_studies
-from studies.report import Context
+from studies.engine.catalog import load_catalog
+from studies.engine.pipeline import build_reports, run_studies
+from studies.engine.report import Context
 
 PENDULUM = ["figure4", "figure5", "table4", "stability"]
 

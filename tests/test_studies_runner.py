@@ -13,11 +13,11 @@ from pathlib import Path
 
 import pytest
 
-from studies import solvers
-from studies.case import make_case
+from studies.engine import solvers
+from studies.engine.case import make_case
 from studies.grid import cantilever_case
-from studies.runner import run_cases
-from studies.store import RecordStore
+from studies.engine.scheduler import run_cases
+from studies.engine.store import RecordStore
 
 ROOT = Path(__file__).resolve().parent.parent
 PY = sys.executable
@@ -83,7 +83,7 @@ def test_case_id_changes_with_scene_options_and_solver_source(monkeypatch):
     assert a.id != b.id and a.id == small_cases(counts=(2,))[0].id
     timed = small_cases(counts=(2,), options={"timing": {"repeats": 1}})[0]
     assert timed.id != a.id
-    from studies import case as case_mod
+    from studies.engine import case as case_mod
     before = a.id
     case_mod.case_id.cache_clear()
     monkeypatch.setattr(case_mod, "source_hash", lambda name: "other source")
@@ -98,7 +98,7 @@ def test_a_source_edit_during_a_run_loses_no_record_and_the_next_run_redoes_them
     """Records carry the id their case was made with (not one a worker re-derives from
     edited sources, which compaction used to delete); what ran on changed sources is kept
     but marked transient, so the next run recomputes it."""
-    from studies import case as case_mod
+    from studies.engine import case as case_mod
     store = RecordStore(tmp_path / "t.jsonl")
     cases = small_cases(counts=(2, 3))
     monkeypatch.setattr(case_mod, "source_hash", lambda name: "edited while running")
@@ -220,8 +220,8 @@ def test_a_killed_run_loses_no_finished_record(tmp_path):
     have = store.read()
     assert 2 <= len(have) < 12, "the run was to be killed half way"
     assert all(r["status"] == "converged" for r in have.values())
-    from studies.catalog import load_catalog
-    from studies.runner import run_cases as rerun
+    from studies.engine.catalog import load_catalog
+    from studies.engine.scheduler import run_cases as rerun
     cases = load_catalog(path=cat)["table3"].cases()
     s = rerun("table3", cases, store, executor="serial", progress=False)
     assert (s.reused, s.computed) == (len(have), 12 - len(have))
@@ -287,7 +287,7 @@ def test_a_case_id_follows_the_source_of_the_module_it_imports(tmp_path, monkeyp
     """A user's element module is part of what a record depends on: edit it, and the case
     is a new one (the study reruns it) rather than a stale record reused."""
     import sys
-    from studies import case as case_mod
+    from studies.engine import case as case_mod
 
     mod = tmp_path / "my_user_element.py"
     mod.write_text("X = 1\n")

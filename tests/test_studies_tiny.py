@@ -9,11 +9,11 @@ from pathlib import Path
 
 import pytest
 
-from studies import solvers
-from studies.catalog import load_catalog
-from studies.pipeline import REPORTS, build_reports, resolve_out, run_studies
-from studies.gold import FILE as GOLD, collect, compare, load_gold
-from studies.store import store_for
+from studies.engine import solvers
+from studies.engine.catalog import load_catalog
+from studies.engine.pipeline import REPORTS, build_reports, resolve_out, run_studies
+from studies.engine.regression import FILE as GOLD, collect, compare, load_gold
+from studies.engine.store import store_for
 
 ROOT = Path(__file__).resolve().parent.parent
 

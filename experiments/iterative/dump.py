@@ -9,9 +9,9 @@ import dolfinx, dolfinx.fem, dolfinx.fem.petsc, dolfinx.cpp
 from contract.scene import scene_from_dict
 from contract import paper
 from reference_fem.settings import fem_settings
-from reference_fem.setup import set_up, static_problem
-from reference_fem.newton import solve_static
-from reference_fem import dolfinx_backend as backend
+from reference_fem.dolfinx_backend.problem import set_up, static_problem
+from reference_fem.statics import solve_static
+from reference_fem.dolfinx_backend import fem as backend
 
 nx, ny, nz = map(int, sys.argv[1:4]); out = sys.argv[4]; every = int(sys.argv[5]) if len(sys.argv) > 5 else 8
 os.makedirs(out, exist_ok=True)

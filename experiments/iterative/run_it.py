@@ -9,8 +9,8 @@ import numpy as np
 from contract.scene import scene_from_dict
 from contract import paper
 from reference_fem.settings import fem_settings
-from reference_fem.setup import set_up, static_problem
-from reference_fem.newton import solve_static
+from reference_fem.dolfinx_backend.problem import set_up, static_problem
+from reference_fem.statics import solve_static
 
 nx, ny, nz = map(int, sys.argv[1:4]); solver = sys.argv[4]
 fem = {"model": "3d", "cells_length": nx, "cells_height": ny, "cells_width": nz, "linear_solver": solver}

@@ -6,7 +6,7 @@ ANCF cable pendulum, timed in the same run (``make bench-peers``).
 
 Ours: ``scenes/pendulum-yeoh-plane-stress.toml`` (32 x HB2n-12, plane-stress Yeoh,
 generalized-alpha; HB2n-16 by ``--element``) with the given dt and rho_inf; the wall
-and CPU times are the medians of the records' ``wall_s`` and ``cpu_s`` over ``--repeats`` warm runs of :func:`ancf.run.run_scene` in this
+and CPU times are the medians of the records' ``wall_s`` and ``cpu_s`` over ``--repeats`` warm runs of :func:`ancf.simulation.run_scene` in this
 process (one untimed run first: numba compilation, caches). Exudyn: the script
 ``exudyn_pendulum.py`` beside this file, run with ``.venv-peers/bin/python`` (made by
 ``tools/setup_peers.sh``), with the same dt, rho_inf and repeats; it prints its settings
@@ -45,7 +45,7 @@ TARGET_RATIO = 1.0          # issue 10: at least as fast as Exudyn (issue 4 aske
 def ours(dt: float, rho_inf: float, repeats: int = 5, scene_path: Path = SCENE, element: str | None = None) -> dict:
     """Time our pendulum: {'wall_s': [...], 'wall_median_s', 'first_run_s', 'setup_s',
     'steps', 'newton_iterations', 'ndof', 'elements', 'element', 'tip_history'}."""
-    from ancf.run import run_scene
+    from ancf.simulation import run_scene
     from contract.scene import load_scene, scene_from_dict
 
     d = load_scene(scene_path).to_dict()

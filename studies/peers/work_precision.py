@@ -8,7 +8,7 @@ work-precision diagram, timed side by side in one run (``make bench-peers``, iss
 Grid: the element counts, and the step ladder dt = 0.1 s / k for k = 20, 40, 80, 160,
 320 (5 ms halving to 0.3125 ms: every step lands on the output times 0.1 ... 0.5 s, as
 Exudyn's fixed step must). Each (solver, element, count, step) is one run: the median of
-``--repeats`` warm runs (ours: ``wall_s`` of :func:`ancf.run.run_scene`, the solve
+``--repeats`` warm runs (ours: ``wall_s`` of :func:`ancf.simulation.run_scene`, the solve
 alone; Exudyn: ``SolveDynamic`` alone, see exudyn_pendulum.py), Exudyn's and ours in
 turn for each point. Error: max over t = 0.1 ... 0.5 s of |r(t) - r_ref(t)| / L against
 the converged continuum plane-stress pendulum (tests/gold/fem_pendulum.json), the
@@ -48,9 +48,9 @@ def key(r: dict) -> tuple:
 
 
 def ours(element: str, n: int, dt: float, rho_inf: float, repeats: int) -> dict:
-    from ancf.run import run_scene
+    from ancf.simulation import run_scene
     from contract.scene import scene_from_dict
-    from studies.pendulum import pendulum_dict
+    from ..pendulum_cases import pendulum_dict
 
     scene = scene_from_dict(pendulum_dict(element, n, "plane-stress", dt, rho_inf=rho_inf))
     recs = [run_scene(scene)[0] for _ in range(repeats + 1)][1:]     # one untimed warm-up
@@ -77,7 +77,7 @@ def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path) -> dic
 def error(tips: list[dict] | None) -> float | None:
     """max over the output times after 0 of |r - r_ref| / L against the continuum
     plane-stress Yeoh pendulum; None without tips or gold."""
-    from studies.pendulum import continuum_pendulum, tip_errors
+    from ..pendulum_cases import continuum_pendulum, tip_errors
 
     ref = continuum_pendulum().get(("yeoh", "plane-stress"))
     if not tips or ref is None:

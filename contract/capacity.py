@@ -1,7 +1,7 @@
 """Will a run fit on this machine? Checked before it starts, from the solver's estimate.
 
 A solver estimates a scene's unknowns, peak memory and time steps without building
-anything (:func:`ancf.build.estimate`, :func:`reference_fem.run.estimate`);
+anything (:func:`ancf.build.estimate`, :func:`reference_fem.simulation.estimate`);
 :func:`check_budget` refuses (a :class:`SceneError` naming the field that sets the size,
 and how much memory the run would need) what cannot fit in the memory this machine
 has available, and returns warnings for what is large: more than half of that memory,

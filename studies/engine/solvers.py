@@ -5,10 +5,10 @@ solver's record (``contract.record`` schema, SI units) and ``check(scene_dict)``
 SceneError for a scene it cannot run. The source hash covers the .py files the solver
 runs, so a change there invalidates its cases:
 
-- ``ancf``: every module of ``ancf/`` and of ``contract/`` (scenes, records);
-- ``fenicsx``: every module of ``reference_fem/`` and of ``contract/``, and the three
-  ``ancf`` modules it runs (the time loop, the load-path rule, the integrators'
-  coefficients).
+- ``ancf``: every module of ``ancf/``, ``mechanics/`` and ``contract/`` (scenes, records);
+- ``fenicsx``: every module of ``reference_fem/`` (its backends included), ``mechanics/``
+  and ``contract/``, and ``ancf/integrators.py`` (the integrators' coefficients, until
+  they move to ``mechanics``).
 
 Adding a solver (e.g. a dynamic integrator living in another package) is one entry here.
 """
@@ -20,11 +20,11 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Callable
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _run_ancf(scene: dict) -> dict:
-    from ancf.run import run_scene
+    from ancf.simulation import run_scene
     from contract.scene import scene_from_dict
 
     rec, _ = run_scene(scene_from_dict(scene))
@@ -33,7 +33,7 @@ def _run_ancf(scene: dict) -> dict:
 
 def _run_fenicsx(scene: dict) -> dict:
     from contract.scene import scene_from_dict
-    from reference_fem.run import run_scene
+    from reference_fem.simulation import run_scene
 
     return run_scene(scene_from_dict(scene))
 
@@ -47,7 +47,7 @@ def _check_ancf(scene: dict) -> None:
 
 def _check_fenicsx(scene: dict) -> None:
     from contract.scene import scene_from_dict
-    from reference_fem.run import check
+    from reference_fem.simulation import check
 
     check(scene_from_dict(scene))
 
@@ -62,9 +62,9 @@ class Solver:
 
 SOLVERS: dict[str, Solver] = {
     s.name: s for s in (
-        Solver("ancf", ("ancf/*.py", "contract/*.py"), _run_ancf, _check_ancf),
-        Solver("fenicsx", ("reference_fem/*.py", "contract/*.py", "ancf/timeloop.py", "ancf/loadpath.py",
-                           "ancf/integrators.py"), _run_fenicsx, _check_fenicsx),
+        Solver("ancf", ("ancf/*.py", "mechanics/*.py", "contract/*.py"), _run_ancf, _check_ancf),
+        Solver("fenicsx", ("reference_fem/**/*.py", "mechanics/*.py", "contract/*.py", "ancf/integrators.py"),
+               _run_fenicsx, _check_fenicsx),
     )
 }
 

@@ -1,6 +1,6 @@
 """Implicit time stepping of the continuum (no dolfinx here): a stepper of the
-generalized-alpha family for the one time loop of :mod:`ancf.timeloop`, on
-:class:`reference_fem.dynamic_problem.DynamicProblem`.
+generalized-alpha family for the one time loop of :mod:`mechanics.time_loop`, on
+:class:`reference_fem.dolfinx_backend.dynamic_problem.DynamicProblem`.
 
 - The methods and their coefficients are ANCF's (:data:`ancf.integrators.INTEGRATORS`):
   every method of the generalized-alpha family (generalized-alpha, Newmark) runs here;
@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ancf.integrators import INTEGRATORS
-from ancf.timeloop import Output, State, StepFailure, acceleration_error
+from mechanics.time_loop import Output, State, StepFailure, acceleration_error
 
 # Newton's correction test of a step (as ancf.integrators.Integrator.utol): 1e-8 of the
 # state or of the beam height (4 nm at 0.35 m, against the 0.1 mm criterion).

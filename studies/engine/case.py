@@ -4,7 +4,7 @@ A :class:`Case` is frozen and hashable: (study, solver, scene, options), the sce
 the options held as canonical JSON. Its :attr:`Case.id` is a hash of
 
 - the canonical scene JSON and the options (a ``timing`` option changes what is measured),
-- the solver's source hash (:func:`studies.solvers.source_hash`: the .py files of the
+- the solver's source hash (:func:`studies.engine.solvers.source_hash`: the .py files of the
   package that solves it),
 - the numpy / numba / dolfinx versions (:func:`versions`),
 - with an ``imports`` option (a user's element or law), those modules' source files,
@@ -52,7 +52,7 @@ def canonical(obj: Any) -> str:
 @dataclass(frozen=True)
 class Case:
     study: str
-    solver: str         # a key of studies.solvers.SOLVERS
+    solver: str         # a key of studies.engine.solvers.SOLVERS
     scene_json: str     # canonical JSON of the scene dict (contract.scene format, SI)
     options_json: str   # canonical JSON of the options dict (e.g. {"timing": {...}})
     # the id, fixed where the case is made and carried to any worker with the case: a

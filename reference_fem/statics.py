@@ -7,8 +7,8 @@ increment, return its norm), ``last_increment()``, ``state_norm()``,
 :func:`newton` is the one Newton loop: converged when ||R|| <= rtol * r_ref, or when
 ``small_correction(system, r, ||dw||)`` accepts the last correction (statics:
 :func:`static_correction`; a time step: the correction test of
-:mod:`reference_fem.dynamics`). :func:`solve_static` follows the load path by the one
-rule of :mod:`ancf.loadpath` (shared with ANCF): a failed increment restores the last
+:mod:`reference_fem.stepper`). :func:`solve_static` follows the load path by the one
+rule of :mod:`mechanics.load_path` (shared with ANCF): a failed increment restores the last
 accepted state and is cut, an easy one grows the next.
 """
 from __future__ import annotations
@@ -18,8 +18,8 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable
 
-from ancf.loadpath import Attempt, PathCounts, PathFailure, follow
-from ancf.timeloop import StepFailure
+from mechanics.load_path import Attempt, PathCounts, PathFailure, follow
+from mechanics.time_loop import StepFailure
 
 
 def static_correction(rtol: float, r_ref: float) -> Callable:

@@ -12,7 +12,7 @@ right Cauchy-Green tensor, independently of the 2D shortcuts in
 - 3D: the full C = F^T F, isochoric as in plane strain (no planar reduction).
 
 How a continuum model uses them (and enforces incompressibility) is
-:mod:`reference_fem.models`.
+:mod:`reference_fem.dolfinx_backend.models`.
 """
 from __future__ import annotations
 

@@ -66,7 +66,7 @@ def gold_case(law: str, variant: str, levels: int, progress=None) -> dict:
 
 
 def write_gold(out_dir: Path, levels: int = 5, progress=None) -> Path:
-    from .dolfinx_backend import VERSION
+    from .dolfinx_backend.fem import VERSION
 
     cases = {}
     for law in LAWS:
@@ -137,7 +137,7 @@ def gold_case_3d(law: str, levels: int, progress=None) -> dict:
 def write_gold_3d(out_dir: Path, levels: int = 3, laws=LAWS, progress=None) -> Path:
     """tests/gold/fem_cantilever_3d.json: the three laws, Richardson over ``levels``
     graded levels (16 x 1 x 1 ... ). Cases already in the file for other laws are kept."""
-    from .dolfinx_backend import VERSION
+    from .dolfinx_backend.fem import VERSION
 
     out_dir = Path(out_dir)
     path = out_dir / FILE_3D

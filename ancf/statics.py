@@ -1,6 +1,6 @@
 """Static equilibrium: Newton's method with adaptive load stepping.
 
-The load path follows the one rule of :mod:`ancf.loadpath` (shared with the continuum
+The load path follows the one rule of :mod:`mechanics.load_path` (shared with the continuum
 solver); :func:`increment_solver` is ANCF's attempt of one increment.
 :func:`solve_static` runs the whole job:
 
@@ -14,7 +14,7 @@ An increment whose Newton fails (or meets an inadmissible state) is retried from
 last state with a line search, then (once the increment is small) by a shifted-Newton
 energy descent, and only then cut by the load-path rule.
 
-The Newton iterations run compiled (:mod:`ancf.staticloop`); :func:`newton_reference`
+The Newton iterations run compiled (:mod:`ancf.compiled_statics`); :func:`newton_reference`
 is the Python loop they reproduce and are tested against. The residual tolerance never
 lies below the force's own round-off (:data:`ROUNDOFF_FLOOR`).
 """
@@ -26,9 +26,10 @@ from typing import Callable
 
 import numpy as np
 
-from . import staticloop
-from .loadpath import Attempt, PathCounts, PathFailure, follow
-from .model import BeamModel, InadmissibleState
+from mechanics.load_path import Attempt, PathCounts, PathFailure, follow
+
+from . import compiled_statics
+from .beam import BeamModel, InadmissibleState
 from .stability import check_stability
 
 
@@ -44,14 +45,14 @@ class NewtonResult:
 def newton(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol: float,
            max_iterations: int, utol: float = 1e-9, line_search: bool = False) -> NewtonResult:
     """Solve f_int(u) = target on the free dofs, starting at u0 (fixed dofs stay as in u0):
-    :func:`newton_reference`'s iteration, compiled (:mod:`ancf.staticloop`). An attempt
+    :func:`newton_reference`'s iteration, compiled (:mod:`ancf.compiled_statics`). An attempt
     whose unpivoted LDL^T meets a zero pivot is redone by :func:`newton_reference`, whose
     pivoted LU decides whether the tangent is singular."""
     outcome, u, its, residuals = model.static_kernel.newton(u0, target, atol, max_iterations, utol, line_search)
-    if outcome == staticloop.CONVERGED:
+    if outcome == compiled_statics.CONVERGED:
         return NewtonResult(u, True, its, residuals)
-    if outcome != staticloop.UNPIVOTED:
-        return NewtonResult(u, False, its, residuals, staticloop.REASONS[outcome])
+    if outcome != compiled_statics.UNPIVOTED:
+        return NewtonResult(u, False, its, residuals, compiled_statics.REASONS[outcome])
     return newton_reference(model, u0, target, atol, max_iterations, utol, line_search)
 
 
@@ -135,7 +136,7 @@ def _line_search(model, u, du, target, R0, free) -> float:
 
 
 # The residual tolerance is at least this many times eps |f_int|_terms (the internal force
-# assembled from the magnitudes of its terms, ancf.staticloop.StaticKernel.roundoff_floor,
+# assembled from the magnitudes of its terms, ancf.compiled_statics.StaticKernel.roundoff_floor,
 # at the reference state): the residual's round-off. Measured on slender cantilevers
 # (L/h 70 and 140, gravity scaled to the linear regime, where rtol |f_ext| is 1e-15 N):
 # Newton's residual stalls at 0.2 (pivoted LU) to 1.1 (compiled loop) times that
@@ -149,7 +150,7 @@ DESCENT_BELOW = 1e-2
 
 def increment_solver(model: BeamModel, target: Callable[[float], np.ndarray], u0: np.ndarray,
                      atol: float, max_iterations: int):
-    """The ANCF attempt of one load increment for :func:`ancf.loadpath.follow`, and the
+    """The ANCF attempt of one load increment for :func:`mechanics.load_path.follow`, and the
     state it keeps: from the last accepted u, Newton from a secant predictor; if it
     fails, Newton with a line search from u; if that fails on a small increment, the
     shifted-Newton energy descent. Returns (solve, state) with state["u"] the last

@@ -1,4 +1,4 @@
-"""The compiled time loop (ancf.steploop) against the Python loop it replaces: the same
+"""The compiled time loop (ancf.compiled_steps) against the Python loop it replaces: the same
 steps, rejections and tips; the chord Newton default within 0.01 mm; Newmark's energy
 drift still O(dt^2) with it; a user-registered element and law through it; the fused
 kernel and the column-band LDL^T against the reference ones."""
@@ -12,8 +12,8 @@ from ancf.kernels import (OK, assemble_fused, col_constrain, col_ldlt, col_ldlt_
                           strain_energy_fused)
 from ancf.elements import ELEMENTS
 from ancf.laws import LAWS, Law, register_law
-from ancf.steploop import column_band
-from ancf.timeloop import integrate
+from ancf.compiled_steps import column_band
+from mechanics.time_loop import integrate
 from contract import paper
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
@@ -120,7 +120,7 @@ def test_energy_growth_and_step_limit_stop_the_compiled_loop():
 def user_element_and_law(cubic_element):
     """test_elements' user-defined cubic element and a law defined here (a quartic
     term: the tape's generic power, whose derivative once divided by I1 - 3 = 0 at rest)."""
-    law = register_law(Law("quartic (steploop test)", ("C10", "C20"),
+    law = register_law(Law("quartic (compiled step test)", ("C10", "C20"),
                            lambda I1, I2, c: c["C10"] * (I1 - 3.0) + c["C20"] * (I1 - 3.0) ** 4))
     yield cubic_element.name, law.name
     del LAWS[law.name]

@@ -7,8 +7,8 @@ nonlinear system of the total potential
     Pi(u, phat) = int W(F, phat) dV - t * ( int rho g . u dV + int tbar . u dA )
 
 (t the load parameter the static solver drives), and
-:mod:`reference_fem.dynamic_problem` into the residual of one time step. The model
-(:mod:`reference_fem.models`) gives W; gravity is the body force rho g, the tip force
+:mod:`reference_fem.dolfinx_backend.dynamic_problem` into the residual of one time step. The model
+(:mod:`reference_fem.dolfinx_backend.models`) gives W; gravity is the body force rho g, the tip force
 the uniform dead traction tbar = F_tip / (h w) on the end face x = L (its resultant
 over the full width is F_tip). Constants enter as dolfinx Constants.
 
@@ -28,10 +28,10 @@ import ufl
 from contract.errors import SceneError
 from contract.scene import Scene
 
-from . import dolfinx_backend as backend
-from .energies import LawUFL, get_law_ufl
+from . import fem as backend
+from .laws import LawUFL, get_law_ufl
 from .models import ContinuumModel, get_model
-from .settings import FemSettings
+from ..settings import FemSettings
 
 
 @dataclass
@@ -111,7 +111,7 @@ def set_up(scene: Scene, settings: FemSettings) -> Setup:
     """The scene's beam on the mesh ``settings`` describe, with the scene's loads."""
     model = get_model(settings.model, settings.incompressibility)
     g, b, m, loads = model.geometry, scene.beam, scene.material, scene.loads
-    disc = backend.Discretisation(g.mesh(b, settings), settings.degree, model.has_pressure,
+    disc = backend.Discretisation(backend.beam_mesh(g, b, settings), settings.degree, model.has_pressure,
                                   settings.quadrature_degree)
     body = None if loads.gravity is None else m.density * g.vector(loads.gravity)
     traction = None if loads.tip_force is None else g.vector(loads.tip_force) / (b.height * b.width)

@@ -14,7 +14,7 @@
    Each record is appended (flush + fsync) the moment its future completes. A run
    longer than ``timeout_s`` is stopped inside its worker and recorded as failed.
 3. Cases with a ``timing`` option then run serially in this process, after the pool
-   has shut down (warm-up, median of N: :func:`studies.execute.execute_timed`), so that
+   has shut down (warm-up, median of N: :func:`studies.engine.worker.execute_timed`), so that
    timings never come from a busy machine. Cases with an ``mpi_ranks`` option (the 3D
    continuum) run one after another, each launched by ``mpiexec -n N`` (``srun`` under
    Slurm; :mod:`reference_fem.launch`) with the machine to themselves.
@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
 from .case import Case
-from .execute import DEFAULT_TIMEOUT_S, execute, execute_timed
+from .worker import DEFAULT_TIMEOUT_S, execute, execute_timed
 from .store import RecordStore
 
 EXECUTORS = ("pool", "mpi", "serial")
@@ -73,7 +73,7 @@ def _progress(total: int, desc: str, enabled: bool):
 
 def _mark_worker_death(case: Case, exc: BaseException) -> dict:
     from contract.record import new_record
-    from .execute import annotate
+    from .worker import annotate
     rec = new_record(case.solver, case.scene)
     rec.update(reason=f"worker process died: {type(exc).__name__}: {exc}", transient=True)
     return annotate(rec, case, time.perf_counter())

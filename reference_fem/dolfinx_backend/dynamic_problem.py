@@ -2,10 +2,10 @@
 
 Unknowns per step: the displacement u_(n+1) and, in the models with a pressure field,
 the scaled pressure lam (p = mu lam). The forms come from the shared set-up
-(:mod:`reference_fem.setup`); energies are for the full beam (J).
+(:mod:`reference_fem.dolfinx_backend.problem`); energies are for the full beam (J).
 
 One step of the generalized-alpha family (the coefficients and the update of v and a
-live in :mod:`reference_fem.dynamics`; Newmark is alpha_m = alpha_f = 0):
+live in :mod:`reference_fem.stepper`; Newmark is alpha_m = alpha_f = 0):
 
     a_(n+1)        = (u_(n+1) - u_pred) / (beta dt^2) + a_n,  u_pred = u_n + dt v_n + dt^2/2 a_n
     a_(n+1-am)     = (1 - am) a_(n+1) + am a_n
@@ -36,11 +36,11 @@ from __future__ import annotations
 import numpy as np
 import ufl
 
-from ancf.timeloop import Energies
+from mechanics.time_loop import Energies
 
-from . import dolfinx_backend as backend
-from .newton import newton
-from .setup import Setup, system
+from . import fem as backend
+from ..statics import newton
+from .problem import Setup, system
 
 
 class DynamicProblem:
@@ -114,7 +114,7 @@ class DynamicProblem:
     def n_free(self) -> int:
         return self.disc.ndof - self.setup.n_fixed
 
-    # -- used by reference_fem.dynamics --------------------------------------------------
+    # -- used by reference_fem.stepper --------------------------------------------------
     def initial_acceleration(self, u0: np.ndarray, rtol: float, max_iterations: int) -> np.ndarray:
         """a0 at rest at u0 (pressure components: the multiplier lam0); raises
         StepFailure."""
@@ -152,7 +152,7 @@ class DynamicProblem:
 
 def build_dynamic_problem(scene, settings) -> DynamicProblem:
     """The scene's beam (pinned or clamped at x = 0) as a continuum in motion."""
-    from .setup import set_up
+    from .problem import set_up
 
     b = scene.beam
     return DynamicProblem(set_up(scene, settings), scene.material.density,

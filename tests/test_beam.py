@@ -7,8 +7,8 @@ import pytest
 
 from ancf import checks
 from ancf.checks import bent_state, rotate, small_model
-from ancf.model import BeamModel
-from ancf.run import run_scene
+from ancf.beam import BeamModel
+from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
 from contract import paper
 

@@ -78,7 +78,7 @@ def run_case(d: dict, energy_every_step: bool = False) -> dict:
     from contract.record import sanitize
     from contract.scene import scene_from_dict
 
-    from .run import run_scene, run_dynamic
+    from .simulation import run_scene, run_dynamic
     from .settings import fem_settings
 
     scene = scene_from_dict(d)
@@ -153,7 +153,7 @@ def convergence_case(law: str, model: str, dt: float = GOLD_DT, cells_height: in
 
 def write_pendulum_gold(out_dir: Path, models=("plane-stress", "plane-strain"), workers: int = 2,
                         progress=None) -> Path:
-    from .dolfinx_backend import VERSION
+    from .dolfinx_backend.fem import VERSION
 
     out_dir = Path(out_dir)
     path = out_dir / FILE

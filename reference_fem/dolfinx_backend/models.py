@@ -4,7 +4,7 @@ A :class:`ContinuumModel` says which invariants the law sees, whether a pressure
 is solved for and how incompressibility enters the energy, what the state's stored
 energy is (for the energy balance), where a dynamic step evaluates the constraint, and
 on which geometry it lives (:mod:`reference_fem.geometry`). The static and dynamic
-problems (:mod:`reference_fem.setup`) ask the model, never a flag. The pressure unknown
+problems (:mod:`reference_fem.dolfinx_backend.problem`) ask the model, never a flag. The pressure unknown
 is scaled by a modulus ``mu`` (p = mu * phat) so that its rows and unknowns have the
 size of the displacement ones. Energies per unit reference volume (Pa).
 
@@ -28,15 +28,14 @@ import ufl
 
 from contract.errors import UnknownName
 
-from .energies import LawUFL, plane_strain_invariants, plane_stress_invariants, solid_invariants
-from .geometry import BOX, Geometry, PLANE
+from ..geometry import BOX, Geometry, PLANE
+from .laws import LawUFL, plane_strain_invariants, plane_stress_invariants, solid_invariants
 
 
 class ContinuumModel:
     name = "base"                 # the record's continuum_model
     incompressibility = "base"    # the record's incompressibility
     has_pressure = False
-    min_degree = 1                # lowest displacement degree (Taylor-Hood needs 2)
     effects: tuple[str, ...] = ()
     geometry: Geometry = PLANE
 
@@ -88,7 +87,6 @@ class PlaneStrain(ContinuumModel):
     """F33 = 1, isochoric invariants, and a scaled pressure field (Taylor-Hood)."""
     name = "plane-strain"
     has_pressure = True
-    min_degree = 2
 
     def invariants(self, F):
         return plane_strain_invariants(F)

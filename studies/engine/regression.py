@@ -15,7 +15,7 @@ from pathlib import Path
 
 from .catalog import load_catalog
 
-FILE = Path(__file__).resolve().parent.parent / "tests" / "gold" / "studies_tiny.json"
+FILE = Path(__file__).resolve().parents[2] / "tests" / "gold" / "studies_tiny.json"
 
 
 def collect(out: Path) -> dict[str, tuple[float, float]]:

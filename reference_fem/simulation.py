@@ -12,7 +12,7 @@ and ``mpi_ranks``; under ``mpiexec`` every rank computes the same record and the
 command line writes it from rank 0.
 
 Dynamic scenes (``analysis.kind = "dynamic"``) add the dynamic keys of the one time
-loop (:func:`ancf.timeloop.record_keys`, the same as ``ancf run``'s): ``tip_history``
+loop (:func:`mechanics.time_loop.record_keys`, the same as ``ancf run``'s): ``tip_history``
 [{t, x, y}] (position of the free-end centre point at the output times),
 ``configurations``, ``energy`` [{t, kinetic, strain, gravity, total}] (J, full beam),
 ``steps``, ``rejected_steps``, ``newton_iterations``, ``integrator`` (name, rho_inf,
@@ -25,7 +25,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from contract.cli import safe_name
+from contract.console import safe_name
 from contract.errors import SceneError
 from contract.record import new_record
 from contract.scene import Scene, check_names
@@ -36,8 +36,8 @@ from .settings import FORMULATIONS, FemSettings, fem_settings
 def check(scene: Scene) -> FemSettings:
     """The scene's names against reference_fem's vocabulary, and its [fem] table
     resolved (one message naming the field and the allowed values)."""
-    from .dynamics import alpha_family
-    from .energies import LAWS_UFL
+    from .stepper import alpha_family
+    from .dolfinx_backend.laws import LAWS_UFL
 
     check_names(scene, laws={k: v.constants for k, v in LAWS_UFL.items()},
                 formulations=FORMULATIONS, integrators=alpha_family())
@@ -58,17 +58,15 @@ def estimate(scene: Scene, settings: FemSettings | None = None):
     building it (see the constants above)."""
     import math
 
-    from contract.budget import Estimate
-
-    from .models import get_model
+    from contract.capacity import Estimate
 
     s = settings or check(scene)
-    model = get_model(s.model, s.incompressibility)
-    cells = s.cells(model.geometry.gdim)
-    n = model.geometry.gdim * math.prod(s.degree * c + 1 for c in cells)
-    if model.has_pressure:
+    gdim = s.geometry.gdim
+    cells = s.cells(gdim)
+    n = gdim * math.prod(s.degree * c + 1 for c in cells)
+    if s.has_pressure:
         n += math.prod((s.degree - 1) * c + 1 for c in cells)
-    if model.geometry.gdim == 2:
+    if gdim == 2:
         mem = BASE_BYTES + BYTES_2D * n * max(1.0, math.log2(n / 1e4))
     else:
         mem = BASE_BYTES + BYTES_3D * n ** (4 / 3)
@@ -79,7 +77,7 @@ def estimate(scene: Scene, settings: FemSettings | None = None):
 
 def budget(scene: Scene, settings: FemSettings | None = None) -> list[str]:
     """Refuse a scene that cannot fit in this machine's memory (SceneError); warnings."""
-    from contract.budget import check_budget
+    from contract.capacity import check_budget
 
     return check_budget(estimate(scene, settings), "reference_fem")
 
@@ -91,7 +89,7 @@ def check_static(scene: Scene) -> None:
 
 
 def _record(scene: Scene, settings: FemSettings) -> dict:
-    from . import dolfinx_backend as backend
+    from .dolfinx_backend import fem as backend
 
     rec = new_record("fenicsx", scene.to_dict())
     rec.update(continuum_model=settings.model, incompressibility=settings.incompressibility,
@@ -111,8 +109,8 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
     settings = settings or checked
     if scene.analysis.kind == "dynamic":
         return run_dynamic(scene, settings, output=output, output_format=output_format, progress=progress)
-    from .newton import solve_static
-    from .setup import set_up, static_problem
+    from .statics import solve_static
+    from .dolfinx_backend.problem import set_up, static_problem
 
     rec = _record(scene, settings)
     t0 = time.perf_counter()
@@ -148,11 +146,11 @@ def run_dynamic(scene: Scene, settings: FemSettings, output: Path | None = None,
     ``energy_limit``: overrides the scene's (or the default) limit."""
     import numpy as np
 
-    from ancf.timeloop import energy_limit as scene_energy_limit
-    from ancf.timeloop import integrate, record_keys
+    from mechanics.time_loop import energy_limit as scene_energy_limit
+    from mechanics.time_loop import integrate, record_keys
 
-    from .dynamic_problem import build_dynamic_problem
-    from .dynamics import ContinuumStepper
+    from .dolfinx_backend.dynamic_problem import build_dynamic_problem
+    from .stepper import ContinuumStepper
 
     a = scene.analysis
     rec = _record(scene, settings)

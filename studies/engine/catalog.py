@@ -6,7 +6,7 @@ the studies whose records it reads (``needs``), and a module
 (``studies/<module>.py``) with two functions:
 
 - ``cases(grid: dict, tiny: bool) -> list[Case]``: the grid expanded into cases;
-- ``report(ctx: studies.report.Context) -> studies.report.Section``: tables and
+- ``report(ctx: studies.engine.report.Context) -> studies.engine.report.Section``: tables and
   figures from records only.
 
 Optionally ``gold_values(ctx) -> {name: (value, tolerance)}`` for the tiny-mode
@@ -21,7 +21,7 @@ from functools import cached_property
 from pathlib import Path
 from types import ModuleType
 
-CASES_TOML = Path(__file__).with_name("cases.toml")
+CASES_TOML = Path(__file__).resolve().parent.parent / "cases.toml"
 META_KEYS = ("module", "title", "needs", "tiny", "full")
 COMMON = "common"   # not a study: grid keys every study gets unless it sets its own
 

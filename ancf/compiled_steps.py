@@ -4,13 +4,13 @@ and of the discrete-gradient scheme (:func:`step_dg`).
 :func:`advance` integrates from the current time to the next output time in one numba
 call: predictor, Newton iterations (fused assembly, banded LDL^T with envelope and
 solve, convergence test), the update of velocities and accelerations, the landing on the
-output time and the energy check. Python (:func:`ancf.timeloop.integrate`) is entered
+output time and the energy check. Python (:func:`mechanics.time_loop.integrate`) is entered
 only at output times, when a step is rejected (Newton failure, a singular step matrix,
 det F <= 0), when the energy limit is crossed, and every
-:data:`ancf.timeloop.STEPS_PER_CALL` steps
+:data:`mechanics.time_loop.STEPS_PER_CALL` steps
 (progress, wall time, Ctrl-C). The step-control rules are those of
-:mod:`ancf.timeloop`: :func:`~ancf.timeloop.next_step` and
-:func:`~ancf.timeloop.after_acceptance` are compiled here from that same source; a
+:mod:`mechanics.time_loop`: :func:`~mechanics.time_loop.next_step` and
+:func:`~mechanics.time_loop.after_acceptance` are compiled here from that same source; a
 rejected step is returned to the Python loop, which halves it (``after_rejection``) and
 checks ``dt_min``, ``max_steps`` and ``wall_time`` there.
 
@@ -54,7 +54,7 @@ Newton before it is rejected. A reused factorisation stops on the residual only:
 residual after a correction is (S_old - S) du, linear in du, so a correction test would
 leave a residual that does not shrink with dt, and its work turns the energy drift from
 O(dt^2) into O(dt) (measured; the residual stop keeps the Newmark drift ratio at 4.0 per
-halving, tests/test_steploop.py).
+halving, tests/test_compiled_steps.py).
 """
 from __future__ import annotations
 
@@ -64,7 +64,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from . import timeloop
+from mechanics import time_loop
 from .dgkernel import assemble_dg, dg_scratch
 from .kernels import (INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, col_constrain,
                       col_ldlt, col_ldlt_solve, col_matvec, assemble_fused, step_scratch, strain_energy_fused)
@@ -98,8 +98,8 @@ STOP_RESIDUAL, STOP_BOTH = 0, 1
 F_RTOL, F_UTOL, F_KAPPA, F_HBEAM, F_ELIMIT = range(5)
 
 # the step-control rules of the one time loop, compiled from their one source
-_next_step = njit(cache=True)(timeloop.next_step)
-_after_acceptance = njit(cache=True)(timeloop.after_acceptance)
+_next_step = njit(cache=True)(time_loop.next_step)
+_after_acceptance = njit(cache=True)(time_loop.after_acceptance)
 
 
 @njit(cache=True)
@@ -285,7 +285,7 @@ def energy(u, v, dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, tmp, chunk, 
 def advance(dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, fixed, coef, inewton, fnewton,
             u, v, a, tstate, t_out, dt, budget, offset, S, fstate, counters):
     """Integrate in place from tstate[0] with the next step tstate[1] towards t_out, by
-    the rules of :mod:`ancf.timeloop` (landing, growth back to dt). Returns
+    the rules of :mod:`mechanics.time_loop` (landing, growth back to dt). Returns
 
     - OK: landed on t_out;
     - BUDGET: ``budget`` steps taken without landing;
@@ -375,7 +375,7 @@ def column_band(ab: np.ndarray, b: int) -> np.ndarray:
 class Advanced:
     """What one :meth:`CompiledLoop.advance` call did."""
     outcome: str              # "landed", "budget", "energy-growth", "rejected"
-    state: timeloop.State     # after the last accepted step (landed: at t_out)
+    state: time_loop.State     # after the last accepted step (landed: at t_out)
     h: float                  # the next step; "rejected": the size of the rejected step
     steps: int                # accepted steps
     iterations: int           # Newton iterations, of rejected steps too
@@ -429,7 +429,7 @@ class CompiledLoop:
         return float(total_energy(np.ascontiguousarray(u, dtype=float), np.ascontiguousarray(v, dtype=float),
                                   *self.data[:9]))
 
-    def advance(self, s: timeloop.State, h: float, t_out: float, dt: float, budget: int, offset: int = 0,
+    def advance(self, s: time_loop.State, h: float, t_out: float, dt: float, budget: int, offset: int = 0,
                 energy_every: int = 0, energy_max: float = math.inf) -> Advanced:
         """From state s with next step h towards t_out (:func:`advance`); s is not changed."""
         u, v, a = (np.array(x, dtype=float) for x in (s.u, s.v, s.a))
@@ -439,7 +439,7 @@ class CompiledLoop:
         it0 = int(self.counters[C_ITERATIONS])
         status = advance(*self.data, self.coef, self.inewton, self.fnewton, u, v, a, tstate, float(t_out),
                          float(dt), int(budget), int(offset), self.S, self.fstate, self.counters)
-        state = timeloop.State(float(tstate[0]), u, v, a)
+        state = time_loop.State(float(tstate[0]), u, v, a)
         outcome = {OK: "landed", BUDGET: "budget", ENERGY_GROWTH: "energy-growth"}.get(status, "rejected")
         return Advanced(outcome, state, float(tstate[1]), int(tstate[2]), int(self.counters[C_ITERATIONS]) - it0,
                         float(tstate[3]), STATUS.get(status))

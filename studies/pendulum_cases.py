@@ -23,7 +23,7 @@ import numpy as np
 
 from contract import paper
 
-from .case import make_case
+from .engine.case import make_case
 
 ROOT = Path(__file__).resolve().parent.parent
 FEM_GOLD = ROOT / "tests" / "gold" / "fem_pendulum.json"

@@ -1,14 +1,14 @@
-"""The compiled static Newton (ancf.staticloop) against the Python loop it replaces
-(ancf.static.newton_reference): the same iterations, residuals and state, for every
+"""The compiled static Newton (ancf.compiled_statics) against the Python loop it replaces
+(ancf.statics.newton_reference): the same iterations, residuals and state, for every
 registered element, the three formulations, with and without the line search; the
 fallback to the pivoted LU when the unpivoted LDL^T meets a zero pivot."""
 import numpy as np
 import pytest
 
-from ancf import staticloop
+from ancf import compiled_statics
 from ancf.build import build_model, external_loads
 from ancf.elements import ELEMENTS
-from ancf.static import newton, newton_reference
+from ancf.statics import newton, newton_reference
 from contract import paper
 from contract.scene import scene_from_dict
 
@@ -80,8 +80,8 @@ def test_zero_pivot_falls_back_to_the_pivoted_lu(monkeypatch):
 
     def unpivoted(self, u0, target, atol, max_iterations, utol, line_search=False):
         calls.append(1)
-        return staticloop.UNPIVOTED, np.full_like(u0, np.nan), 1, [1.0]
-    monkeypatch.setattr(staticloop.StaticKernel, "newton", unpivoted)
+        return compiled_statics.UNPIVOTED, np.full_like(u0, np.nan), 1, [1.0]
+    monkeypatch.setattr(compiled_statics.StaticKernel, "newton", unpivoted)
     u0 = np.zeros(model.mesh.n_dof)
     out = newton(model, u0, 0.03 * f, atol, 25)
     ref = newton_reference(model, u0, 0.03 * f, atol, 25)
@@ -105,7 +105,7 @@ def test_residual_tolerance_respects_the_roundoff_floor():
     state (a floor 100 times the stall) nor leaves the tolerance unreachable; with it the
     whole load path converges (without it, the compiled loop's increments stalled and
     the path failed)."""
-    from ancf.static import ROUNDOFF_FLOOR, solve_static
+    from ancf.statics import ROUNDOFF_FLOOR, solve_static
     from studies.card import slender_scene
     s = scene_from_dict(slender_scene("HB2n-12", 70, 8))
     model = build_model(s)
@@ -128,12 +128,12 @@ def test_slender_path_converges_above_the_floor(monkeypatch):
     loop's increments stall at the round-off and the path fails (the card's 7 slender
     cells failed so before the floor)."""
     import examples.transversely_cubic  # noqa: F401 (registers HB2n-20)
-    from ancf import static
+    from ancf import statics
     from studies.card import slender_scene
     s = scene_from_dict(slender_scene("HB2n-20", 70, 8))
     model = build_model(s)
     f = sum(external_loads(model, s).values())
-    res = static.solve_static(model, f)
+    res = statics.solve_static(model, f)
     assert res.status == "converged" and res.newton_iterations < 30
-    monkeypatch.setattr(static, "ROUNDOFF_FLOOR", 0.0)
-    assert static.solve_static(build_model(s), f).status == "failed"
+    monkeypatch.setattr(statics, "ROUNDOFF_FLOOR", 0.0)
+    assert statics.solve_static(build_model(s), f).status == "failed"

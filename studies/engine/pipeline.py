@@ -1,7 +1,7 @@
 """The pipeline of ``python -m studies run``: the named studies (and those they need)
 run into an output directory, then every table, figure and the README rebuilt from the
 records. The command line (:mod:`studies.cli`) and the tiny-mode gold check
-(:mod:`studies.gold`) both call it.
+(:mod:`studies.engine.regression`) both call it.
 """
 from __future__ import annotations
 
@@ -11,9 +11,9 @@ import time
 from pathlib import Path
 
 from .catalog import CASES_TOML, load_catalog, with_needs
-from .execute import DEFAULT_TIMEOUT_S
+from .worker import DEFAULT_TIMEOUT_S
 
-REPORTS = Path(__file__).resolve().parent.parent / "reports"
+REPORTS = Path(__file__).resolve().parents[2] / "reports"
 
 
 def resolve_out(out: str | None, tiny: bool) -> Path:
@@ -30,7 +30,7 @@ def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = F
     """Run the named studies (``["all"]``: every one but the ``full`` ones outside tiny
     mode) and their needs into ``out``,
     then rebuild the reports; return {study: seconds}."""
-    from .runner import run_cases
+    from .scheduler import run_cases
     from .store import store_for
 
     for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):

@@ -1,6 +1,6 @@
 """The compiled static Newton iteration: the step loop's kernels for statics.
 
-:func:`newton` is :func:`ancf.static.newton_reference` (the Python loop, kept as the
+:func:`newton` is :func:`ancf.statics.newton_reference` (the Python loop, kept as the
 reference it is tested against) in one numba call: per iteration the fused assembly of
 the force and the upper half of the tangent (:func:`ancf.kernels.assemble_fused`, the
 step loop's), the constraint, a banded LDL^T without pivoting
@@ -13,9 +13,9 @@ tangent 1.9, LAPACK's pivoted band LU 1.1).
 LDL^T without pivoting takes an indefinite tangent, but not one whose pivot vanishes
 while the matrix does not (a symmetric indefinite matrix can need pivoting). Such an
 iteration is not called singular here: the attempt returns ``UNPIVOTED`` and
-:func:`ancf.static.newton` redoes it with the Python loop, whose pivoted LU decides.
+:func:`ancf.statics.newton` redoes it with the Python loop, whose pivoted LU decides.
 
-Laws and elements stay data, as in :mod:`ancf.steploop`: the compiled code sees the
+Laws and elements stay data, as in :mod:`ancf.compiled_steps`: the compiled code sees the
 tabulated shape-function gradients, weights, element dofs and the law's tape.
 """
 from __future__ import annotations
@@ -61,7 +61,7 @@ def _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, f, S, chunk,
 
 @njit(cache=True)
 def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, f, S, chunk, R, Fb, ab, Jb, ut):
-    """The step factor of :func:`ancf.static._line_search`, the same rule."""
+    """The step factor of :func:`ancf.statics._line_search`, the same rule."""
     g0 = 0.0
     for i in range(u.shape[0]):
         g0 += r[i] * du[i]
@@ -93,7 +93,7 @@ def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, f, S, chun
 def newton(dN, w, dofs, ops, consts, first, fixed, b, target, u, atol, utol, hbeam, max_it, line_search,
            residuals):
     """Solve f_int(u) = target on the free dofs from u (in place), with the line search
-    of :func:`ancf.static._line_search` if ``line_search``; b: the half-bandwidth.
+    of :func:`ancf.statics._line_search` if ``line_search``; b: the half-bandwidth.
     residuals (max_it + 2,) receives the residual norms. Returns (outcome, iterations,
     number of residuals)."""
     n = u.shape[0]

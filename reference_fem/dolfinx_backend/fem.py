@@ -39,10 +39,10 @@ import dolfinx.io
 import dolfinx.io.gmshio
 import dolfinx.mesh
 
-from .geometry import structured_box, structured_rectangle
+from .meshing import structured_box, structured_rectangle
 from .krylov import (AL_GAMMA, ITERATIVE_DEFAULTS, KRYLOV_ATOL_FACTOR, KRYLOV_MAX_IT, KRYLOV_RTOL, OPTIONS_PREFIX,
                      ALPreconditioner, rigid_body_modes, set_defaults)
-from .settings import LINEAR_SOLVERS
+from ..settings import LINEAR_SOLVERS
 
 VERSION = dolfinx.__version__
 COMM = MPI.COMM_SELF
@@ -74,6 +74,15 @@ def box_mesh(length: float, height: float, width: float, nx: int, ny: int, nz: i
     if n != expected:
         raise RuntimeError(f"gmsh made {n} cells, expected {expected}")
     return mesh
+
+
+def beam_mesh(geometry, beam, settings):
+    """The mesh of the scene's beam in ``geometry`` (2D: :func:`rectangle_mesh`; 3D:
+    :func:`box_mesh`) with the cell counts and type of the [fem] ``settings``."""
+    if geometry.gdim == 3:
+        return box_mesh(beam.length, beam.height, beam.width, *settings.cells(3), settings.cell,
+                        settings.progression)
+    return rectangle_mesh(beam.length, beam.height, settings.cells_length, settings.cells_height, settings.cell)
 
 
 class Discretisation:

@@ -133,7 +133,7 @@ class BeamModel:
 
     @cached_property
     def fused(self) -> tuple:
-        """What the compiled loops (:mod:`ancf.steploop`, :mod:`ancf.staticloop`) read of
+        """What the compiled loops (:mod:`ancf.compiled_steps`, :mod:`ancf.compiled_statics`) read of
         the model: shape-function gradients, weights, element dofs, the law's tape (ops,
         consts) and the band envelope (:func:`ancf.kernels.envelope`), contiguous."""
         from .kernels import envelope
@@ -144,8 +144,8 @@ class BeamModel:
 
     @cached_property
     def static_kernel(self):
-        """The arrays of the compiled static Newton (:mod:`ancf.staticloop`)."""
-        from .staticloop import StaticKernel
+        """The arrays of the compiled static Newton (:mod:`ancf.compiled_statics`)."""
+        from .compiled_statics import StaticKernel
         return StaticKernel(self)
 
     def energy_derivatives(self, a: np.ndarray, J: np.ndarray) -> np.ndarray:

@@ -8,10 +8,10 @@ import numpy as np
 
 from contract.record import new_record
 from contract.scene import Scene
+from mechanics.time_loop import energy_limit, integrate, record_keys
 
 from .build import budget, build_integrator, build_model, external_loads, quadrature, quadrature_warnings
-from .static import relax, solve_static
-from .timeloop import energy_limit, integrate, record_keys
+from .statics import relax, solve_static
 
 
 # Below this many unknowns a run uses one BLAS thread: the band (b <= 15) leaves a thread

@@ -1,0 +1,11 @@
+"""The DOLFINx backend of the continuum reference (DOLFINx 0.5, gmsh meshes): the only
+code that imports dolfinx, ufl, petsc4py or gmsh.
+
+- :mod:`.fem`: every DOLFINx call (meshes, spaces, the nonlinear system, point values);
+- :mod:`.meshing`: the structured gmsh meshes of the beam;
+- :mod:`.krylov`: the iterative solver's PETSc side;
+- :mod:`.laws`: the laws in UFL and the invariants they see;
+- :mod:`.models`: the continuum models as strategies (invariants, incompressibility);
+- :mod:`.problem`: scene -> spaces, law, model, supports, loads; the static problem;
+- :mod:`.dynamic_problem`: the forms of one time step.
+"""
