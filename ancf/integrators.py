@@ -5,7 +5,8 @@ counters); an integrator here is a stepper for it. To add a method:
 
 1. subclass :class:`Integrator` and give it a ``name``;
 2. give it ``coefficients(rho_inf)`` (a classmethod; tests check them directly; the
-   continuum solver reuses the generalized-alpha family's);
+   generalized-alpha family's are :mod:`mechanics.alpha_family`'s, which the continuum
+   steps too);
 3. implement ``step(state, dt) -> (State | None, iterations)`` (None when Newton
    fails) and optionally ``error(state, new, dt)``, a local error estimate in m;
 4. list it in :data:`INTEGRATORS` (scenes name it; unknown names list these).
@@ -20,11 +21,14 @@ nodal coordinates.
 """
 from __future__ import annotations
 
+import math
 from functools import cached_property
 
 import numpy as np
 
-from mechanics.time_loop import Energies, Output, State, acceleration_error
+from mechanics import alpha_family
+from mechanics.newton import newton
+from mechanics.time_loop import Energies, Output, State, StepFailure, acceleration_error
 
 from .banded import Banded
 from .beam import BeamModel, InadmissibleState
@@ -32,8 +36,6 @@ from .beam import BeamModel, InadmissibleState
 
 class Integrator:
     name = "base"
-    # the continuum solver steps every method of the generalized-alpha family
-    alpha_family = False
     # Newton also stops when its correction is below utol of the state: in the quadratic
     # regime the error after it is ~du^2 (measured on the pendulum: corrections 4e-4,
     # then 1e-8 .. 5e-8, then 1e-15 of the state), so 1e-6 saves the confirming
@@ -148,45 +150,25 @@ class GeneralizedAlpha(Integrator):
     (1 - alpha_m) / (beta dt^2) M + (1 - alpha_f) K."""
 
     name = "generalized-alpha"
-    alpha_family = True
     compiled = "alpha-family"
 
     @classmethod
     def coefficients(cls, rho_inf: float) -> dict:
-        am = (2 * rho_inf - 1) / (rho_inf + 1)
-        af = rho_inf / (rho_inf + 1)
-        return {"alpha_m": am, "alpha_f": af, "gamma": 0.5 - am + af, "beta": 0.25 * (1 - am + af) ** 2}
+        return alpha_family.coefficients(cls.name, rho_inf)
 
     def step(self, s: State, dt: float) -> tuple[State | None, int]:
-        am, af, g, b = self.alpha_m, self.alpha_f, self.gamma, self.beta
-        M, fixed = self.M, self.model.fixed
-        # predictor: a_(n+1) = a_n
-        u_pred = s.u + dt * s.v + dt * dt * 0.5 * s.a
-        u = u_pred.copy()
-        atol = self.newton_rtol * self._scale(s)
-        c = (1 - am) / (b * dt * dt)
-        it = 0
+        system = _AlphaStep(self, s, dt)
         try:
-            for it in range(self.max_iterations + 1):
-                a = (u - u_pred) / (b * dt * dt) + s.a
-                f, K = self.model.internal_force_and_tangent((1 - af) * u + af * s.u)
-                R = M.matvec((1 - am) * a + am * s.a) + f - self.f_ext
-                R[fixed] = 0.0
-                if np.linalg.norm(R) <= atol:
-                    return self._finite(self._state(s, dt, u, u_pred)), it
-                if it == self.max_iterations:
-                    return None, it
-                du = Banded((1 - af) * K.ab + c * M.ab, K.b).constrain(fixed).solve(-R)
-                u = u + du
-                if np.abs(du).max() <= self.utol * max(np.abs(u).max(), self.model.mesh.height):
-                    return self._finite(self._state(s, dt, u, u_pred)), it + 1
-        except (InadmissibleState, np.linalg.LinAlgError):
-            return None, it                  # a rejected step, retried smaller
-        return None, it
+            its, _ = newton(system, self._scale(s), self.newton_rtol, self.max_iterations,
+                            system.small_correction, diverging=math.inf)
+        except InadmissibleState:
+            return None, system.evaluations - 1     # a rejected step, retried smaller
+        except StepFailure as e:
+            return None, e.iterations
+        return self._finite(self._state(s, dt, system.u, system.u_pred)), its
 
     def _state(self, s: State, dt: float, u, u_pred) -> State:
-        a = (u - u_pred) / (self.beta * dt * dt) + s.a
-        v = s.v + dt * ((1 - self.gamma) * s.a + self.gamma * a)
+        a, v = alpha_family.update(u, u_pred, s.v, s.a, dt, self.beta, self.gamma)
         return State(s.t + dt, u, v, a)
 
     def error(self, s: State, new: State, dt: float) -> float:
@@ -200,10 +182,6 @@ class Newmark(GeneralizedAlpha):
     (energy-conserving for linear problems; no numerical dissipation)."""
 
     name = "newmark"
-
-    @classmethod
-    def coefficients(cls, rho_inf: float) -> dict:
-        return {"alpha_m": 0.0, "alpha_f": 0.0, "gamma": 0.5, "beta": 0.25}
 
 
 class DiscreteGradient(Integrator):
@@ -232,11 +210,11 @@ class DiscreteGradient(Integrator):
 
     @classmethod
     def coefficients(cls, rho_inf: float) -> dict:
-        return {"alpha_m": 0.0, "alpha_f": 0.0, "gamma": 0.5, "beta": 0.25}
+        return alpha_family.newmark()     # the predictor's and the error estimate's beta
 
     def step(self, s: State, dt: float) -> tuple[State | None, int]:
         M, fixed = self.M, self.model.fixed
-        u = s.u + dt * s.v + 0.5 * dt * dt * s.a         # predictor
+        u = alpha_family.predict(s.u, s.v, s.a, dt)
         atol = self.newton_rtol * self._scale(s)
         c = 2.0 / (dt * dt)
         it = 0
@@ -255,9 +233,43 @@ class DiscreteGradient(Integrator):
                     break                    # quasi-Newton (linear rate): a tighter stop
         except (InadmissibleState, np.linalg.LinAlgError):
             return None, it
-        v = 2.0 / dt * (u - s.u) - s.v
-        a = (v - s.v) / dt
+        a, v = alpha_family.midpoint(s.u, u, s.v, dt)
         return self._finite(State(s.t + dt, u, v, a)), it + 1
+
+
+class _AlphaStep:
+    """One generalized-alpha step as a system of :func:`mechanics.newton.newton`:
+    M a_(n+1-alpha_m) + f_int(u_(n+1-alpha_f)) - Q on the free dofs, with the consistent
+    Jacobian (1 - alpha_m) / (beta dt^2) M + (1 - alpha_f) K, from the predictor."""
+
+    def __init__(self, method: GeneralizedAlpha, s: State, dt: float):
+        self.m, self.s, self.dt = method, s, dt
+        self.u_pred = alpha_family.predict(s.u, s.v, s.a, dt)
+        self.u = self.u_pred.copy()
+        self.c = (1 - method.alpha_m) / (method.beta * dt * dt)
+        self.evaluations = 0
+
+    def residual_norm(self) -> float:
+        m, s = self.m, self.s
+        self.evaluations += 1
+        a = (self.u - self.u_pred) / (m.beta * self.dt * self.dt) + s.a
+        f, self.K = m.model.internal_force_and_tangent((1 - m.alpha_f) * self.u + m.alpha_f * s.u)
+        self.R = m.M.matvec((1 - m.alpha_m) * a + m.alpha_m * s.a) + f - m.f_ext
+        self.R[m.model.fixed] = 0.0
+        return float(np.linalg.norm(self.R))
+
+    def newton_update(self) -> float:
+        m = self.m
+        try:
+            du = Banded((1 - m.alpha_f) * self.K.ab + self.c * m.M.ab, self.K.b).constrain(m.model.fixed).solve(-self.R)
+        except np.linalg.LinAlgError:
+            raise ArithmeticError("singular step matrix") from None
+        self.u = self.u + du
+        self.du_max = float(np.abs(du).max())
+        return self.du_max
+
+    def small_correction(self, system, r: float, dw: float) -> bool:
+        return self.du_max <= self.m.utol * max(np.abs(self.u).max(), self.m.model.mesh.height)
 
 
 INTEGRATORS: dict[str, type[Integrator]] = {cls.name: cls for cls in (GeneralizedAlpha, Newmark, DiscreteGradient)}
