@@ -15,7 +15,8 @@ last state with a line search, then (once the increment is small) by a shifted-N
 energy descent, and only then cut by the load-path rule.
 
 The Newton iterations run compiled (:mod:`ancf.compiled_statics`); :func:`newton_reference`
-is the Python loop they reproduce and are tested against. The residual tolerance never
+(the shared loop :func:`mechanics.newton.newton` on this system) is what they reproduce
+and are tested against. The residual tolerance never
 lies below the force's own round-off (:data:`ROUNDOFF_FLOOR`).
 """
 from __future__ import annotations
@@ -27,6 +28,8 @@ from typing import Callable
 import numpy as np
 
 from mechanics.load_path import Attempt, PathCounts, PathFailure, follow
+from mechanics.newton import newton as newton_loop
+from mechanics.time_loop import StepFailure
 
 from . import compiled_statics
 from .beam import BeamModel, InadmissibleState
@@ -73,40 +76,59 @@ def newton_reference(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol:
     energy differences, carry no cancellation): s = 1 if |g(1)| <= |g(0)| / 2, else a
     root of g by safeguarded regula falsi (at most 8 force evaluations).
     """
-    free = np.ones(model.mesh.n_dof, bool)
-    free[model.fixed] = False
-    u = u0.copy()
-    residuals: list[float] = []
-    scale = model.mesh.height
+    system = _StaticSystem(model, u0, target, utol, line_search)
     try:
-        for it in range(max_iterations + 1):
-            f, K = model.internal_force_and_tangent(u)
-            R = np.where(free, f - target, 0.0)
-            r = float(np.linalg.norm(R))
-            residuals.append(r)
-            if not np.isfinite(r):
-                return NewtonResult(u, False, it, residuals, "non-finite residual")
-            if r <= atol:
-                return NewtonResult(u, True, it, residuals)
-            if it == max_iterations:
-                break
-            if it >= 3 and r > 1e3 * residuals[0]:
-                return NewtonResult(u, False, it, residuals, "diverging")
-            try:
-                du = K.constrain(model.fixed).solve(-R)
-            except np.linalg.LinAlgError:
-                return NewtonResult(u, False, it, residuals, "singular tangent")
-            if not np.all(np.isfinite(du)):
-                return NewtonResult(u, False, it, residuals, "singular tangent")
-            if line_search:
-                du = du * _line_search(model, u, du, target, R, free)
-            u = u + du
-            if it >= 1 and np.abs(du).max() <= utol * max(np.abs(u).max(), scale):
-                residuals.append(float(np.linalg.norm(np.where(free, model.internal_force(u) - target, 0.0))))
-                return NewtonResult(u, True, it + 1, residuals)
+        its, _ = newton_loop(system, 1.0, atol, max_iterations, system.small_correction, diverging=1e3)
+        return NewtonResult(system.u, True, its, system.residuals)
     except InadmissibleState as e:
-        return NewtonResult(u, False, len(residuals), residuals, f"inadmissible state ({e})")
-    return NewtonResult(u, False, max_iterations, residuals, "no convergence within max_iterations")
+        return NewtonResult(system.u, False, len(system.residuals), system.residuals, f"inadmissible state ({e})")
+    except StepFailure as e:
+        # the compiled twin's words (compiled_statics.REASONS) for the same outcomes
+        reason = "no convergence within max_iterations" if str(e).startswith("no convergence") else str(e)
+        return NewtonResult(system.u, False, e.iterations, system.residuals, reason)
+
+
+class _StaticSystem:
+    """f_int(u) = target on the free dofs as a system of :func:`mechanics.newton.newton`
+    (tolerance: ||R|| <= atol with r_ref = 1)."""
+
+    def __init__(self, model: BeamModel, u0: np.ndarray, target: np.ndarray, utol: float, line_search: bool):
+        self.model, self.target, self.utol, self.line_search = model, target, utol, line_search
+        self.free = np.ones(model.mesh.n_dof, bool)
+        self.free[model.fixed] = False
+        self.u = u0.copy()
+        self.residuals: list[float] = []
+        self.updates = 0
+
+    def residual_norm(self) -> float:
+        f, self.K = self.model.internal_force_and_tangent(self.u)
+        self.R = np.where(self.free, f - self.target, 0.0)
+        r = float(np.linalg.norm(self.R))
+        self.residuals.append(r)
+        return r
+
+    def newton_update(self) -> float:
+        try:
+            du = self.K.constrain(self.model.fixed).solve(-self.R)
+        except np.linalg.LinAlgError:
+            raise ArithmeticError("singular tangent") from None
+        if not np.all(np.isfinite(du)):
+            raise ArithmeticError("singular tangent")
+        if self.line_search:
+            du = du * _line_search(self.model, self.u, du, self.target, self.R, self.free)
+        self.u = self.u + du
+        self.updates += 1
+        self.du_max = float(np.abs(du).max())
+        return self.du_max
+
+    def small_correction(self, system, r: float, dw: float) -> bool:
+        """From the second correction on: ||du||_inf <= utol max(||u||_inf, h); the
+        residual after it is recorded (the confirming evaluation)."""
+        if self.updates >= 2 and self.du_max <= self.utol * max(np.abs(self.u).max(), self.model.mesh.height):
+            self.residuals.append(float(np.linalg.norm(
+                np.where(self.free, self.model.internal_force(self.u) - self.target, 0.0))))
+            return True
+        return False
 
 
 def _line_search(model, u, du, target, R0, free) -> float:

@@ -4,10 +4,10 @@ The system is anything with ``residual_norm()``, ``newton_update()`` (solve and 
 increment, return its norm), ``last_increment()``, ``state_norm()``,
 ``save()``/``restore()`` and ``reset()``; ``set_load(t)`` sets the load parameter.
 
-:func:`newton` is the one Newton loop: converged when ||R|| <= rtol * r_ref, or when
-``small_correction(system, r, ||dw||)`` accepts the last correction (statics:
-:func:`static_correction`; a time step: the correction test of
-:mod:`reference_fem.stepper`). :func:`solve_static` follows the load path by the one
+:func:`mechanics.newton.newton` is the Newton loop (shared with ANCF's Python paths):
+converged when ||R|| <= rtol * r_ref, or when ``small_correction(system, r, ||dw||)``
+accepts the last correction (statics: :func:`static_correction`; a time step: the
+correction test of :mod:`reference_fem.stepper`). :func:`solve_static` follows the load path by the one
 rule of :mod:`mechanics.load_path` (shared with ANCF): a failed increment restores the last
 accepted state and is cut, an easy one grows the next.
 """
@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from mechanics.load_path import Attempt, PathCounts, PathFailure, follow
+from mechanics.newton import newton
 from mechanics.time_loop import StepFailure
 
 
@@ -30,35 +31,6 @@ def static_correction(rtol: float, r_ref: float) -> Callable:
     def small(system, r: float, dw: float) -> bool:
         return dw <= rtol * system.state_norm() and r <= math.sqrt(rtol) * r_ref
     return small
-
-
-def newton(system, r_ref: float, rtol: float, max_iterations: int,
-           small_correction: Callable | None = None) -> tuple[int, list[float]]:
-    """Iterate to convergence at the current load; return (iterations, residuals), or
-    raise StepFailure (non-finite values, divergence, a failed solve, no convergence)."""
-    small_correction = small_correction or static_correction(rtol, r_ref)
-    residuals: list[float] = []
-    for it in range(max_iterations + 1):
-        r = system.residual_norm()
-        residuals.append(r)
-        if not math.isfinite(r):
-            raise StepFailure("non-finite residual", it)
-        if r <= rtol * r_ref:
-            return it, residuals
-        if it == max_iterations:
-            break
-        if it >= 3 and r > 1e4 * residuals[0]:
-            raise StepFailure("diverging", it)
-        try:
-            dw = system.newton_update()
-        except ArithmeticError as e:
-            raise StepFailure(str(e), it) from None
-        if not math.isfinite(dw):
-            raise StepFailure("non-finite increment", it + 1)
-        if small_correction(system, r, dw):
-            return it + 1, residuals
-    raise StepFailure(f"no convergence within {max_iterations} iterations "
-                      f"(residual {residuals[-1]:.3e}, target {rtol * r_ref:.3e})", max_iterations)
 
 
 @dataclass
@@ -107,7 +79,7 @@ def solve_static(system, set_load, steps: int, rtol: float, max_iterations: int,
         saved = system.save()
         set_load(t1)
         try:
-            its, _ = newton(system, r_ref, rtol, max_iterations)
+            its, _ = newton(system, r_ref, rtol, max_iterations, static_correction(rtol, r_ref))
         except StepFailure as e:
             system.restore(saved)
             set_load(t0)

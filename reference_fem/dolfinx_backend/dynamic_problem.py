@@ -36,10 +36,10 @@ from __future__ import annotations
 import numpy as np
 import ufl
 
+from mechanics.newton import newton
 from mechanics.time_loop import Energies
 
 from . import fem as backend
-from ..statics import newton
 from .problem import Setup, system
 
 
