@@ -14,7 +14,7 @@ from contract.scene import MaterialSpec, Scene, check_names
 from .elements import ELEMENTS, get_element
 from .formulations import FORMULATIONS, get_formulation
 from .integrators import INTEGRATORS
-from .laws import LAWS, get_law
+from mechanics.laws import LAWS, get_law
 from .material import Material
 from .mesh import Mesh, fixed_dofs
 from .beam import BeamModel
@@ -27,8 +27,8 @@ def check(scene: Scene) -> Scene:
     the allowed values); an ANCF run needs the [ancf] table."""
     if scene.ancf is None:
         raise SceneError("ancf: the scene has no [ancf] table (element, elements)")
-    return check_names(scene, laws={k: v.constants for k, v in LAWS.items()},
-                       formulations={k: v.penalised for k, v in FORMULATIONS.items()},
+    return check_names(scene, laws=LAWS,
+                       formulations=FORMULATIONS,
                        integrators=INTEGRATORS, elements=ELEMENTS)
 
 

@@ -24,6 +24,7 @@ import numpy as np
 
 from contract import paper
 from contract.scene import MaterialSpec
+from mechanics.laws import get_law
 
 from .build import build_material
 from .elements import KINDS, ElementSpec, get_element
@@ -41,9 +42,17 @@ def _spec(element) -> ElementSpec:
     return get_element(element) if isinstance(element, str) else element
 
 
+def law_constants(law: str) -> dict:
+    """The paper's constants and density of ``law``; for a law the paper does not have,
+    the law's example constants with the density of the paper's neo-Hookean rubber."""
+    if law in paper.materials():
+        return dict(paper.materials()[law])
+    return {**get_law(law).example, "density": paper.materials()["neo-hookean"]["density"]}
+
+
 def paper_material(law: str, formulation: str, penalty: float = paper.PENALTY):
     """The paper's constants of ``law`` in ``formulation`` (penalty where it has one)."""
-    c = dict(paper.materials()[law])
+    c = law_constants(law)
     rho = c.pop("density")
     return build_material(MaterialSpec(law, formulation, rho, c,
                                        penalty if FORMULATIONS[formulation].penalised else None))

@@ -110,7 +110,7 @@ def main(argv: list[str] | None = None) -> int:
             return _run(args)
         from .elements import ELEMENTS
         from .formulations import FORMULATIONS
-        from .laws import LAWS
+        from mechanics.laws import LAWS
         return _list({"elements": ELEMENTS, "laws": LAWS, "formulations": FORMULATIONS}[args.command])
     return command("ancf", body)
 

@@ -34,8 +34,8 @@ def source_digest(package: Path = PACKAGE) -> str:
     package = Path(package)
     siblings = [package.parent / name for name in COMPILED_FROM if (package.parent / name).is_dir()]
     for d in [package, *siblings]:
-        for p in sorted(Path(d).glob("*.py")):
-            h.update(d.name.encode() + b"/" + p.name.encode() + b"\0" + p.read_bytes() + b"\0")
+        for p in sorted(Path(d).rglob("*.py")):
+            h.update(d.name.encode() + b"/" + p.relative_to(d).as_posix().encode() + b"\0" + p.read_bytes() + b"\0")
     return h.hexdigest()[:16]
 
 

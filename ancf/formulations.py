@@ -19,15 +19,21 @@ from dataclasses import dataclass
 from typing import Callable
 
 from contract.errors import UnknownName
+from contract.scene import FORMULATIONS as PENALISED
 
 
 @dataclass(frozen=True)
 class Formulation:
     name: str
     invariants: Callable  # (a: Jet, J: Jet) -> (I1: Jet, I2: Jet)
-    penalised: bool
     stress_free: bool
     doc: str = ""
+
+    @property
+    def penalised(self) -> bool:
+        """Is alpha/2 (J - 1)^2 part of the energy? The scene language says
+        (:data:`contract.scene.FORMULATIONS`: the scene then carries material.penalty)."""
+        return PENALISED[self.name]
 
 
 def _paper(a, J):
@@ -46,11 +52,11 @@ def _plane_stress(a, J):
 FORMULATIONS: dict[str, Formulation] = {
     f.name: f
     for f in (
-        Formulation("paper", _paper, penalised=True, stress_free=False,
+        Formulation("paper", _paper, stress_free=False,
                     doc="the paper's literal 2D energies plus alpha/2 (J - 1)^2"),
-        Formulation("plane-strain", _plane_strain, penalised=True, stress_free=True,
+        Formulation("plane-strain", _plane_strain, stress_free=True,
                     doc="F33 = 1, isochoric invariants, plus alpha/2 (J - 1)^2"),
-        Formulation("plane-stress", _plane_stress, penalised=False, stress_free=True,
+        Formulation("plane-stress", _plane_stress, stress_free=True,
                     doc="incompressible, F33 = 1/J, no penalty"),
     )
 }

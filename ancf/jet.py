@@ -86,6 +86,13 @@ class Jet:
         xp2 = x ** (p - 2)
         return self.compose(xp2 * x * x, p * xp2 * x, p * (p - 1) * xp2)
 
+    def log(self) -> "Jet":
+        """log and its derivatives; not a number (value and derivatives) where x <= 0,
+        so that a state outside a law's domain is rejected as inadmissible."""
+        x = np.where(self.D[0] > 0.0, self.D[0], np.nan)
+        with np.errstate(invalid="ignore"):
+            return self.compose(np.log(x), 1.0 / x, -1.0 / (x * x))
+
     def compose(self, f, df, d2f) -> "Jet":
         """g = phi(self), given phi, phi' and phi'' evaluated at self.v."""
         x = self.D

@@ -19,7 +19,7 @@ import numpy as np
 
 from .formulations import Formulation
 from .jet import Jet
-from .laws import Law
+from mechanics.laws import Law
 
 # d2(det F)/dF2 in the flattened index 2 i + j
 _E = np.array([[0, 0, 0, 1], [0, 0, -1, 0], [0, -1, 0, 0], [1, 0, 0, 0]], dtype=float)
@@ -37,7 +37,7 @@ class Material:
         """W and its (a, J) partials, elementwise over arrays a and J."""
         ja, jJ = Jet.variables(np.asarray(a, float), np.asarray(J, float))
         I1, I2 = self.formulation.invariants(ja, jJ)
-        W = self.law.energy(I1, I2, self.constants)
+        W = self.law.psi(I1, I2, self.constants)
         if self.formulation.penalised:
             W = W + 0.5 * self.penalty * (jJ - 1.0) ** 2
         return W

@@ -1,7 +1,7 @@
 """A material's energy as a tape: traced once, evaluated per point by compiled code.
 
 Laws and formulations are written with the arithmetic of :class:`ancf.jet.Jet`
-(+, -, *, /, ** with a constant exponent). Tracing runs that same code once on
+(+, -, *, /, ** with a constant exponent, ``log``). Tracing runs that same code once on
 :class:`Node` objects, which record each operation as an instruction
 (opcode, operand, operand, constant). :func:`evaluate` then replays the tape in
 second-order jet arithmetic at every quadrature point inside numba, so a newly
@@ -24,7 +24,7 @@ from numba import njit
 FASTMATH = {"reassoc", "contract", "nsz", "arcp"}
 
 # opcodes
-VAR_A, VAR_J, CONST, ADD, ADDC, MUL, MULC, POWC = range(8)
+VAR_A, VAR_J, CONST, ADD, ADDC, MUL, MULC, POWC, LOG = range(9)
 
 
 class Tape:
@@ -79,13 +79,16 @@ class Node:
             return self
         return self.tape.push(POWC, self.i, c=p)
 
+    def log(self):
+        return self.tape.push(LOG, self.i)
+
 
 def trace(material) -> tuple[np.ndarray, np.ndarray]:
     """The material's energy W(a, J) as (ops (n, 3) int64, consts (n,) float64)."""
     tape = Tape()
     a, J = tape.push(VAR_A), tape.push(VAR_J)
     I1, I2 = material.formulation.invariants(a, J)
-    W = material.law.energy(I1, I2, material.constants)
+    W = material.law.psi(I1, I2, material.constants)
     if material.formulation.penalised:
         W = W + 0.5 * material.penalty * (J - 1.0) ** 2
     W = W + 0.0          # the result is the last instruction
@@ -131,6 +134,20 @@ def evaluate(ops, consts, a, J):
                     R[k, 3] = R[x, 3] * y0 + 2.0 * R[x, 1] * R[y, 1] + x0 * R[y, 3]
                     R[k, 4] = R[x, 4] * y0 + R[x, 1] * R[y, 2] + R[x, 2] * R[y, 1] + x0 * R[y, 4]
                     R[k, 5] = R[x, 5] * y0 + 2.0 * R[x, 2] * R[y, 2] + x0 * R[y, 5]
+                elif op == LOG:   # outside the domain (v <= 0): NaN, rejected as inadmissible
+                    v = R[x, 0]
+                    if v > 0.0:
+                        f, d1 = np.log(v), 1.0 / v
+                    else:
+                        f, d1 = np.nan, np.nan
+                    d2 = -d1 * d1
+                    a1, a2 = R[x, 1], R[x, 2]
+                    R[k, 0] = f
+                    R[k, 1] = d1 * a1
+                    R[k, 2] = d1 * a2
+                    R[k, 3] = d2 * a1 * a1 + d1 * R[x, 3]
+                    R[k, 4] = d2 * a1 * a2 + d1 * R[x, 4]
+                    R[k, 5] = d2 * a2 * a2 + d1 * R[x, 5]
                 else:  # POWC
                     v = R[x, 0]
                     if c == 2.0:
@@ -212,6 +229,24 @@ def tape_batch(ops, consts, a, J, R, m, order):
                     Rk[3, p] = Rx[3, p] * y0 + 2.0 * x1 * y1 + x0 * Ry[3, p]
                     Rk[4, p] = Rx[4, p] * y0 + x1 * y2 + x2 * y1 + x0 * Ry[4, p]
                     Rk[5, p] = Rx[5, p] * y0 + 2.0 * x2 * y2 + x0 * Ry[5, p]
+        elif op == LOG:   # outside the domain (v <= 0): NaN, rejected as inadmissible
+            Rx = R[x]
+            for p in range(m):
+                v = Rx[0, p]
+                if v > 0.0:
+                    f, d1 = np.log(v), 1.0 / v
+                else:
+                    f, d1 = np.nan, np.nan
+                Rk[0, p] = f
+                if nc > 1:
+                    d2 = -d1 * d1
+                    a1, a2 = Rx[1, p], Rx[2, p]
+                    Rk[1, p] = d1 * a1
+                    Rk[2, p] = d1 * a2
+                    if nc > 3:
+                        Rk[3, p] = d2 * a1 * a1 + d1 * Rx[3, p]
+                        Rk[4, p] = d2 * a1 * a2 + d1 * Rx[4, p]
+                        Rk[5, p] = d2 * a2 * a2 + d1 * Rx[5, p]
         else:  # POWC: v^c, with the common exponents without pow()
             Rx = R[x]
             for p in range(m):

@@ -19,6 +19,8 @@ from decimal import Decimal
 from functools import lru_cache
 from pathlib import Path
 
+from .scene import FORMULATIONS
+
 DATA = Path(__file__).with_name("paper_data")
 PENALTY = 1000e6      # Pa, the paper's alpha (section 3.1)
 GRAVITY = 9.81        # m/s^2
@@ -91,7 +93,7 @@ def material_table(law: str, formulation: str, penalty: float = PENALTY) -> dict
     """A scene's [material] table for one of the paper's laws (the penalty only where
     the formulation has one)."""
     t = {"law": law, "formulation": formulation, **materials()[law]}
-    if formulation != "plane-stress":
+    if FORMULATIONS[formulation]:
         t["penalty"] = penalty
     return t
 

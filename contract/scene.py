@@ -223,7 +223,14 @@ def _beam(t) -> Beam:
     return Beam(*(_positive(f"beam.{k}", t[k]) for k in ("length", "height", "width")))
 
 
-CONSTANT = re.compile(r"C\d\d")  # a law's constant: C10, C01, C20, C30, ...
+# a law's constant: a name (C10, C01, mu, Jm, ...); which ones a law needs, and which
+# values it admits, the law says (mechanics.laws), checked by check_names
+CONSTANT = re.compile(r"[A-Za-z][A-Za-z0-9_]*")
+MATERIAL_KEYS = ("law", "formulation", "density", "penalty")
+
+# The scene language's formulations and whether a scene in that formulation carries a
+# penalty (material.penalty): the one statement both solvers and the paper's scenes read.
+FORMULATIONS = {"paper": True, "plane-strain": True, "plane-stress": False}
 
 
 def _name(field_, value) -> str:
@@ -234,11 +241,9 @@ def _name(field_, value) -> str:
 
 def _material(t) -> MaterialSpec:
     _keys("material", t, required={"law", "formulation", "density"},
-          optional={"penalty", *(k for k in t if CONSTANT.fullmatch(str(k)))},
-          allowed="law, formulation, density, penalty and the law's constants (C10, C01, C20, ...)")
-    constants = {k: _number(f"material.{k}", v) for k, v in t.items() if CONSTANT.fullmatch(k)}
-    if constants.get("C10", 1.0) <= 0:
-        raise SceneError(f"material.C10: must be positive, got {constants['C10']!r}")
+          optional={"penalty", *(k for k in t if k not in MATERIAL_KEYS and CONSTANT.fullmatch(str(k)))},
+          allowed="law, formulation, density, penalty and the law's constants (C10, C01, mu, ...)")
+    constants = {k: _number(f"material.{k}", v) for k, v in t.items() if k not in MATERIAL_KEYS}
     return MaterialSpec(_name("material.law", t["law"]), _name("material.formulation", t["formulation"]),
                         _positive("material.density", t["density"]), constants,
                         _positive("material.penalty", t["penalty"]) if "penalty" in t else None)
@@ -339,20 +344,22 @@ def _analysis(t) -> Analysis:
 
 
 # ---------------------------------------------------------------------------------------
-def check_names(scene: Scene, laws: Mapping[str, tuple[str, ...]], formulations: Mapping[str, bool],
+def check_names(scene: Scene, laws: Mapping, formulations: Collection[str],
                 integrators: Collection[str], elements: Collection[str] | None = None) -> Scene:
     """Check the names a solver resolves against that solver's vocabulary: ``laws``
-    {name: its constants}, ``formulations`` {name: the scene carries a penalty},
-    ``integrators`` (dynamic scenes), ``elements`` (the [ancf] table, if the solver
-    reads it). Raises a :class:`SceneError` naming the field and the allowed values;
-    returns the scene."""
+    {name: law} (a law has ``constants``, the names it needs, and ``check(constants)``,
+    which raises a :class:`SceneError` for values it does not admit), ``formulations``
+    (the names of :data:`FORMULATIONS` the solver implements), ``integrators`` (dynamic
+    scenes), ``elements`` (the [ancf] table, if the solver reads it). Raises a
+    :class:`SceneError` naming the field and the allowed values; returns the scene."""
     m = scene.material
     law = _choice("material.law", m.law, laws)
-    form = _choice("material.formulation", m.formulation, formulations)
-    need = set(laws[law]) | ({"penalty"} if formulations[form] else set())
+    form = _choice("material.formulation", m.formulation, [f for f in FORMULATIONS if f in formulations])
+    need = set(laws[law].constants) | ({"penalty"} if FORMULATIONS[form] else set())
     have = set(m.constants) | ({"penalty"} if m.penalty is not None else set())
     _keys("material", dict.fromkeys(have | {"law", "formulation", "density"}),
           required=need | {"law", "formulation", "density"})
+    laws[law].check(m.constants)
     if elements is not None and scene.ancf is not None:
         _choice("ancf.element", scene.ancf.element, elements)
     if scene.analysis.kind == "dynamic":

@@ -62,9 +62,6 @@ LINEAR_SOLVERS = ("direct", "iterative")
 # The lowest displacement degree of each incompressibility: a pressure field (mixed,
 # penalty) is one degree lower (Taylor-Hood), so the displacement needs degree 2.
 MIN_DEGREE = {"mixed": 2, "penalty": 2, "exact": 1}
-# The scene's formulations and whether the scene carries a penalty (the scene language
-# both solvers read: `paper` and `plane-strain` do, `plane-stress` does not).
-FORMULATIONS = {"paper": True, "plane-strain": True, "plane-stress": False}
 KEYS = ("cells_height", "cells_length", "aspect", "cell", "degree", "quadrature_degree",
         "incompressibility", "model", "cells_width", "progression", "side_faces", "linear_solver")
 KEYS_3D = ("cells_width", "progression", "side_faces")

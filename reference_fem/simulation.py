@@ -28,18 +28,18 @@ from pathlib import Path
 from contract.console import safe_name
 from contract.errors import SceneError
 from contract.record import new_record
-from contract.scene import Scene, check_names
+from contract.scene import FORMULATIONS, Scene, check_names
 
-from .settings import FORMULATIONS, FemSettings, fem_settings
+from .settings import FemSettings, fem_settings
 
 
 def check(scene: Scene) -> FemSettings:
     """The scene's names against reference_fem's vocabulary, and its [fem] table
     resolved (one message naming the field and the allowed values)."""
     from .stepper import alpha_family
-    from .dolfinx_backend.laws import LAWS_UFL
+    from mechanics.laws import LAWS
 
-    check_names(scene, laws={k: v.constants for k, v in LAWS_UFL.items()},
+    check_names(scene, laws=LAWS,
                 formulations=FORMULATIONS, integrators=alpha_family())
     return fem_settings(scene)
 

@@ -1,13 +1,25 @@
 import numpy as np
 import pytest
 
-from ancf.checks import paper_material
+from ancf.checks import law_constants, paper_material
+from contract import paper
 from ancf.elements import ELEMENTS
 from ancf.formulations import FORMULATIONS
-from ancf.laws import LAWS
+from mechanics.laws import LAWS
 
 
 material = paper_material   # the paper's constants of a law in a formulation
+PAPER_LAWS = sorted(paper.materials())   # the laws the paper's tables have
+
+
+def law_scene(law: str, formulation: str, *args, penalty: float = paper.PENALTY, **kw) -> dict:
+    """The paper's cantilever scene in any registered law: the paper's constants for its
+    three laws, the law's example constants (and the neo-Hookean density) otherwise."""
+    s = paper.cantilever_scene("neo-hookean", formulation, *args, penalty=penalty, **kw)
+    s["material"] = {"law": law, "formulation": formulation, **law_constants(law),
+                     **({"penalty": penalty} if "penalty" in s["material"] else {})}
+    s["name"] = s["name"].replace("neo-hookean", law)
+    return s
 
 
 @pytest.fixture

@@ -11,7 +11,7 @@ from ancf.dgkernel import assemble_dg, dg_scratch
 from ancf.kernels import (OK, assemble_fused, col_constrain, col_ldlt, col_ldlt_solve, envelope, step_scratch,
                           strain_energy_fused)
 from ancf.elements import ELEMENTS
-from ancf.laws import LAWS, Law, register_law
+from mechanics.laws import LAWS, Law, register_law
 from ancf.compiled_steps import column_band
 from mechanics.time_loop import integrate
 from contract import paper
@@ -121,7 +121,7 @@ def user_element_and_law(cubic_element):
     """test_elements' user-defined cubic element and a law defined here (a quartic
     term: the tape's generic power, whose derivative once divided by I1 - 3 = 0 at rest)."""
     law = register_law(Law("quartic (compiled step test)", ("C10", "C20"),
-                           lambda I1, I2, c: c["C10"] * (I1 - 3.0) + c["C20"] * (I1 - 3.0) ** 4))
+                           lambda I1, I2, c, m: c["C10"] * (I1 - 3.0) + c["C20"] * (I1 - 3.0) ** 4))
     yield cubic_element.name, law.name
     del LAWS[law.name]
 

@@ -56,7 +56,7 @@ def closed_form(law, c, model, inc, lam):
                                         ("plane-stress", "exact")])
 def test_uniaxial_tension(law, model, inc):
     from reference_fem.dolfinx_backend import fem as backend
-    from reference_fem.dolfinx_backend.laws import get_law_ufl
+    from mechanics.laws import get_law
     from reference_fem.dolfinx_backend.models import get_model
     from reference_fem.statics import solve_static
     from reference_fem.dolfinx_backend.problem import Setup, static_problem
@@ -68,7 +68,7 @@ def test_uniaxial_tension(law, model, inc):
     disc = backend.Discretisation(mesh, 2, m.has_pressure, 4)
     bcs = (disc.fix(lambda x: np.abs(x[0]) < 1e-12, components=(0,))
            + disc.fix(lambda x: np.abs(x[1] + 0.5) < 1e-12, components=(1,)))
-    setup = Setup(m, get_law_ufl(law), disc, c, bcs, traction=np.array([P11, 0.0]),
+    setup = Setup(m, get_law(law), disc, c, bcs, traction=np.array([P11, 0.0]),
                   traction_where=lambda x: np.abs(x[0] - 1.0) < 1e-12, penalty=PENALTY)
     prob = static_problem(setup)
     res = solve_static(prob.system, prob.set_load, 5, 1e-10, 25)

@@ -37,7 +37,7 @@ def mutated(path, value):
 DELETE = object()
 
 BAD = [
-    ("material.law", "ogden", r"material\.law: unknown value 'ogden'; allowed: 'mooney-rivlin', 'neo-hookean', 'yeoh'"),
+    ("material.law", "ogden", r"material\.law: unknown value 'ogden'; allowed: 'gent', 'mooney-rivlin', 'neo-hookean', 'yeoh'"),
     ("material.formulation", "3d", r"material\.formulation: unknown value '3d'; allowed: 'paper', 'plane-strain', 'plane-stress'"),
     ("ancf.element", "HB9n-9", r"ancf\.element: unknown value 'HB9n-9'; allowed: .*'HB2n-12'"),
     ("material.C20", DELETE, r"material: missing key\(s\) \['C20'\]"),
@@ -132,7 +132,7 @@ def test_cli_bad_scene_one_message_no_traceback(tmp_path):
     assert p.returncode == 2
     assert "Traceback" not in p.stderr
     assert p.stderr.strip().splitlines() == [
-        "ancf: error: material.law: unknown value 'yeo'; allowed: 'mooney-rivlin', 'neo-hookean', 'yeoh'"]
+        "ancf: error: material.law: unknown value 'yeo'; allowed: 'gent', 'mooney-rivlin', 'neo-hookean', 'yeoh'"]
     missing = _cli("run", str(tmp_path / "nope.toml"))
     assert missing.returncode == 2 and "scene file not found" in missing.stderr
 

@@ -1,8 +1,8 @@
-"""The hyperelastic laws in UFL and the invariants they see (written once, no dolfinx).
+"""The laws of :mod:`mechanics.laws` in UFL, and the invariants they see (no dolfinx).
 
-Laws carry the names and constants of :mod:`ancf.laws` (checked by a test) and are
-energies psi(I1, I2) of the 3D invariants. The invariants are built here from the 3D
-right Cauchy-Green tensor, independently of the 2D shortcuts in
+The laws themselves are the shared table (one energy per law, the same code ANCF runs);
+this module gives them UFL's ``ln`` (:data:`UFL_MATH`) and builds the invariants from
+the 3D right Cauchy-Green tensor, independently of the 2D shortcuts in
 :mod:`ancf.formulations`, so that the pointwise test compares two derivations:
 
 - plane strain: F3 = diag(F, 1); I1 = tr C3, I2 = (I1^2 - tr C3^2) / 2, made
@@ -16,52 +16,28 @@ How a continuum model uses them (and enforces incompressibility) is
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Callable, Mapping
+from types import SimpleNamespace
 
 import ufl
 
-from contract.errors import UnknownName
+from mechanics.laws import Law
+
+def _log(x):
+    """ln x where x > 0; not a number (value and derivatives) elsewhere, as on ANCF's
+    jets, so that a state outside a law's domain (Gent: I1 - 3 >= Jm) makes the residual
+    NaN and the step is rejected, instead of a finite stress of the wrong sign (ln's
+    derivative 1/x is finite for x < 0). UFL has no NaN literal that the generated C
+    accepts: sqrt(-1 - x^2) is NaN for every x, and so is its derivative."""
+    return ufl.conditional(ufl.gt(x, 0.0), ufl.ln(x), ufl.sqrt(-1.0 - x * x))
 
 
-@dataclass(frozen=True)
-class LawUFL:
-    name: str
-    constants: tuple[str, ...]
-    energy: Callable  # (I1, I2, c: Mapping[str, UFL scalar]) -> UFL scalar
-
-    def shear_modulus(self, c: Mapping[str, float]) -> float:
-        """Small-strain shear modulus mu = 2 (dpsi/dI1 + dpsi/dI2) at I1 = I2 = 3 (Pa)."""
-        return 2.0 * (c.get("C10", 0.0) + c.get("C01", 0.0))
+# the math namespace a law's energy is handed in UFL
+UFL_MATH = SimpleNamespace(log=_log)
 
 
-def _neo_hookean(I1, I2, c):
-    return c["C10"] * (I1 - 3)
-
-
-def _mooney_rivlin(I1, I2, c):
-    return c["C10"] * (I1 - 3) + c["C01"] * (I2 - 3)
-
-
-def _yeoh(I1, I2, c):
-    d = I1 - 3
-    return c["C10"] * d + c["C20"] * d ** 2 + c["C30"] * d ** 3
-
-
-LAWS_UFL: dict[str, LawUFL] = {
-    law.name: law for law in (
-        LawUFL("neo-hookean", ("C10",), _neo_hookean),
-        LawUFL("mooney-rivlin", ("C10", "C01"), _mooney_rivlin),
-        LawUFL("yeoh", ("C10", "C20", "C30"), _yeoh),
-    )
-}
-
-
-def get_law_ufl(name: str) -> LawUFL:
-    try:
-        return LAWS_UFL[name]
-    except KeyError:
-        raise UnknownName("material.law", name, LAWS_UFL) from None
+def energy(law: Law, I1, I2, c):
+    """The law's energy psi(I1, I2) as a UFL expression."""
+    return law.psi(I1, I2, c, UFL_MATH)
 
 
 def _invariants_3d(C3):

@@ -29,7 +29,9 @@ import ufl
 from contract.errors import UnknownName
 
 from ..geometry import BOX, Geometry, PLANE
-from .laws import LawUFL, plane_strain_invariants, plane_stress_invariants, solid_invariants
+from mechanics.laws import Law
+
+from .laws import energy, plane_strain_invariants, plane_stress_invariants, solid_invariants
 
 
 class ContinuumModel:
@@ -43,16 +45,16 @@ class ContinuumModel:
         """(I1, I2, J) the law sees at the gradient F."""
         raise NotImplementedError
 
-    def energy(self, law: LawUFL, c: Mapping, F, phat=None, mu=None, alpha=None):
+    def energy(self, law: Law, c: Mapping, F, phat=None, mu=None, alpha=None):
         """The energy density (Pa) whose stationary point is the solution."""
         I1, I2, _ = self.invariants(F)
-        return law.energy(I1, I2, c)
+        return energy(law, I1, I2, c)
 
-    def stored_energy(self, law: LawUFL, c: Mapping, F, alpha=None):
+    def stored_energy(self, law: Law, c: Mapping, F, alpha=None):
         """The strain energy density of a state (Pa), pressure eliminated: what the
         energy balance counts."""
         I1, I2, _ = self.invariants(F)
-        return law.energy(I1, I2, c)
+        return energy(law, I1, I2, c)
 
     def constraint_displacement(self, u_new, u_alpha):
         """The displacement at which a dynamic step evaluates the constraint row (mixed:
@@ -93,7 +95,7 @@ class PlaneStrain(ContinuumModel):
 
     def energy(self, law, c, F, phat=None, mu=None, alpha=None):
         I1, I2, J = self.invariants(F)
-        return law.energy(I1, I2, c) + mu * phat * (J - 1)
+        return energy(law, I1, I2, c) + mu * phat * (J - 1)
 
 
 class MixedPlaneStrain(PlaneStrain):

@@ -27,9 +27,9 @@ import ufl
 
 from contract.errors import SceneError
 from contract.scene import Scene
+from mechanics.laws import Law, get_law
 
 from . import fem as backend
-from .laws import LawUFL, get_law_ufl
 from .models import ContinuumModel, get_model
 from ..settings import FemSettings
 
@@ -37,7 +37,7 @@ from ..settings import FemSettings
 @dataclass
 class Setup:
     model: ContinuumModel
-    law: LawUFL
+    law: Law
     disc: backend.Discretisation
     constants: dict                      # Pa, by name (floats)
     bcs: list
@@ -116,7 +116,7 @@ def set_up(scene: Scene, settings: FemSettings) -> Setup:
     body = None if loads.gravity is None else m.density * g.vector(loads.gravity)
     traction = None if loads.tip_force is None else g.vector(loads.tip_force) / (b.height * b.width)
     effects = ["elastic", *model.effects] + [k for k in ("gravity", "tip_force") if getattr(loads, k) is not None]
-    return Setup(model, get_law_ufl(m.law), disc, dict(m.constants), supports(disc, scene, settings, model),
+    return Setup(model, get_law(m.law), disc, dict(m.constants), supports(disc, scene, settings, model),
                  body, traction, g.at_right(b), m.penalty, g.width_factor(b), effects,
                  settings.linear_solver)
 

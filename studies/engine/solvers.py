@@ -62,8 +62,8 @@ class Solver:
 
 SOLVERS: dict[str, Solver] = {
     s.name: s for s in (
-        Solver("ancf", ("ancf/*.py", "mechanics/*.py", "contract/*.py"), _run_ancf, _check_ancf),
-        Solver("fenicsx", ("reference_fem/**/*.py", "mechanics/*.py", "contract/*.py", "ancf/integrators.py"),
+        Solver("ancf", ("ancf/*.py", "mechanics/**/*.py", "contract/*.py"), _run_ancf, _check_ancf),
+        Solver("fenicsx", ("reference_fem/**/*.py", "mechanics/**/*.py", "contract/*.py"),
                _run_fenicsx, _check_fenicsx),
     )
 }
