@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from contract.capacity import Estimate, check_budget
+from contract.capacity import Estimate, check_capacity
 from contract.errors import SceneError
 from contract.scene import MaterialSpec, Scene, check_names
 
@@ -51,9 +51,9 @@ def estimate(scene: Scene) -> Estimate:
     return Estimate(n, 8.0 * words, steps, "ancf.elements")
 
 
-def budget(scene: Scene) -> list[str]:
+def capacity(scene: Scene) -> list[str]:
     """Refuse a scene that cannot fit in this machine's memory (SceneError); warnings."""
-    return check_budget(estimate(scene), "ancf")
+    return check_capacity(estimate(scene), "ancf")
 
 
 def build_material(spec: MaterialSpec) -> Material:

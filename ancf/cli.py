@@ -28,13 +28,13 @@ def _run(args) -> int:
     from contract.record import sanitize, write_record
     from contract.scene import load_scene
 
-    from .build import budget
+    from .build import capacity
     from .simulation import run_scene
 
     scene = load_scene(args.scene)
     json_out = check_output_file(args.json, "--json")
     vtk_dir = check_output_dir(args.vtk, "--vtk")
-    for w in budget(scene):
+    for w in capacity(scene):
         print(f"ancf: warning: {w}", file=sys.stderr)
     progress = Progress(scene.analysis.t_end, enabled=not args.quiet) if scene.analysis.kind == "dynamic" else None
     try:

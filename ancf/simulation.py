@@ -10,7 +10,7 @@ from contract.record import new_record
 from contract.scene import Scene
 from mechanics.time_loop import energy_limit, integrate, record_keys
 
-from .build import budget, build_integrator, build_model, external_loads, quadrature, quadrature_warnings
+from .build import build_integrator, capacity, build_model, external_loads, quadrature, quadrature_warnings
 from .statics import relax, solve_static
 
 
@@ -26,21 +26,21 @@ def run_scene(scene: Scene, progress=None) -> tuple[dict, object]:
     ``progress(t, result)``: called after every accepted time step (dynamics).
     A small scene runs with one BLAS thread unless the caller set a thread count
     (the ``ancf`` command and the study runner set one before numpy loads)."""
-    if any(v in os.environ for v in THREAD_VARS) or budget_unknowns(scene) >= ONE_THREAD_BELOW:
+    if any(v in os.environ for v in THREAD_VARS) or unknowns(scene) >= ONE_THREAD_BELOW:
         return _run_scene(scene, progress)
     from threadpoolctl import threadpool_limits
     with threadpool_limits(1):
         return _run_scene(scene, progress)
 
 
-def budget_unknowns(scene: Scene) -> int:
+def unknowns(scene: Scene) -> int:
     from .build import estimate
     return estimate(scene).unknowns
 
 
 def _run_scene(scene: Scene, progress=None) -> tuple[dict, object]:
     rec = new_record("ancf", scene.to_dict())
-    warnings = budget(scene) + quadrature_warnings(scene)
+    warnings = capacity(scene) + quadrature_warnings(scene)
     rec["quadrature"] = list(quadrature(scene))
     if warnings:
         rec["warnings"] = warnings

@@ -2,7 +2,7 @@
 
 A solver estimates a scene's unknowns, peak memory and time steps without building
 anything (:func:`ancf.build.estimate`, :func:`reference_fem.simulation.estimate`);
-:func:`check_budget` refuses (a :class:`SceneError` naming the field that sets the size,
+:func:`check_capacity` refuses (a :class:`SceneError` naming the field that sets the size,
 and how much memory the run would need) what cannot fit in the memory this machine
 has available, and returns warnings for what is large: more than half of that memory,
 more than ``WARN_UNKNOWNS`` unknowns or ``WARN_STEPS`` time steps. The estimates are
@@ -44,7 +44,7 @@ def gib(x: float) -> str:
     return f"{x / 2 ** 30:.3g} GiB"
 
 
-def check_budget(e: Estimate, solver: str, available: float | None = None) -> list[str]:
+def check_capacity(e: Estimate, solver: str, available: float | None = None) -> list[str]:
     """Raise a SceneError if the run cannot fit in memory; return warnings otherwise."""
     available = available_memory() if available is None else available
     if e.memory_bytes > available:

@@ -34,14 +34,14 @@ def _run(args) -> int:
     from contract.record import sanitize, write_record
     from contract.scene import load_scene
 
-    from .simulation import budget, check, run_scene
+    from .simulation import capacity, check, run_scene
 
     scene = load_scene(args.scene)
     settings = check(scene)
     json_out = check_output_file(args.json, "--json")
     out, fmt = (args.vtk, "vtk") if args.vtk else (args.xdmf, "xdmf") if args.xdmf else (None, None)
     out = check_output_dir(out, f"--{fmt}")
-    for w in budget(scene, settings):
+    for w in capacity(scene, settings):
         print(f"reference_fem: warning: {w}", file=sys.stderr)
     progress = Progress(scene.analysis.t_end, enabled=not args.quiet) if scene.analysis.kind == "dynamic" else None
     try:

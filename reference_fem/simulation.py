@@ -75,11 +75,11 @@ def estimate(scene: Scene, settings: FemSettings | None = None):
     return Estimate(n, mem, steps, "fem.cells_length / cells_height / degree")
 
 
-def budget(scene: Scene, settings: FemSettings | None = None) -> list[str]:
+def capacity(scene: Scene, settings: FemSettings | None = None) -> list[str]:
     """Refuse a scene that cannot fit in this machine's memory (SceneError); warnings."""
-    from contract.capacity import check_budget
+    from contract.capacity import check_capacity
 
-    return check_budget(estimate(scene, settings), "reference_fem")
+    return check_capacity(estimate(scene, settings), "reference_fem")
 
 
 def check_static(scene: Scene) -> None:
@@ -94,7 +94,7 @@ def _record(scene: Scene, settings: FemSettings) -> dict:
     rec = new_record("fenicsx", scene.to_dict())
     rec.update(continuum_model=settings.model, incompressibility=settings.incompressibility,
                fem=settings.to_dict(), dolfinx=backend.VERSION)
-    warnings = budget(scene, settings)
+    warnings = capacity(scene, settings)
     if warnings:
         rec["warnings"] = warnings
     return rec

@@ -28,7 +28,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from ancf.build import budget as ancf_budget
+from ancf.build import capacity as ancf_capacity
 from ancf.build import check as ancf_check
 from ancf.cli import main as ancf_main
 from ancf.simulation import run_scene
@@ -145,12 +145,12 @@ def test_ten_million_elements_are_refused_with_the_memory_they_would_need(capsys
     d = scene_with(ancf={"elements": 10 ** 7})
     with pytest.raises(SceneError, match=r"ancf\.elements: too large for this machine: ancf would need about "
                                          r"[0-9.]+ GiB for 6e\+07 unknowns"):
-        ancf_budget(scene_from_dict(d))
+        ancf_capacity(scene_from_dict(d))
 
 
 def test_a_large_run_is_warned_about():
-    from contract.capacity import Estimate, check_budget
-    w = check_budget(Estimate(2 * 10 ** 6, 1e9, 2 * 10 ** 6, "x"), "ancf", available=1.5e9)
+    from contract.capacity import Estimate, check_capacity
+    w = check_capacity(Estimate(2 * 10 ** 6, 1e9, 2 * 10 ** 6, "x"), "ancf", available=1.5e9)
     assert any("1e+06" in x or "2e+06 unknowns" in x for x in w) and any("time steps" in x for x in w)
     assert any("available" in x for x in w)
 
@@ -160,10 +160,10 @@ def test_a_large_run_is_warned_about():
     ({"degree": 20}, r"fem\.degree: must be an integer in \[1, 8\]"),
 ])
 def test_continuum_sizes_that_ran_until_killed_are_refused(fem, field):
-    from reference_fem.simulation import budget, check
+    from reference_fem.simulation import capacity, check
     scene = scene_from_dict(scene_with(fem=fem))
     with pytest.raises(SceneError, match=field):
-        budget(scene, check(scene))
+        capacity(scene, check(scene))
 
 
 # -- tracebacks where one line is promised -------------------------------------------------------
@@ -383,12 +383,12 @@ values = st.recursive(scalars, lambda inner: st.one_of(st.lists(inner, max_size=
 
 def _check_both(scene_dict) -> None:
     """Only a SceneError may come out of loading and checking a scene, in both solvers."""
-    from reference_fem.simulation import budget as fem_budget
+    from reference_fem.simulation import capacity as fem_capacity
     try:
         s = scene_from_dict(scene_dict)
     except SceneError:
         return
-    for check in (lambda: ancf_budget(s), lambda: fem_budget(s)):
+    for check in (lambda: ancf_capacity(s), lambda: fem_capacity(s)):
         try:
             check()
         except SceneError:

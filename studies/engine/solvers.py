@@ -39,10 +39,10 @@ def _run_fenicsx(scene: dict) -> dict:
 
 
 def _check_ancf(scene: dict) -> None:
-    from ancf.build import budget
+    from ancf.build import capacity
     from contract.scene import scene_from_dict
 
-    budget(scene_from_dict(scene))
+    capacity(scene_from_dict(scene))
 
 
 def _check_fenicsx(scene: dict) -> None:
