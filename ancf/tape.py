@@ -3,7 +3,7 @@
 Laws and formulations are written with the arithmetic of :class:`ancf.jet.Jet`
 (+, -, *, /, ** with a constant exponent, ``log``). Tracing runs that same code once on
 :class:`Node` objects, which record each operation as an instruction
-(opcode, operand, operand, constant). :func:`evaluate` then replays the tape in
+(opcode, operand, operand, constant). :func:`tape_batch` then replays the tape in
 second-order jet arithmetic at every quadrature point inside numba, so a newly
 registered law or formulation is compiled without new code. The numpy
 :class:`~ancf.jet.Jet` stays the reference (contract test).
@@ -99,75 +99,14 @@ def trace(material) -> tuple[np.ndarray, np.ndarray]:
 
 @njit(cache=True)
 def evaluate(ops, consts, a, J):
-    """W and its (a, J) partials, (6, ne, nq), at every point; the tape's jet replay."""
+    """W and its (a, J) partials, (6, ne, nq), at every point (a, J of shape (ne, nq)):
+    the batched replay :func:`tape_batch` over all points at once (one interpreter of the
+    tape; the numpy :class:`~ancf.jet.Jet` is its reference)."""
     ne, nq = a.shape
-    n = ops.shape[0]
-    out = np.empty((6, ne, nq))
-    R = np.zeros((n, 6))
-    for e in range(ne):
-        for q in range(nq):
-            for k in range(n):
-                op, x, y, c = ops[k, 0], ops[k, 1], ops[k, 2], consts[k]
-                if op == VAR_A:
-                    R[k, 0], R[k, 1], R[k, 2], R[k, 3], R[k, 4], R[k, 5] = a[e, q], 1.0, 0.0, 0.0, 0.0, 0.0
-                elif op == VAR_J:
-                    R[k, 0], R[k, 1], R[k, 2], R[k, 3], R[k, 4], R[k, 5] = J[e, q], 0.0, 1.0, 0.0, 0.0, 0.0
-                elif op == CONST:
-                    R[k, 0] = c
-                    for m in range(1, 6):
-                        R[k, m] = 0.0
-                elif op == ADD:
-                    for m in range(6):
-                        R[k, m] = R[x, m] + R[y, m]
-                elif op == ADDC:
-                    for m in range(6):
-                        R[k, m] = R[x, m]
-                    R[k, 0] += c
-                elif op == MULC:
-                    for m in range(6):
-                        R[k, m] = R[x, m] * c
-                elif op == MUL:
-                    x0, y0 = R[x, 0], R[y, 0]
-                    R[k, 0] = x0 * y0
-                    R[k, 1] = R[x, 1] * y0 + x0 * R[y, 1]
-                    R[k, 2] = R[x, 2] * y0 + x0 * R[y, 2]
-                    R[k, 3] = R[x, 3] * y0 + 2.0 * R[x, 1] * R[y, 1] + x0 * R[y, 3]
-                    R[k, 4] = R[x, 4] * y0 + R[x, 1] * R[y, 2] + R[x, 2] * R[y, 1] + x0 * R[y, 4]
-                    R[k, 5] = R[x, 5] * y0 + 2.0 * R[x, 2] * R[y, 2] + x0 * R[y, 5]
-                elif op == LOG:   # outside the domain (v <= 0): NaN, rejected as inadmissible
-                    v = R[x, 0]
-                    if v > 0.0:
-                        f, d1 = np.log(v), 1.0 / v
-                    else:
-                        f, d1 = np.nan, np.nan
-                    d2 = -d1 * d1
-                    a1, a2 = R[x, 1], R[x, 2]
-                    R[k, 0] = f
-                    R[k, 1] = d1 * a1
-                    R[k, 2] = d1 * a2
-                    R[k, 3] = d2 * a1 * a1 + d1 * R[x, 3]
-                    R[k, 4] = d2 * a1 * a2 + d1 * R[x, 4]
-                    R[k, 5] = d2 * a2 * a2 + d1 * R[x, 5]
-                else:  # POWC
-                    v = R[x, 0]
-                    if c == 2.0:
-                        f, d1, d2 = v * v, 2.0 * v, 2.0
-                    elif c == 3.0:
-                        f, d1, d2 = v * v * v, 3.0 * v * v, 6.0 * v
-                    else:   # not f / v: v = 0 (I1 - 3 at rest) is a valid point
-                        f = v ** c
-                        d1 = c * v ** (c - 1.0)
-                        d2 = c * (c - 1.0) * v ** (c - 2.0)
-                    a1, a2 = R[x, 1], R[x, 2]
-                    R[k, 0] = f
-                    R[k, 1] = d1 * a1
-                    R[k, 2] = d1 * a2
-                    R[k, 3] = d2 * a1 * a1 + d1 * R[x, 3]
-                    R[k, 4] = d2 * a1 * a2 + d1 * R[x, 4]
-                    R[k, 5] = d2 * a2 * a2 + d1 * R[x, 5]
-            for m in range(6):
-                out[m, e, q] = R[n - 1, m]
-    return out
+    m = ne * nq
+    R = np.empty((ops.shape[0], 6, m))
+    tape_batch(ops, consts, np.ascontiguousarray(a).reshape(m), np.ascontiguousarray(J).reshape(m), R, m, 2)
+    return R[ops.shape[0] - 1].copy().reshape(6, ne, nq)
 
 
 # -- batched replay: the compiled step loop (:mod:`ancf.compiled_steps`) ---------------------------
