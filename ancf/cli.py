@@ -89,7 +89,7 @@ def _list(registry: dict) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from contract.console import command
+    from contract.console import command, import_modules
 
     p = argparse.ArgumentParser(prog="ancf", description="2D ANCF beams with hyperelastic laws")
     sub = p.add_subparsers(dest="command", required=True)
@@ -100,12 +100,15 @@ def main(argv: list[str] | None = None) -> int:
                                                   "data: ParaView's Warp By Vector shows the deformed beam; .vtu per "
                                                   "output time, .pvd) and, for dynamics, a frame strip PNG here")
     r.add_argument("--quiet", action="store_true", help="no progress bar")
-    sub.add_parser("elements", help="list the registered elements")
-    sub.add_parser("laws", help="list the registered laws")
+    for q in (r, sub.add_parser("elements", help="list the registered elements"),
+              sub.add_parser("laws", help="list the registered laws")):
+        q.add_argument("--import", dest="imports", action="append", default=[], metavar="MODULE",
+                       help="import a module first (one that registers a law or an element)")
     sub.add_parser("formulations", help="list the 2D formulations")
     args = p.parse_args(argv)
 
     def body() -> int:
+        import_modules(getattr(args, "imports", ()))
         if args.command == "run":
             return _run(args)
         from .elements import ELEMENTS

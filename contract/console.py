@@ -67,6 +67,21 @@ def check_output_dir(path: str | Path | None, flag: str) -> Path | None:
     return p
 
 
+def import_modules(names) -> None:
+    """Import the user's modules named by ``--import`` (each registers its laws in
+    ``mechanics.laws`` or its elements in ``ancf.elements`` on import); a module that
+    cannot be found is a :class:`SceneError` naming the flag."""
+    import importlib
+    for name in names or ():
+        try:
+            importlib.import_module(name)
+        except ModuleNotFoundError as e:
+            if e.name and name.startswith(e.name):
+                raise SceneError(f"--import: no module named {name!r} (a module on the Python path, "
+                                 f"e.g. examples.cubic_slope)") from None
+            raise
+
+
 def by_interrupt(e: BaseException) -> bool:
     """Is ``e`` a Ctrl-C in disguise? A KeyboardInterrupt raised while compiled code
     (numba) runs comes out as a SystemError whose cause is the interrupt."""

@@ -30,12 +30,13 @@ def _s(v, fmt: str = ".3f") -> str:
 
 
 def _run(args) -> int:
-    from contract.console import Progress, check_output_dir, check_output_file
+    from contract.console import Progress, check_output_dir, check_output_file, import_modules
     from contract.record import sanitize, write_record
     from contract.scene import load_scene
 
     from .simulation import capacity, check, run_scene
 
+    import_modules(args.imports)
     scene = load_scene(args.scene)
     settings = check(scene)
     json_out = check_output_file(args.json, "--json")
@@ -212,6 +213,8 @@ def main(argv: list[str] | None = None) -> int:
                                                 "shows the deformed beam")
     g.add_argument("--xdmf", metavar="DIR", help="the same as XDMF")
     r.add_argument("--quiet", action="store_true", help="no progress bar")
+    r.add_argument("--import", dest="imports", action="append", default=[], metavar="MODULE",
+                   help="import a module first (one that registers a law in mechanics.laws)")
     c = sub.add_parser("converge", help="mesh refinement study of one scene")
     c.add_argument("scene")
     c.add_argument("--levels", type=int, default=4, help="number of meshes (>= 3, default 4)")
