@@ -44,7 +44,7 @@ def estimate(scene: Scene) -> Estimate:
     nodes = s.elements * (nn - 1) + 1
     n = 2 * nk * nodes
     b = 2 * nk * nn - 1
-    nq = math.prod(quadrature(scene))
+    nq = math.prod(_quadrature(scene))
     words = (9 * b + 34) * n + s.elements * (26 * nq + 2 * el.dof) + (3 * n * n if n < 3000 else 0)
     a = scene.analysis
     steps = math.ceil(a.t_end / a.dt) if a.kind == "dynamic" else None
@@ -61,19 +61,30 @@ def build_material(spec: MaterialSpec) -> Material:
                     dict(spec.constants), spec.penalty, spec.density)
 
 
+# The public functions below check the scene's names once (:func:`check`); the private
+# ones take a checked scene.
+
+def _aspect(scene: Scene) -> float:
+    return scene.beam.length / scene.ancf.elements / scene.beam.height
+
+
+def _quadrature(scene: Scene) -> tuple[int, int]:
+    s = scene.ancf
+    if s.quadrature is not None:
+        return tuple(s.quadrature)
+    return default_quadrature(get_element(s.element), get_formulation(scene.material.formulation).penalised,
+                              _aspect(scene))
+
+
 def aspect(scene: Scene) -> float:
     """l_e / h of the scene's mesh."""
-    return scene.beam.length / check(scene).ancf.elements / scene.beam.height
+    return _aspect(check(scene))
 
 
 def quadrature(scene: Scene) -> tuple[int, int]:
     """The elastic rule: the scene's, or the element's default for its formulation kind
     and l_e / h (:func:`ancf.rank.default_quadrature`)."""
-    s = check(scene).ancf
-    if s.quadrature is not None:
-        return tuple(s.quadrature)
-    return default_quadrature(get_element(s.element), get_formulation(scene.material.formulation).penalised,
-                              aspect(scene))
+    return _quadrature(check(scene))
 
 
 def quadrature_warnings(scene: Scene) -> list[str]:
@@ -82,14 +93,14 @@ def quadrature_warnings(scene: Scene) -> list[str]:
     if s.quadrature is None:
         return []
     return rule_warnings(get_element(s.element), tuple(s.quadrature),
-                         get_formulation(scene.material.formulation).penalised, aspect(scene))
+                         get_formulation(scene.material.formulation).penalised, _aspect(scene))
 
 
 def build_model(scene: Scene) -> BeamModel:
     s = check(scene).ancf
     mesh = Mesh(get_element(s.element), s.elements, scene.beam.length,
                 scene.beam.height, scene.beam.width)
-    return BeamModel(mesh, build_material(scene.material), gauss(*quadrature(scene)),
+    return BeamModel(mesh, build_material(scene.material), gauss(*_quadrature(scene)),
                      fixed_dofs(mesh, scene.supports.left, scene.supports.clamp))
 
 
