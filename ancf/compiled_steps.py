@@ -64,7 +64,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from mechanics import time_loop
+from mechanics import alpha_family, time_loop
 from .dgkernel import assemble_dg, dg_scratch
 from .kernels import (INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, col_constrain,
                       col_ldlt, col_ldlt_solve, col_matvec, assemble_fused, step_scratch, strain_energy_fused)
@@ -83,6 +83,12 @@ KAPPA = 0.5                  # chord/modified: refactor when |R_k| > KAPPA |R_(k
 # per halving), and it spares the verifying residual of 85 % of the steps.
 ROUNDOFF = 1e-2
 MAX_MODIFIED = 8             # modified: at most this many iterations on one factorisation per step
+
+# The family's predictor and updates, as mechanics.alpha_family writes them for every
+# stepper, compiled per entry (plain arithmetic, so they run on floats here)
+_predict = njit(inline="always")(alpha_family.predict)
+_update = njit(inline="always")(alpha_family.update)
+_midpoint = njit(inline="always")(alpha_family.midpoint)
 
 # Counters (an int64 array, cumulative over a run).
 C_STEPS, C_ITERATIONS, C_RESIDUALS, C_TANGENTS, C_FACTORS, C_SOLVES, C_REJECTED, C_ENERGIES = range(8)
@@ -170,7 +176,7 @@ def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewt
     bh2 = beta * h * h
     c = (1.0 - am) / bh2
     for i in range(n):
-        u_pred[i] = u_n[i] + h * v_n[i] + 0.5 * h * h * a_n[i]
+        u_pred[i] = _predict(u_n[i], v_n[i], a_n[i], h)
         u[i] = u_pred[i]
     col_matvec(Mc, first, a_n, Ma_n)
     scale = _norm2_free(f_ext, is_free) + _norm2_free(Ma_n, is_free)
@@ -217,8 +223,7 @@ def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewt
         if dumax <= (utol if stop == STOP_BOTH else ROUNDOFF * utol) * max(umax, hbeam):
             break
     for i in range(n):
-        a[i] = (u[i] - u_pred[i]) / bh2 + a_n[i]
-        v[i] = v_n[i] + h * ((1.0 - gamma) * a_n[i] + gamma * a[i])
+        a[i], v[i] = _update(u[i], u_pred[i], v_n[i], a_n[i], h, beta, gamma)
     return OK, it
 
 
@@ -267,8 +272,7 @@ def step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton,
         if dumax <= 1e-3 * utol * max(umax, hbeam):
             break
     for i in range(n):
-        v[i] = 2.0 / h * (u[i] - u_n[i]) - v_n[i]
-        a[i] = (v[i] - v_n[i]) / h
+        a[i], v[i] = _midpoint(u_n[i], u[i], v_n[i], h)
     return OK, it
 
 
