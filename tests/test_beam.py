@@ -133,3 +133,26 @@ def test_compiled_force_only_path_matches_the_numpy_reference(element, law, form
     u = bent_state(model, rng)
     ref = model.internal_force_numpy(u)
     np.testing.assert_allclose(model.internal_force(u), ref, rtol=0, atol=1e-12 * np.abs(ref).max())
+
+
+@pytest.mark.parametrize("element,law,form", CASES)
+def test_fused_kernel_matches_the_numpy_reference(element, law, form, rng):
+    """The chain rule is written three times: Material.evaluate (numpy, the reference),
+    kernels.assemble_force_tangent (band storage, the Python solvers) and
+    kernels.element_terms (column storage, inside assemble_fused of the compiled steps
+    and statics). This holds the third equal to the first, force and tangent."""
+    from ancf.kernels import OK, assemble_fused, col_matvec, step_scratch
+
+    model = make_model(element, law, form)
+    u = bent_state(model, rng)
+    dN, w, dofs, ops, consts, first = model.fused
+    n, b = u.size, int(model.mesh.bandwidth)
+    f, Kc = np.empty(n), np.zeros((n, b + 1))
+    assert assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, f, Kc, True,
+                          *step_scratch(ops.shape[0], dN.shape[0])) == OK
+    f_ref, K_ref = model.internal_force_and_tangent_numpy(u)
+    np.testing.assert_allclose(f, f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())
+    x, y = rng.standard_normal(n), np.empty(n)
+    col_matvec(Kc, first, x, y)
+    np.testing.assert_allclose(y, K_ref.to_sparse() @ x, rtol=0,
+                               atol=1e-12 * np.abs(K_ref.ab).max() * np.abs(x).sum())
