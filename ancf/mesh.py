@@ -14,7 +14,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .elements import ElementSpec
+from .elements import KINDS, ElementSpec
 
 
 @dataclass(frozen=True)
@@ -88,9 +88,11 @@ class Mesh:
         return np.array([(node * self.n_kinds + k) * 2 + i for k in ks for i in (0, 1)], dtype=int)
 
 
-# Which nodal coordinate kinds each support fixes at x = 0.
+# Which nodal coordinate kinds each support fixes at x = 0: the face clamp fixes the
+# end face, r(0, y) = (0, y) for every y, so every pure y-derivative kind (r, r_y, r_yy,
+# ...: no x-derivative) of the element, whatever its degree in y.
 SUPPORT_KINDS = {
-    ("clamp", "face"): ("r", "r_y", "r_yy", "r_yyy"),  # the end face: all y-derivatives
+    ("clamp", "face"): "face",                         # the end face: all y-derivatives
     ("clamp", "all"): None,                            # every nodal coordinate of the node
     ("pin", None): ("r",),
 }
@@ -98,4 +100,6 @@ SUPPORT_KINDS = {
 
 def fixed_dofs(mesh: Mesh, left: str, clamp: str | None) -> np.ndarray:
     kinds = SUPPORT_KINDS[(left, clamp if left == "clamp" else None)]
+    if kinds == "face":
+        kinds = tuple(k for k in mesh.element.kinds if KINDS[k][0] == 0)
     return mesh.dofs(0, mesh.element.kinds if kinds is None else kinds)
