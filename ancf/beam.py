@@ -11,10 +11,16 @@ and w the quadrature weights times the element volume l_e h w_b:
 Only what a scene calls for is built (:mod:`ancf.build` says which effects it built):
 the mass matrix only for dynamics, gravity only when the scene has it, the penalty
 only in the penalised formulations.
+
+An element with a pressure field (``ElementSpec.pressure``) in a penalised formulation
+takes the penalty on the element-wise projection of J - 1 (:mod:`ancf.pressure`) instead
+of at the points: the points then see the material without its penalty
+(:attr:`BeamModel.pointwise`), and the model runs on the Python solvers, not the
+compiled loops, which know only pointwise energies (:attr:`BeamModel.compiled`).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
@@ -35,6 +41,30 @@ class BeamModel:
     material: Material
     rule: Rule                 # quadrature of the elastic terms
     fixed: np.ndarray          # fixed global dofs (homogeneous)
+
+    @cached_property
+    def pressure(self):
+        """The projected penalty (:class:`ancf.pressure.ProjectedPenalty`) of an element
+        with a pressure field in a penalised formulation; None: the penalty, if any, is
+        pointwise."""
+        m = self.mesh
+        if not (m.element.pressure and self.material.formulation.penalised):
+            return None
+        from .pressure import ProjectedPenalty
+        q = m.element.pressure_tabulate(self.rule.xi, self.rule.eta, m.element_length, m.height)
+        return ProjectedPenalty(q, self._w, self._B, self.material.penalty)
+
+    @cached_property
+    def pointwise(self) -> Material:
+        """The material the quadrature points see: without its penalty where the pressure
+        field carries it."""
+        return self.material if self.pressure is None else replace(self.material, penalty=0.0)
+
+    @property
+    def compiled(self) -> bool:
+        """Can the compiled loops (:mod:`ancf.compiled_statics`, :mod:`ancf.compiled_steps`)
+        run this model? Not with a pressure field: they know only pointwise energies."""
+        return self.pressure is None
 
     @property
     def elastic_effects(self) -> list[str]:
@@ -102,15 +132,19 @@ class BeamModel:
         f = F.reshape(F.shape[0], F.shape[1], 4)
         a = np.einsum("eqi,eqi->eq", f, f)
         J = f[..., 0] * f[..., 3] - f[..., 1] * f[..., 2]
-        return float(np.sum(self.energy_derivatives(a, J)[0] * self._w))
+        U = float(np.sum(self.energy_derivatives(a, J)[0] * self._w))
+        return U if self.pressure is None else U + self.pressure.energy(F)
 
     def internal_force(self, u: np.ndarray) -> np.ndarray:
         """Internal force (N) at u, by the compiled kernel without the tangent."""
         return self._kernel(u, with_tangent=False)[0]
 
     def internal_force_numpy(self, u: np.ndarray) -> np.ndarray:
-        _, P, _ = self.material.evaluate(self._checked(self.gradients(u)), tangent=False)
+        F = self._checked(self.gradients(u))
+        _, P, _ = self.pointwise.evaluate(F, tangent=False)
         fe = P.reshape(P.shape[0], -1) @ self._Bw_flat      # (ne, nd)
+        if self.pressure is not None:
+            fe = fe + self.pressure.element_terms(F, tangent=False)[0]
         return np.bincount(self._dofs.ravel(), fe.ravel(), minlength=self.mesh.n_dof)
 
     @cached_property
@@ -129,7 +163,7 @@ class BeamModel:
     def _tape(self):
         """The material's energy traced once (:mod:`ancf.tape`), replayed compiled."""
         from .tape import trace
-        return trace(self.material)
+        return trace(self.pointwise)
 
     @cached_property
     def fused(self) -> tuple:
@@ -147,6 +181,21 @@ class BeamModel:
         """The arrays of the compiled static Newton (:mod:`ancf.compiled_statics`)."""
         from .compiled_statics import StaticKernel
         return StaticKernel(self)
+
+    def roundoff_floor(self, u: np.ndarray) -> float:
+        """eps ||sum of |terms| of f_int(u)||_2 over the free dofs (N): the size of the
+        force's round-off; nan if det F <= 0 at u."""
+        if self.compiled:
+            return self.static_kernel.roundoff_floor(u)
+        try:
+            F = self._checked(self.gradients(u))
+        except InadmissibleState:
+            return float("nan")
+        _, P, _ = self.pointwise.evaluate(F, tangent=False)
+        fe = np.abs(P.reshape(P.shape[0], -1)) @ np.abs(self._Bw_flat) + self.pressure.magnitudes(F)
+        out = np.bincount(self._dofs.ravel(), fe.ravel(), minlength=self.mesh.n_dof)
+        out[self.fixed] = 0.0
+        return float(np.finfo(float).eps * np.linalg.norm(out))
 
     def energy_derivatives(self, a: np.ndarray, J: np.ndarray) -> np.ndarray:
         """W and its (a, J) partials, (6, *a.shape), by the compiled tape (the numpy
@@ -169,7 +218,13 @@ class BeamModel:
         m = self.mesh
         f, ab = assemble_force_tangent(f4, WD, self._dN, self._w, self._dofs, m.bandwidth,
                                        m.n_dof, with_tangent)
-        return f, (Banded(ab, m.bandwidth) if with_tangent else None)
+        K = Banded(ab, m.bandwidth) if with_tangent else None
+        if self.pressure is not None:
+            fe, Ke = self.pressure.element_terms(F, with_tangent)
+            f = f + np.bincount(self._dofs.ravel(), fe.ravel(), minlength=m.n_dof)
+            if with_tangent:
+                K = Banded(K.ab + self.pattern.assemble(Ke).ab, m.bandwidth)
+        return f, K
 
     def discrete_gradient_force_and_tangent(self, u0: np.ndarray, u1: np.ndarray):
         """f_dg(u0, u1) with (u1 - u0) . f_dg = U(u1) - U(u0), and the midpoint tangent / 2.
@@ -205,15 +260,24 @@ class BeamModel:
         D[2] = 0.5 * np.einsum("k,keq->eq", w3, WD[2, 7:10] + WD[2, 10:13])
         m = self.mesh
         f, ab = assemble_force_tangent(fm, D, self._dN, self._w, self._dofs, m.bandwidth, m.n_dof, True)
-        return f, Banded(0.5 * ab, m.bandwidth)
+        K = Banded(0.5 * ab, m.bandwidth)
+        if self.pressure is not None:                          # its own exact discrete gradient
+            fe, Ke = self.pressure.discrete_gradient_terms(F0, F1)
+            f = f + np.bincount(self._dofs.ravel(), fe.ravel(), minlength=m.n_dof)
+            K = Banded(K.ab + self.pattern.assemble(Ke).ab, m.bandwidth)
+        return f, K
 
     def internal_force_and_tangent_numpy(self, u: np.ndarray) -> tuple[np.ndarray, Banded]:
-        _, P, A = self.material.evaluate(self._checked(self.gradients(u)), tangent=True)
+        F = self._checked(self.gradients(u))
+        _, P, A = self.pointwise.evaluate(F, tangent=True)
         ne, nq = P.shape[:2]
         fe = P.reshape(ne, -1) @ self._Bw_flat
-        f = np.bincount(self._dofs.ravel(), fe.ravel(), minlength=self.mesh.n_dof)
         AB = A @ self._B[None]                              # (ne, nq, 4, nd)
         Ke = self._Bw_flat.T @ AB.reshape(ne, nq * 4, -1)   # (ne, nd, nd)
+        if self.pressure is not None:
+            fp, Kp = self.pressure.element_terms(F)
+            fe, Ke = fe + fp, Ke + Kp
+        f = np.bincount(self._dofs.ravel(), fe.ravel(), minlength=self.mesh.n_dof)
         return f, self.pattern.assemble(Ke)
 
     # -- loads and inertia (integrated exactly, whatever the elastic rule) ------------

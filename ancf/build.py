@@ -27,9 +27,23 @@ def check(scene: Scene) -> Scene:
     the allowed values); an ANCF run needs the [ancf] table."""
     if scene.ancf is None:
         raise SceneError("ancf: the scene has no [ancf] table (element, elements)")
-    return check_names(scene, laws=LAWS,
-                       formulations=FORMULATIONS,
-                       integrators=INTEGRATORS, elements=ELEMENTS)
+    check_names(scene, laws=LAWS, formulations=FORMULATIONS, integrators=INTEGRATORS, elements=ELEMENTS)
+    _check_pressure_rule(scene)
+    return scene
+
+
+def _check_pressure_rule(scene: Scene) -> None:
+    """A rule the scene chose must resolve the element's pressure field where it carries
+    the penalty (a tensor rule with more points than the field's degree in x and in y)."""
+    s, el = scene.ancf, get_element(scene.ancf.element)
+    if not (el.pressure and s.quadrature is not None and get_formulation(scene.material.formulation).penalised):
+        return
+    dx = max(p.degree()[0] for p in el.pressure_polys)
+    dy = max(p.degree()[1] for p in el.pressure_polys)
+    if s.quadrature[0] <= dx or s.quadrature[1] <= dy:
+        raise SceneError(f"ancf.quadrature: {list(s.quadrature)} does not resolve the pressure field of "
+                         f"{el.name} (degree {dx} in x, {dy} in y): at least [{dx + 1}, {dy + 1}] points; "
+                         "or leave quadrature out for the element's default")
 
 
 def estimate(scene: Scene) -> Estimate:

@@ -28,6 +28,7 @@ from mechanics.laws import get_law
 
 from .build import build_material
 from .elements import KINDS, ElementSpec, get_element
+from .rank import default_quadrature
 from .beam import BeamModel
 from .formulations import FORMULATIONS
 from .mesh import Mesh, fixed_dofs
@@ -60,10 +61,13 @@ def paper_material(law: str, formulation: str, penalty: float = paper.PENALTY):
 
 def small_model(element, law: str = "yeoh", formulation: str = "plane-stress", n: int = 3,
                 penalty: float = 20e6, length: float = 0.16) -> BeamModel:
-    """n elements of the cantilever's section, clamped face, quadrature [3, 2]."""
+    """n elements of the cantilever's section, clamped face, quadrature [3, 2] (an element
+    with a pressure field: its default rule, which resolves the pressure)."""
     mesh = Mesh(_spec(element), n, length, 0.005, 0.007)
-    return BeamModel(mesh, paper_material(law, formulation, penalty), gauss(3, 2),
-                     fixed_dofs(mesh, "clamp", "face"))
+    material = paper_material(law, formulation, penalty)
+    rule = (3, 2) if not mesh.element.pressure else \
+        default_quadrature(mesh.element, material.formulation.penalised, mesh.element_length / mesh.height)
+    return BeamModel(mesh, material, gauss(*rule), fixed_dofs(mesh, "clamp", "face"))
 
 
 def bent_state(model: BeamModel, rng, angle: float = 0.2, noise: float = 1e-6) -> np.ndarray:

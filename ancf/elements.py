@@ -14,7 +14,13 @@ To add an element, register a spec::
         name="HB2n-cubic", basis=("1", "x", "y", "x*y", "x^2", "y^2", "x*y^2", "x^3", "y^3", "x*y^3"),
         nodes=(0.0, 1.0), kinds=("r", "r_x", "r_y", "r_yy", "r_yyy")))
 
-(only if its kinds are known to :data:`KINDS`); scenes can then name it.
+(a kind is "r" and its derivatives, :data:`KINDS`); scenes can then name it.
+
+An element may carry a pressure field (``pressure``: polynomials in x, y, one field per
+element, discontinuous between elements). In a penalised formulation the penalty then
+acts on the element-wise L2 projection of J - 1 onto that field instead of at every
+point: the u-p mixed form with its pressure condensed per element
+(:mod:`ancf.pressure`), the remedy for volumetric locking.
 """
 from __future__ import annotations
 
@@ -26,13 +32,29 @@ import numpy as np
 from contract.errors import UnknownName
 from .polynomial import Poly, parse
 
-# Nodal coordinate kind -> (derivative order in x, in y). Physical value = dimensionless
-# value / (l_e^dx h^dy), so the physical shape function is the dimensionless one
-# times l_e^dx h^dy.
-KINDS: dict[str, tuple[int, int]] = {
-    "r": (0, 0), "r_x": (1, 0), "r_y": (0, 1), "r_yy": (0, 2), "r_yyy": (0, 3),
-    "r_xx": (2, 0), "r_xy": (1, 1),
-}
+class _Kinds(dict):
+    """Nodal coordinate kind -> (derivative order in x, in y), read from the name: "r",
+    then "_" and the derivatives, x's before y's ("r_x", "r_yy", "r_xyy", ...).
+    Physical value = dimensionless value / (l_e^dx h^dy), so the physical shape
+    function is the dimensionless one times l_e^dx h^dy."""
+
+    def __missing__(self, kind: str) -> tuple[int, int]:
+        head, _, d = kind.partition("_")
+        nx = len(d) - len(d.lstrip("x"))
+        if head != "r" or not d or d != "x" * nx + "y" * (len(d) - nx):
+            raise KeyError(kind)
+        self[kind] = (nx, len(d) - nx)
+        return self[kind]
+
+    def __contains__(self, kind) -> bool:
+        try:
+            self[kind]
+        except KeyError:
+            return False
+        return True
+
+
+KINDS: dict[str, tuple[int, int]] = _Kinds({"r": (0, 0)})
 
 
 @dataclass(frozen=True)
@@ -46,11 +68,15 @@ class ElementSpec:
     # (penalised formulation?, smallest l_e / h, (points along x, across the thickness)),
     # the first that matches a scene wins; empty: the rule exact for the basis (safe, dear)
     quadrature: tuple[tuple[bool, float, tuple[int, int]], ...] = ()
+    # the element-wise pressure basis of the mixed form (penalised formulations); empty:
+    # the penalty at every quadrature point
+    pressure: tuple[str, ...] = ()
 
     def __post_init__(self):
         unknown = [k for k in self.kinds if k not in KINDS]
         if unknown:
-            raise ValueError(f"element {self.name}: unknown kinds {unknown}; known: {sorted(KINDS)}")
+            raise ValueError(f"element {self.name}: unknown kinds {unknown}; a kind is 'r' or 'r_' and "
+                             "its derivatives, x's before y's ('r_x', 'r_yy', 'r_xyy')")
         if not (self.nodes[0] == 0.0 and self.nodes[-1] == 1.0 and list(self.nodes) == sorted(self.nodes)):
             raise ValueError(f"element {self.name}: nodes must rise from 0 to 1, got {self.nodes}")
         if len(self.basis) != len(self.nodes) * len(self.kinds):
@@ -60,6 +86,16 @@ class ElementSpec:
     @cached_property
     def polys(self) -> tuple[Poly, ...]:
         return tuple(parse(b) for b in self.basis)
+
+    @cached_property
+    def pressure_polys(self) -> tuple[Poly, ...]:
+        return tuple(parse(b) for b in self.pressure)
+
+    def pressure_tabulate(self, xi, eta, length: float, height: float) -> np.ndarray:
+        """The pressure basis at points (xi, eta), (npts, n_pressure), in the coordinates
+        of the displacement basis (the projection depends only on the span)."""
+        xi, eta = np.ravel(xi), np.ravel(eta)
+        return np.stack([p.scaled(length, height)(xi, eta) for p in self.pressure_polys], axis=-1)
 
     @property
     def n_shape(self) -> int:
@@ -141,3 +177,17 @@ register_element(ElementSpec(
     "HB2n-16", ("1", "x", "y", "x*y", "x^2", "y^2", "x*y^2", "x^3"), (0.0, 1.0),
     ("r", "r_x", "r_y", "r_yy"), "Patel & Shabana 2018",
     ((False, 0.3, (3, 2)), (False, 0.0, (3, 3)), (True, 0.3, (3, 2)), (True, 0.0, (3, 3)))))
+# Found with the harness (issue 20; README "An element for incompressible rubber"): HB2n-16
+# made cubic along the beam in every cross-section mode and quartic across it (kinds r, r_y,
+# ..., r_yyyy and their x-slopes: 10 kinds, 40 dof), with an element pressure linear in x and
+# cubic in y that carries the penalty (ancf.pressure). The rules: [4, 5] is the exact rule
+# of the basis and the cheapest without spurious modes; the finite-strain test wants [5, 5]
+# below l_e / h = 1 (seen/true 0.18 at 0.3 with [4, 5], 0.47 with [5, 5] down to 0.1) and
+# [5, 6] below 0.1 (0.40 at 0.05; every rule tried falls under 0.3 at l_e / h <= 0.025).
+register_element(ElementSpec(
+    "HB2n-40p", tuple(f"x^{i}*y^{j}" for j in range(5) for i in range(4)), (0.0, 1.0),
+    ("r", "r_x", "r_y", "r_xy", "r_yy", "r_xyy", "r_yyy", "r_xyyy", "r_yyyy", "r_xyyyy"),
+    "this harness: cubic Hermite along, quartic across, element pressure {1, x} x {1, y, y^2, y^3}",
+    ((False, 1.0, (4, 5)), (False, 0.1, (5, 5)), (False, 0.0, (5, 6)),
+     (True, 1.0, (4, 5)), (True, 0.1, (5, 5)), (True, 0.0, (5, 6))),
+    pressure=("1", "x", "y", "x*y", "y^2", "x*y^2", "y^3", "x*y^3")))

@@ -56,8 +56,9 @@ class Integrator:
     @property
     def advance(self):
         """Compiled steps from s towards t_out (:meth:`ancf.compiled_steps.CompiledLoop.advance`),
-        for a :class:`BeamModel` (another model steps in Python); None: Python steps."""
-        return self._loop.advance if self.compiled and isinstance(self.model, BeamModel) else None
+        for a model the compiled loop can run (:attr:`BeamModel.compiled`; another model steps
+        in Python); None: Python steps."""
+        return self._loop.advance if self.compiled and getattr(self.model, "compiled", False) else None
 
     def __init__(self, model: BeamModel, M: Banded, loads: dict[str, np.ndarray], rho_inf: float = 0.5,
                  newton_rtol: float = 1e-8, max_iterations: int = 25, line_points: int = 4,

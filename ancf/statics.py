@@ -50,7 +50,10 @@ def newton(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol: float,
     """Solve f_int(u) = target on the free dofs, starting at u0 (fixed dofs stay as in u0):
     :func:`newton_reference`'s iteration, compiled (:mod:`ancf.compiled_statics`). An attempt
     whose unpivoted LDL^T meets a zero pivot is redone by :func:`newton_reference`, whose
-    pivoted LU decides whether the tangent is singular."""
+    pivoted LU decides whether the tangent is singular. A model the compiled loop cannot
+    run (:attr:`ancf.beam.BeamModel.compiled`) goes to :func:`newton_reference` at once."""
+    if not model.compiled:
+        return newton_reference(model, u0, target, atol, max_iterations, utol, line_search)
     outcome, u, its, residuals = model.static_kernel.newton(u0, target, atol, max_iterations, utol, line_search)
     if outcome == compiled_statics.CONVERGED:
         return NewtonResult(u, True, its, residuals)
@@ -229,7 +232,7 @@ def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
     scale = max(np.linalg.norm(f_ext[free]), np.linalg.norm(f0), 1e-30)
     # never below the force's round-off (small loads on a stiff section: rtol |f_ext|
     # can lie under it, and then only luck in the last digits converges)
-    atol = max(rtol * scale, ROUNDOFF_FLOOR * model.static_kernel.roundoff_floor(u))
+    atol = max(rtol * scale, ROUNDOFF_FLOOR * model.roundoff_floor(u))
 
     def finish(status, reason, u, verdict=None, stability=None):
         return StaticResult(u, status, reason, counts.newton_iterations, counts.accepted,

@@ -18,7 +18,7 @@ from ancf.statics import solve_static
 from contract import paper
 from contract.scene import scene_from_dict
 
-from .conftest import law_scene
+from .conftest import contract_rule, law_scene
 
 # dense eigenvalues of S (||S|| <= ~5) carry an error ~ eps ||S||; a count at a shift is
 # compared only where no eigenvalue lies within this of the shift
@@ -36,7 +36,7 @@ def scaled_dense(model, u):
 def states(law, formulation, element):
     """The cantilever (4 elements) at equilibria under 0.3, 1 and 3 times gravity, and
     two states off equilibrium (a deterministic perturbation: indefinite tangents)."""
-    d = law_scene(law, formulation, element, 4, quadrature=(3, 2), name="inertia")
+    d = law_scene(law, formulation, element, 4, quadrature=contract_rule(element), name="inertia")
     scene = scene_from_dict(d)
     model = build_model(scene)
     f = sum(external_loads(model, scene).values())
