@@ -17,7 +17,7 @@ test-slow: setup
 
 study: setup
 	$(PY) -m studies run all
-	$(PY) -m studies card paper HB2n-20 --import examples.transversely_cubic
+	$(PY) -m studies card paper HB2n-40p HB2n-20 --import examples.transversely_cubic
 	$(PY) -m studies card HB2n-20xy --import examples.cubic_slope
 
 # make study, then the heavy 3D levels (issue 11): the converged 3D cantilever of the
