@@ -164,7 +164,27 @@ def measure_checks(element: str, tiny: bool = False) -> dict:
     return {"element": element, "definition": repr(spec), "source": source_hash("ancf"),
             "nodality": checks.nodality(spec), "reference_state": checks.reference_state(spec),
             "mass": checks.mass(spec), "formulations": forms, "patch": patch,
-            "conformity": checks.conformity(spec), "rank": rank, "tiny": tiny}
+            "conformity": checks.conformity(spec), "rank": rank, "slender_strains": slender_strains(element, g),
+            "clamp_probe": clamp_probe(element, g), "tiny": tiny}
+
+
+def slender_strains(element: str, g: dict) -> list[dict]:
+    """The slender probe's mechanism: its states solved here (small meshes, the linear
+    regime) and split by :func:`ancf.checks.strain_split`, with Timoshenko's shear share
+    1.2 (h / L)^2 beside each."""
+    from ancf.checks import strain_split
+    from ancf.simulation import run_scene
+    from contract.scene import scene_from_dict
+
+    rows = []
+    for ratio in g["slender"]["slenderness"]:
+        for n in g["slender"]["counts"]:
+            rec, (model, res) = run_scene(scene_from_dict(slender_scene(element, ratio, n)))
+            if rec["status"] != "converged":
+                continue
+            rows.append({"slenderness": ratio, "n": n, **strain_split(model, res.u),
+                         "beam_shear_share": 1.2 / ratio ** 2 / (1.0 + 1.2 / ratio ** 2)})
+    return rows
 
 
 def checks_path(out: Path, element: str) -> Path:
@@ -219,3 +239,35 @@ def run_cards(elements: list[str], out: Path, tiny: bool = False, imports=(), wo
         from .engine.pipeline import build_reports
         build_reports(Path(out), tiny, log)
     return paths
+
+
+def clamp_probe(element: str, g: dict) -> dict | None:
+    """For an element whose face clamp fixes more than r and r_y (r_yy, ...: the clamped
+    face cannot contract, as in the continuum): the most slender probe's error against
+    beam theory on the probe's meshes, clamped as scenes clamp it and with only r and r_y
+    fixed (in memory), so the card can say what the clamp does to the order. None for
+    other elements."""
+    from dataclasses import replace
+
+    from ancf.build import build_model, external_loads
+    from ancf.elements import KINDS, get_element
+    from ancf.statics import solve_static
+    from contract.scene import scene_from_dict
+
+    spec = get_element(element)
+    extra = [k for k in spec.kinds if KINDS[k][0] == 0 and KINDS[k][1] >= 2]
+    if not extra:
+        return None
+    ratio = max(g["slender"]["slenderness"])
+    exact = beam_theory(ratio)[1]
+    out = {"slenderness": ratio, "freed": extra, "counts": list(g["slender"]["counts"]), "face": [], "freed_errors": []}
+    for n in g["slender"]["counts"]:
+        scene = scene_from_dict(slender_scene(element, ratio, n))
+        model = build_model(scene)
+        f = sum(external_loads(model, scene).values())
+        freed = replace(model, fixed=model.mesh.dofs(0, ("r", "r_y")))
+        for key, m in (("face", model), ("freed_errors", freed)):
+            res = solve_static(m, f)
+            out[key].append((-float(m.tip_displacement(res.u)[1]) - exact) / exact
+                            if res.status == "converged" else None)
+    return out

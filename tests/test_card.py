@@ -69,3 +69,61 @@ def test_the_shear_locking_verdict_and_its_signature():
     assert abs(v["rows"][8][35] - v["rows"][8][140]) < 0.02 * abs(v["rows"][8][35])
     lb = shear_locking([_probe("LB2n-12", 35, n) for n in (16, 32)])
     assert not lb["converges"] and abs(lb["rows"][32][35] + 0.25) < 0.005     # 1 - (1 - nu^2), nu = 1/2
+
+
+def test_strain_split_of_the_exact_bending_state():
+    """ancf.checks.strain_split against closed form: pure bending of an incompressible
+    plane-stress beam, u_x = -k x y, u_y = k x^2 / 2 + k y^2 / 4 (eps_xx = -k y,
+    eps_yy = k y / 2, gamma = 0), set exactly in HB2n-16's nodal coordinates (its basis
+    holds it): no shear energy and eps_yy / eps_xx = -1/2."""
+    import numpy as np
+    from ancf.checks import small_model, strain_split
+
+    model = small_model("HB2n-16", "neo-hookean", "plane-stress", 3)
+    m, k = model.mesh, 1e-4
+    q = np.zeros((m.n_nodes, len(m.element.kinds), 2))
+    x = np.linspace(0.0, m.length, m.n_nodes)
+    kinds = m.element.kinds
+    q[:, kinds.index("r")] = np.stack([0 * x, k * x ** 2 / 2], axis=1)
+    q[:, kinds.index("r_x")] = np.stack([0 * x, k * x], axis=1)
+    q[:, kinds.index("r_y")] = np.stack([-k * x, 0 * x], axis=1)
+    q[:, kinds.index("r_yy")] = np.stack([0 * x, k / 2 + 0 * x], axis=1)
+    s = strain_split(model, q.ravel())
+    # the shape functions come from inverting the nodal-coordinate matrix: 2e-10 measured
+    assert s["shear_share"] < 1e-20 and abs(s["eyy_exx"] + 0.5) < 1e-8
+
+
+def test_the_probe_names_the_mechanism():
+    """The slender probe's strains name what its error is (studies.card_report.mechanism):
+    LB2n-12's section cannot contract (eps_yy / eps_xx = 0: Poisson locking in the plane,
+    its -25 %); HB2n-12 at L/h = 140 on 8 elements carries 600 times Timoshenko's shear
+    energy and holds eps_zz near 0 (-0.91): shear locking and Poisson locking out of the
+    plane, whose -25 % is why its error saturates at LB2n-12's level; HB2n-16 shows
+    neither (measured)."""
+    from ancf.checks import strain_split
+    from ancf.simulation import run_scene
+    from contract.scene import scene_from_dict
+    from studies.card import slender_scene
+    from studies.card_report import mechanism
+
+    def row(element, ratio, n):
+        rec, (model, res) = run_scene(scene_from_dict(slender_scene(element, ratio, n)))
+        return {**strain_split(model, res.u), "beam_shear_share": 1.2 / ratio ** 2 / (1 + 1.2 / ratio ** 2)}
+
+    assert mechanism(row("LB2n-12", 140, 8)) == ["Poisson locking in the plane (the height cannot contract)"]
+    assert mechanism(row("HB2n-12", 140, 8)) == ["shear locking", "Poisson locking out of the plane (eps_zz held at 0)"]
+    assert mechanism(row("HB2n-16", 140, 8)) == []
+
+
+def test_the_clamp_sets_hb2n16s_order():
+    """HB2n-16's first order on the slender probe is its clamp's (r_yy = 0 at the clamped
+    face), not its interior's: with r_yy freed the same meshes converge at second order
+    (measured 1.01 and 2.00); the card says so by rule."""
+    from studies.card import clamp_probe
+    from studies.card_report import _clamp_lines, clamp_orders
+
+    probe = clamp_probe("HB2n-16", {"slender": {"slenderness": (140.0,), "counts": (8, 16, 32)}})
+    o = clamp_orders(probe)
+    assert abs(o["face"] - 1.0) < 0.1 and abs(o["freed"] - 2.0) < 0.1
+    assert any(line.startswith("**The clamp sets the order**") for line in _clamp_lines(probe))
+    assert clamp_probe("HB2n-12", {"slender": {"slenderness": (140.0,), "counts": (8, 16)}}) is None
