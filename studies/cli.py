@@ -9,6 +9,9 @@
 - ``report``: rebuild tables, figures and README from the records only;
 - ``gold [--refresh]``: run every study in tiny mode and compare its named values with
   tests/gold/studies_tiny.json (``--refresh`` rewrites that file instead);
+- ``audit [--reports DIR]``: every report of DIR (default reports/) rebuilt from DIR/data
+  in a temporary directory and compared line by line (:mod:`studies.engine.audit`); exits 1
+  naming file and line of each mismatch; never runs a solver;
 - ``diff OLD NEW``: the records of two output directories compared case by case
   (:mod:`studies.engine.diff`): which results changed, and by how much;
 - ``card NAME [NAME ...] [--import MODULE]``: the element report card (:mod:`studies.card`),
@@ -77,6 +80,21 @@ def _diff(args) -> int:
     return 1 if changes else 0
 
 
+def _audit(args) -> int:
+    from .engine.audit import audit
+    from .engine.pipeline import REPORTS
+
+    reports = Path(args.reports) if args.reports else REPORTS
+    res = audit(reports, args.catalog, args.tiny)
+    for p in res.problems:
+        print(p)
+    if res.not_audited:
+        print(f"not audited (no study writes them): {', '.join(res.not_audited)}")
+    print(f"audit: {len(res.checked)} files rebuilt from the records of {reports / 'data'}; "
+          + ("OK" if res.ok else f"{len(res.problems)} mismatch(es)"))
+    return 0 if res.ok else 1
+
+
 def _gold(args) -> int:
     from .engine.regression import check_gold, refresh_gold
 
@@ -127,6 +145,9 @@ def main(argv: list[str] | None = None) -> int:
     df.add_argument("new")
     df.add_argument("--rtol", type=float, default=1e-6, help="relative tolerance of tips and energies")
     df.add_argument("--atol", type=float, default=1e-9, help="absolute tolerance (m, J)")
+    au = sub.add_parser("audit", help="rebuild every report from its records and compare, naming file and line")
+    au.add_argument("--reports", help="the reports directory (default reports/)")
+    au.add_argument("--tiny", action="store_true", help="the reports of a tiny run")
     g = sub.add_parser("gold", help="tiny-mode golden values: check, or --refresh")
     g.add_argument("--refresh", action="store_true", help="rewrite tests/gold/studies_tiny.json")
     g.add_argument("--out", help="directory for the tiny run (default: a temp dir)")
@@ -139,10 +160,11 @@ def main(argv: list[str] | None = None) -> int:
     c.add_argument("--force", action="store_true", help="recompute the cards' runs and checks")
     c.add_argument("--workers", type=int, default=2)
     c.add_argument("--no-progress", action="store_true")
-    for sp in (ls, r, rp):
+    for sp in (ls, r, rp, au):
         sp.add_argument("--catalog", type=Path, default=CASES_TOML, help="the case list (default studies/cases.toml)")
     args = p.parse_args(argv)
-    run = {"list": _list, "run": _run, "report": _report, "gold": _gold, "diff": _diff, "card": _card}[args.command]
+    run = {"list": _list, "run": _run, "report": _report, "gold": _gold, "diff": _diff, "card": _card,
+           "audit": _audit}[args.command]
     return command("studies", lambda: run(args), errors=(ValueError, ImportError),
                    interrupt_note=" (every finished record is kept; a rerun does the rest)")
 

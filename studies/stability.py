@@ -93,12 +93,11 @@ def verdict(d: dict, drift: float | None, rise: float | None, bound: float) -> s
 
 def rows_of(ctx) -> list[dict]:
     g = ctx.study.grid
-    recs = {r["case_id"]: r for r in ctx.records()}
     out = []
     for group, label, ch in hard_cases(g):
         for integ in g["integrators"]:
             c = make_case("stability", "ancf", scene_for(g, ch, integ), {"timing": dict(g["timing"])})
-            r = recs.get(c.id)
+            r = ctx.record_for(c)
             if r is None:
                 continue
             d = describe_dynamic(r)

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Sequence
 
+from .case import canonical
 from .catalog import Study
 from .store import store_for
 
@@ -48,6 +49,50 @@ class Table:
         return md, cs
 
 
+FIGURE_DATA = ".figure.csv"   # beside every <name>.png: what it draws, for the audit
+
+
+def figure_data(fig) -> list[list]:
+    """Every drawn point of ``fig`` as rows (panel, title, x label, y label, artist
+    label, marker, filled, x, y): lines and scatter sets of every panel, so that a
+    figure is audited by its data, not its pixels. ``filled`` is False for hollow
+    markers (a run that is not stable, or warned)."""
+    import matplotlib.colors as mcolors
+
+    rows = []
+    for i, ax in enumerate(fig.axes):
+        head = [i, ax.get_title(), ax.get_xlabel(), ax.get_ylabel()]
+        for ln in ax.get_lines():
+            face = ln.get_markerfacecolor()
+            filled = not (isinstance(face, str) and face == "none") and ln.get_fillstyle() != "none"
+            for x, y in zip(ln.get_xdata(), ln.get_ydata()):
+                rows.append(head + [ln.get_label(), str(ln.get_marker()), filled, _num(x), _num(y)])
+        for col in ax.collections:
+            offs = col.get_offsets()
+            fc = col.get_facecolors()
+            for k, (x, y) in enumerate(offs):
+                f = fc[k % len(fc)] if len(fc) else None
+                filled = f is not None and mcolors.to_rgba(f)[3] > 0
+                rows.append(head + [col.get_label(), type(col).__name__, filled, _num(x), _num(y)])
+    return rows
+
+
+def _num(v):
+    try:
+        v = float(v)
+    except (TypeError, ValueError):
+        return str(v)
+    return "" if not math.isfinite(v) else format(v, ".10g")
+
+
+def write_figure_data(fig, path: Path) -> Path:
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["panel", "title", "x label", "y label", "label", "marker", "filled", "x", "y"])
+        w.writerows(figure_data(fig))
+    return path
+
+
 @dataclass
 class Section:
     """What a study contributes to reports/README.md."""
@@ -64,9 +109,17 @@ class Section:
     def figure(self, ctx: "Context", fig, name: str, caption: str) -> None:
         path = ctx.out / f"{name}.png"
         fig.savefig(path, dpi=110, bbox_inches="tight")
+        write_figure_data(fig, ctx.out / f"{name}{FIGURE_DATA}")
         import matplotlib.pyplot as plt
         plt.close(fig)
         self.items.append(("figure", path.name, caption))
+
+
+def _contains(big, small) -> bool:
+    """Whether ``small`` (a scene) is ``big`` with some defaulted keys left out."""
+    if isinstance(small, dict):
+        return isinstance(big, dict) and all(k in big and _contains(big[k], v) for k, v in small.items())
+    return big == small
 
 
 @dataclass
@@ -74,15 +127,45 @@ class Context:
     study: Study
     out: Path
     catalog: dict
+    _index: dict = field(default_factory=dict, repr=False)
 
     def records(self, name: str | None = None) -> list[dict]:
-        """The latest record of each current case of ``name`` (default: this study),
-        in case order; cases without a record are left out."""
+        """The record of each current case of ``name`` (default: this study), in case
+        order, each once (cases sharing a scene share a record); cases without a record
+        are left out."""
         if name and name not in self.catalog:
             return []
         s = self.catalog[name] if name else self.study
-        recs = store_for(self.out, s.name).read()
-        return [recs[c.id] for c in s.cases() if c.id in recs]
+        out, seen = [], set()
+        for c in s.cases():
+            r = self.record_for(c, s.name)
+            if r is not None and id(r) not in seen:
+                seen.add(id(r))
+                out.append(r)
+        return out
+
+    def record_for(self, case, name: str | None = None) -> dict | None:
+        """The record of ``case``: the one its id names, else (records computed with
+        other solver sources, so other ids) the latest record of the same solver, scene
+        name and options whose scene contains the case's scene (a solver echoes its
+        scene with the defaults filled in). A report reads the records as they are and
+        never runs a solver."""
+        name = name or self.study.name
+        if name not in self._index:
+            recs = store_for(self.out, name).read()
+            by_name: dict = {}
+            for r in recs.values():
+                c = r.get("case") or {}
+                key = (c.get("solver"), (r.get("scene") or {}).get("name"), canonical(c.get("options") or {}))
+                by_name.setdefault(key, []).append(r)
+            self._index[name] = (recs, by_name)
+        recs, by_name = self._index[name]
+        if case.id in recs:
+            return recs[case.id]
+        scene = case.scene
+        found = [r for r in by_name.get((case.solver, case.name, case.options_json), ())
+                 if _contains(r["scene"], scene)]
+        return found[-1] if found else None
 
     @property
     def tiny(self) -> bool:
