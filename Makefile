@@ -4,7 +4,7 @@ PY := .venv/bin/python
 export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 
-.PHONY: setup test test-slow study study-full bench bench-penalty bench-peers clean-venv
+.PHONY: setup test test-slow study study-full audit bench bench-penalty bench-peers clean-venv
 
 setup:
 	@bash tools/setup.sh
@@ -19,6 +19,12 @@ study: setup
 	$(PY) -m studies run all
 	$(PY) -m studies card paper HB2n-40p HB2n-20 --import examples.transversely_cubic
 	$(PY) -m studies card HB2n-20xy --import examples.cubic_slope
+	$(PY) -m studies audit
+
+# every report rebuilt from its records and compared (no solver runs; tests/test_audit.py
+# runs it on the committed reports in `make test`)
+audit: setup
+	$(PY) -m studies audit
 
 # make study, then the heavy 3D levels (issue 11): the converged 3D cantilever of the
 # three laws (graded 16x1x1 ... 64x4x4, 2 to 4 min per law here) into reports/data/solid3d

@@ -136,7 +136,7 @@ def report(ctx) -> Section:
     failed = [p for p in pts if p["status"] != "converged"]
     if failed:
         sec.text += f"\n{len(failed)} of {len(pts)} static runs failed: " + "; ".join(
-            f"{short(p['law'])} {p['model']} {p['config']} x {p['mesh']}" for p in failed[:12])
+            f"{short(p['law'])} {p['model']} {p['config']} x {p['mesh']}" for p in failed)
     return sec
 
 

@@ -118,6 +118,22 @@ def report(ctx) -> Section:
     return sec
 
 
+LOCKED = 0.1        # |uy| below this fraction of every continuum |uy|: locked
+AGREES = 0.01       # within this fraction of the reference: agrees
+
+
+def deviation_verdict(ratios: list[float]) -> str:
+    """A cell group against its reference from its |u| / |u_ref| ratios: "agrees within
+    x %" (every ratio within AGREES of 1), "is too stiff by up to x % (partial locking)"
+    (every ratio below 1), else "deviates by up to x %"."""
+    worst = max(ratios, key=lambda r: abs(r - 1))
+    if all(abs(r - 1) <= AGREES for r in ratios):
+        return f"agrees within {100 * abs(worst - 1):.2f} %"
+    if all(r < 1 for r in ratios):
+        return f"is too stiff by up to {100 * (1 - min(ratios)):.1f} % (partial locking)"
+    return f"deviates by up to {100 * abs(worst - 1):.1f} %"
+
+
 def _findings(got, refs, els, laws, low_order) -> str:
     devs = []
     for el in els:
@@ -147,12 +163,23 @@ def _findings(got, refs, els, laws, low_order) -> str:
     cont = [abs(r.tip[1]) for r in refs.values() if r.tip]
     for el in (e for e in els if e in low_order):
         for form in ("paper", "plane-strain", "plane-stress"):
-            lb = [got.get((el, form, law)) for law in laws]
-            lb = [abs(d["tip"]["uy"]) for d in lb if d and d["status"] == "converged"]
-            if lb and cont:
-                verdict = "locks" if max(lb) < 0.1 * min(cont) else "does not lock"
-                lines.append(f"- {el} `{form}` {verdict}: |uy| = {1e3 * min(lb):.2f} to {1e3 * max(lb):.2f} mm, "
-                             f"against {1e3 * min(cont):.0f} to {1e3 * max(cont):.0f} mm for the continuum.")
+            ratios, uy = [], []     # |u| / |u_ref| per component and law, against the cell's own reference
+            for law in laws:
+                d, (ref, ref_name) = got.get((el, form, law)), reference_for(form, el, law, refs)
+                if d and d["status"] == "converged" and d["tip"]:
+                    uy.append(abs(d["tip"]["uy"]))
+                    if ref:
+                        ratios += [abs(d["tip"][c]) / abs(r) for c, r in zip(("ux", "uy"), ref) if r]
+            if not (uy and cont):
+                continue
+            locked = max(uy) < LOCKED * min(cont)
+            line = (f"- {el} `{form}` {'locks' if locked else 'does not lock'}: |uy| = {1e3 * min(uy):.2f} to "
+                    f"{1e3 * max(uy):.2f} mm, against {1e3 * min(cont):.0f} to {1e3 * max(cont):.0f} mm for the continuum")
+            if ratios:
+                line += (f"; against {ref_name}" + ("" if locked else f" it {deviation_verdict(ratios)}")
+                         + f" (|u| / |u_ref| = {min(ratios):.3f} to {max(ratios):.3f} over ux, uy and the "
+                         f"{len(laws)} laws)")
+            lines.append(line + ".")
     return "\n".join(lines)
 
 
