@@ -14,7 +14,7 @@ from .engine.case import make_case
 from .continuum import scene as continuum_scene
 from .grid import DEFAULT, cantilever_case, qlabel
 from .reference import short, MATCHING, continuum_references, describe, variant_of
-from .engine.report import Section, Table, figure, marker, pct, vec_error
+from .engine.report import GOOD, Section, Table, figure, hollow, marker, pct, vec_error, verdict
 
 STYLE = {(2, 2): ":", (3, 2): "-", (5, 3): "--", (3, 3): "-.", DEFAULT: "-"}
 
@@ -47,20 +47,45 @@ def points(ctx) -> list[dict]:
                  "element": "continuum", "quadrature": None, "mesh": f"{d['cells'][0]}x{d['cells'][1]}",
                  "ndof": r.get("ndof")}
         ok = d["status"] == "converged"
-        p.update(status=d["status"], time=t if ok else None,
+        p.update(status=d["status"], verdict=verdict(r), time=t if ok else None,
                  error=vec_error(d["tip"], ref.tip if ref else None) if ok else None)
         out.append(p)
     return out
 
 
 def settled(pts: list[dict], target: float) -> list[dict]:
-    """The points whose error stays within ``target`` on every finer mesh (at least as
-    many unknowns) of the same solver and configuration; a failed finer run disqualifies."""
+    """The points that reach ``target`` without resting on cancellation: the point and
+    every finer mesh (at least as many unknowns) of the same solver and configuration
+    are good (stable, unwarned: :data:`GOOD`) and within ``target``; a failed, singular,
+    indefinite or warned finer run disqualifies."""
     def ok(q):
-        return q["error"] is not None and q["error"] <= target
+        return q["verdict"] in GOOD and q["error"] is not None and q["error"] <= target
     return [p for p in pts
             if all(ok(q) for q in pts
                    if q["solver"] == p["solver"] and q["config"] == p["config"] and (q["ndof"] or 0) >= (p["ndof"] or 0))]
+
+
+def draw(ax, xs, ys, verdicts, label, **kw) -> None:
+    """A curve and its points: filled markers for good runs, hollow ones for the rest
+    (not stable, or warned): the line carries the label, the points the verdicts."""
+    mk, ms = kw.pop("marker", "o"), kw.pop("ms", 3.5)
+    (line,) = ax.plot(xs, ys, label=label, **kw)
+    good = [(x, y) for x, y, v in zip(xs, ys, verdicts) if not hollow(v)]
+    bad = [(x, y) for x, y, v in zip(xs, ys, verdicts) if hollow(v)]
+    if good:
+        ax.plot(*zip(*good), ls="none", marker=mk, ms=ms, color=line.get_color(), label="_good")
+    if bad:
+        ax.plot(*zip(*bad), ls="none", marker=mk, ms=ms, color=line.get_color(), mfc="none", label="_hollow")
+
+
+def hollow_legend(ax) -> None:
+    """The legend with one entry for hollow points."""
+    from matplotlib.lines import Line2D
+
+    h, l = ax.get_legend_handles_labels()
+    h.append(Line2D([], [], ls="none", marker="o", color="grey", mfc="none"))
+    l.append("hollow: singular, indefinite, warned or undetermined")
+    return h, l
 
 
 def cheapest(pts: list[dict], target: float) -> dict | None:
@@ -87,13 +112,12 @@ def report(ctx) -> Section:
                 ser.sort(key=lambda p: p["ndof"] or 0)  # along the refinement
                 if not ser:
                     continue
+                xs, ys, vs = [p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], [p["verdict"] for p in ser]
                 if cfg.startswith("continuum"):
-                    ax.plot([p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], "k-D", lw=2, ms=5,
-                            label="continuum Q2 (levels)")
+                    draw(ax, xs, ys, vs, "continuum Q2 (levels)", color="k", marker="D", lw=2, ms=5)
                     continue
                 el, q = ser[0]["element"], ser[0]["quadrature"]
-                ax.plot([p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], marker=marker(el, g["elements"]),
-                        ls=STYLE.get(q, "-"), lw=1, ms=3.5, label=cfg)
+                draw(ax, xs, ys, vs, cfg, marker=marker(el, g["elements"]), ls=STYLE.get(q, "-"), lw=1, ms=3.5)
             for a in g["accuracies"]:
                 ax.axhline(a, color="grey", lw=0.6, ls=":")
             ax.set_xscale("log")
@@ -103,10 +127,12 @@ def report(ctx) -> Section:
             ax.set_xlabel("wall time, serial warm (s)")
             if j == 0:
                 ax.set_ylabel("|u - u_ref| / |u_ref|")
-    axes[0][-1].legend(fontsize=6, loc="lower left", ncol=2)
+    axes[0][-1].legend(*hollow_legend(axes[0][-1]), fontsize=6, loc="lower left", ncol=2)
     sec.figure(ctx, fig, "accuracy_cost", "Work-precision diagram of the static cantilever: each line one ANCF element "
                "and quadrature over its meshes (4 to 640 elements), black the continuum model's own refinement; "
-               "lower left is better. The ANCF curves level off at the beam model's distance from the continuum.")
+               "lower left is better. Hollow markers: runs that converged to a singular or indefinite state, or "
+               "carry a warning (verdict column of the points table). The ANCF curves level off at the beam model's "
+               "distance from the continuum.")
     rows = []
     for f, m in zip(g["formulations"], models):
         for law in g["laws"]:
@@ -116,23 +142,30 @@ def report(ctx) -> Section:
                 best_c = cheapest(settled([p for p in sel if p["solver"] == "fenicsx"], a), a)
                 rows.append([short(law), f, f"{100 * a:g} %",
                              f"{best_a['config']} x {best_a['mesh']}" if best_a else "none",
+                             best_a["verdict"] if best_a else None,
                              best_a["time"] if best_a else None, pct(best_a["error"]) if best_a else None,
                              f"{best_c['mesh']} Q2" if best_c else "none",
                              best_c["time"] if best_c else None, pct(best_c["error"]) if best_c else None])
-    sec.table(ctx, Table("accuracy_cost", ["law", "formulation", "accuracy", "cheapest ANCF", "time (s)", "error (%)",
-                                           "cheapest continuum", "time (s)", "error (%)"], rows,
-                         {4: ".3f", 5: ".3f", 7: ".3f", 8: ".3f"}),
+    sec.table(ctx, Table("accuracy_cost", ["law", "formulation", "accuracy", "cheapest ANCF", "verdict", "time (s)",
+                                           "error (%)", "cheapest continuum", "time (s)", "error (%)"], rows,
+                         {5: ".3f", 6: ".3f", 8: ".3f", 9: ".3f"}),
               "For 1 % and 0.1 % accuracy, the cheapest configuration (median serial warm wall time) of ANCF and of "
               "the continuum model that reaches it and stays within it on every finer mesh of the same configuration "
-              "(a curve that crosses the target on its way to a plateau above it does not count); 'none' where no "
-              "configuration of the grid does.")
-    long = [[p["law"], p["model"], p["solver"], p["config"], p["mesh"], p["ndof"], p["status"], p["time"],
-             pct(p["error"])] for p in pts]
+              "(a curve that crosses the target on its way to a plateau above it, or through zero error, does not "
+              "count), counting only stable, unwarned runs whose finer meshes are stable and unwarned too; 'none' "
+              "where no configuration of the grid does.")
+    long = [[p["law"], p["model"], p["solver"], p["config"], p["mesh"], p["ndof"], p["status"], p["verdict"],
+             p["time"], pct(p["error"])] for p in pts]
     t = Table("accuracy_cost_points", ["law", "model", "solver", "configuration", "mesh", "ndof", "status",
-                                       "time (s)", "error (%)"], long, {7: ".4f", 8: ".4f"})
+                                       "verdict", "time (s)", "error (%)"], long, {8: ".4f", 9: ".4f"})
     t.write(ctx.out)
     sec.items.append(("link", t.name + ".md", "Every point of the diagram."))
     pendulum_part(ctx, sec)
+    ancf = [p for p in pts if p["solver"] == "ancf"]
+    counts = {v: sum(1 for p in ancf if p["verdict"] == v) for v in dict.fromkeys(p["verdict"] for p in ancf)}
+    sec.text += (f"\nVerdicts of the {len(ancf)} static ANCF runs: "
+                 + ", ".join(f"{n} {v}" for v, n in sorted(counts.items(), key=lambda kv: -kv[1]))
+                 + "; only stable, unwarned runs count for the cheapest cells.")
     failed = [p for p in pts if p["status"] != "converged"]
     if failed:
         sec.text += f"\n{len(failed)} of {len(pts)} static runs failed: " + "; ".join(
@@ -154,8 +187,18 @@ def pendulum_points(ctx) -> list[dict]:
         e = tip_errors(d["tips"], ref.tips) if (ref and d["ok"]) else {}
         t = (d["timing"] or {}).get("median_s")
         out.append({"formulation": d["formulation"], "element": d["element"], "n": d["elements"], "dt": d["dt"],
-                    "status": d["status"], "time": t if d["ok"] else None, "error": max(e.values()) if e else None})
+                    "status": d["status"], "verdict": verdict(r), "time": t if d["ok"] else None, "error": max(e.values()) if e else None})
     return out
+
+
+def settled_steps(pts: list[dict], target: float) -> list[dict]:
+    """The pendulum points within ``target`` whose every finer run (same formulation and
+    element, at least as many elements and at most the step) is good and within it too."""
+    def ok(q):
+        return q["verdict"] in GOOD and q["error"] is not None and q["error"] <= target
+    return [p for p in pts
+            if all(ok(q) for q in pts if (q["formulation"], q["element"]) == (p["formulation"], p["element"])
+                   and q["n"] >= p["n"] and q["dt"] <= p["dt"])]
 
 
 def pendulum_part(ctx, sec: Section) -> None:
@@ -178,8 +221,8 @@ def pendulum_part(ctx, sec: Section) -> None:
                 ser = sorted([p for p in pts if (p["formulation"], p["element"], p["n"]) == (f, el, n)
                               and p["error"] is not None and p["time"]], key=lambda p: -p["dt"])
                 if ser:
-                    ax.plot([p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], marker=marker(el, els),
-                            lw=0.8, ms=3, label=f"{el} x {n}")
+                    draw(ax, [p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser],
+                         [p["verdict"] for p in ser], f"{el} x {n}", marker=marker(el, els), lw=0.8, ms=3)
         if cont and cont.wall_s and cont.error_estimate:
             ax.plot([cont.wall_s], [cont.error_estimate / 0.350], "kD", ms=7,
                     label="continuum (gold base run, own error estimate)")
@@ -192,7 +235,7 @@ def pendulum_part(ctx, sec: Section) -> None:
         ax.set_title(f"pendulum ({', '.join(laws)}): ANCF `{f}` vs continuum plane stress", fontsize=9)
         if j == 0:
             ax.set_ylabel("max over t of |r - r_ref| / L")
-    axes[0][-1].legend(fontsize=5, ncol=2, loc="lower left")
+    axes[0][-1].legend(*hollow_legend(axes[0][-1]), fontsize=5, ncol=2, loc="lower left")
     sec.figure(ctx, fig, "accuracy_cost_pendulum",
                "Work-precision diagram of the pendulum: each line one element and count along the step ladder of "
                "Table 4 (8 ms halving; larger dt to the left), error against the converged continuum plane-stress "
@@ -200,8 +243,7 @@ def pendulum_part(ctx, sec: Section) -> None:
     rows = []
     for f in forms:
         for a in g["accuracies"]:
-            ok = [p for p in pts if p["formulation"] == f and p["error"] is not None and p["time"]
-                  and p["error"] <= a]
+            ok = [p for p in settled_steps([p for p in pts if p["formulation"] == f], a) if p["time"]]
             best = min(ok, key=lambda p: p["time"]) if ok else None
             rows.append([f, f"{100 * a:g} %", f"{best['element']} x {best['n']}, dt {1e3 * best['dt']:g} ms"
                          if best else "none", best["time"] if best else None, pct(best["error"]) if best else None,
@@ -211,4 +253,5 @@ def pendulum_part(ctx, sec: Section) -> None:
                                                     "error (%)", "continuum run (s)", "continuum error estimate (%)"],
                          rows, {3: ".3f", 4: ".3f", 5: ".1f", 6: ".4f"}),
               "For 1 % and 0.1 % pendulum accuracy (max over t of |r - r_ref| / L), the cheapest ANCF run of the Table 4 "
-              "ladder (median serial warm wall time), beside the wall time of the continuum gold's base run (DOLFINx, one run inside the generator's 2-process pool, not warm) and its own error estimate.")
+              "ladder (median serial warm wall time) whose every finer run (more elements, smaller step, same element) "
+              "converged and stays within the accuracy, beside the wall time of the continuum gold's base run (DOLFINx, one run inside the generator's 2-process pool, not warm) and its own error estimate.")

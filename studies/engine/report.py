@@ -209,6 +209,45 @@ def rel_dev(value: float | None, ref: float | None) -> float | None:
     return (value - ref) / abs(ref)
 
 
+VERDICTS = {
+    "stable": "converged; the constrained tangent is positive definite (ancf.stability)",
+    "converged": "converged; a dynamic run or a continuum run (no equilibrium tangent to test)",
+    "warned": "converged, but the record carries a warning (e.g. a quadrature rule that nearly misses a mode)",
+    "singular": "converged to a state whose tangent has a zero-energy mode of the quadrature rule",
+    "indefinite": "converged to a saddle: the tangent has a negative eigenvalue (an unstable equilibrium)",
+    "undetermined": "converged; the stability check could not decide (lowest eigenvalue within round-off)",
+    "failed": "no converged result",
+}
+GOOD = ("stable", "converged")   # verdicts whose points count for "cheapest at accuracy a"
+
+
+def verdict(rec: dict) -> str:
+    """The verdict of a run from its record (a key of :data:`VERDICTS`): failed, else
+    singular / indefinite / undetermined from the static stability check, else warned
+    (any warning in the record), else stable (a static ANCF state checked stable) or
+    converged (nothing to check)."""
+    if rec.get("status") != "converged":
+        return "failed"
+    st = rec.get("stable")
+    text = str(rec.get("stability") or "")
+    if st is False:
+        if "singular" in text:
+            return "singular"
+        if text.startswith("undetermined"):
+            return "undetermined"
+        return "indefinite"
+    if st is None and text.startswith("undetermined"):
+        return "undetermined"
+    if rec.get("warnings"):
+        return "warned"
+    return "stable" if st is True else "converged"
+
+
+def hollow(v: str) -> bool:
+    """Figures draw a point hollow unless its verdict is good."""
+    return v not in GOOD
+
+
 def vec_error(tip: dict | None, ref: tuple[float, float] | None) -> float | None:
     """|u - u_ref| / |u_ref| over (ux, uy)."""
     if not tip or ref is None:
