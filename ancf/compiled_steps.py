@@ -299,7 +299,8 @@ def advance(dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, fixed, coef, inew
     - NEWTON_FAILED, SINGULAR, INADMISSIBLE: a rejected step; u, v, a and tstate[0] are
       at its start, tstate[1] is its size.
 
-    tstate = [t, next step, accepted steps in this call, energy at a growth]."""
+    tstate = [t, next step, accepted steps in this call, energy at a growth, largest
+    energy checked in this call (-inf: none)]."""
     n = u.shape[0]
     is_free = np.ones(n, np.bool_)
     for k in fixed:
@@ -354,6 +355,8 @@ def advance(dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, fixed, coef, inew
         if every > 0 and not land and (offset + done) % every == 0:
             counters[C_ENERGIES] += 1
             E = energy(u, v, dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, wk[5], chunk, R, Fb, ab, Jb)
+            if not E <= tstate[4]:
+                tstate[4] = E          # (a NaN energy is kept: it is the peak that fails the run)
             if not E <= fnewton[F_ELIMIT]:
                 tstate[0], tstate[1], tstate[2], tstate[3] = t, h, done, E
                 return ENERGY_GROWTH
@@ -385,6 +388,7 @@ class Advanced:
     iterations: int           # Newton iterations, of rejected steps too
     energy: float = math.nan  # "energy-growth": the total energy found
     reason: str | None = None  # "rejected": why
+    peak: float = -math.inf   # the largest total energy checked in the call (-inf: none)
 
 
 class CompiledLoop:
@@ -437,7 +441,7 @@ class CompiledLoop:
                 energy_every: int = 0, energy_max: float = math.inf) -> Advanced:
         """From state s with next step h towards t_out (:func:`advance`); s is not changed."""
         u, v, a = (np.array(x, dtype=float) for x in (s.u, s.v, s.a))
-        tstate = np.array([s.t, h, 0.0, math.nan])
+        tstate = np.array([s.t, h, 0.0, math.nan, -math.inf])
         self.inewton[I_ENERGY_EVERY] = energy_every
         self.fnewton[F_ELIMIT] = energy_max
         it0 = int(self.counters[C_ITERATIONS])
@@ -446,4 +450,4 @@ class CompiledLoop:
         state = time_loop.State(float(tstate[0]), u, v, a)
         outcome = {OK: "landed", BUDGET: "budget", ENERGY_GROWTH: "energy-growth"}.get(status, "rejected")
         return Advanced(outcome, state, float(tstate[1]), int(tstate[2]), int(self.counters[C_ITERATIONS]) - it0,
-                        float(tstate[3]), STATUS.get(status))
+                        float(tstate[3]), STATUS.get(status), float(tstate[4]))

@@ -60,6 +60,7 @@ def _run_scene(scene: Scene, progress=None) -> tuple[dict, object]:
         newton_iterations=res.newton_iterations, load_steps=res.load_steps,
         relax_steps=res.relax_steps, rejected_steps=res.rejected_steps,
         stable=res.stable, stability=res.stability, negative_eigenvalues=res.negative_eigenvalues,
+        lowest_eigenvalue=res.lowest_eigenvalue,
         cpu_s=res.cpu_s, wall_s=res.wall_s,
         effects=sorted(effects),
     )
@@ -91,7 +92,8 @@ def _run_dynamic(scene: Scene, model, loads: dict, effects: list[str], rec: dict
     rec["setup_s"] = time.perf_counter() - t0
     limit = energy_limit(scene)
     res = integrate(integrator, u0, a.t_end, a.dt, a.output_times, a.dt_min, a.tolerance,
-                    energy_limit=None if limit == float("inf") else limit, max_steps=a.max_steps,
+                    energy_limit=None if limit == float("inf") else limit, energy_check_every=1,
+                    max_steps=a.max_steps,
                     wall_time=a.wall_time, progress=progress)
     rec.update(record_keys(res, integrator.describe(), limit, scene.beam.length))
     return rec, (model, res)

@@ -79,18 +79,33 @@ def check_stability(model: BeamModel, u: np.ndarray) -> Stability:
     rule (its strain variation vanishes at the rule's points but not at a full rule's),
     else undetermined. Counting by inertia cannot miss a negative eigenvalue, as an
     eigen solver asked for the eigenvalue nearest a shift can; the lowest eigenpair (the
-    mode the static solver escapes along) is computed only when the state is not stable."""
+    mode the static solver escapes along) is computed only when the state is not stable;
+    a stable state carries its lowest eigenvalue alone (its margin above SINGULAR_TOL)."""
     _, K = model.internal_force_and_tangent(u)
     K = K.constrain(model.fixed)
     negative = below(K, -SINGULAR_TOL)
     if negative == 0 and below(K, SINGULAR_TOL) == 0:
-        return Stability("stable", None, None, 0)
+        return Stability("stable", lowest_eigenvalue(K), None, 0)
     lowest, mode = lowest_mode(K, model.fixed, negative)
     if lowest is None:
         return Stability("undetermined", None, None, negative)
     if negative:
         return Stability("unstable", lowest, mode, negative)
     return Stability("singular" if _is_quadrature_mode(model, mode) else "undetermined", lowest, mode, 0)
+
+
+def lowest_eigenvalue(K) -> float | None:
+    """The lowest eigenvalue of the Jacobi-scaled constrained K (LAPACK's banded
+    bisection for the first eigenvalue only; absolute error ~ eps ||S||), or None if it
+    gives no finite value."""
+    from scipy.linalg import eigvals_banded
+
+    upper, _ = K.scaled_upper()
+    try:
+        lam = eigvals_banded(upper, lower=False, select="i", select_range=(0, 0), check_finite=False)
+    except (np.linalg.LinAlgError, ValueError):
+        return None
+    return float(lam[0]) if len(lam) and np.isfinite(lam[0]) else None
 
 
 def _is_quadrature_mode(model: BeamModel, mode: np.ndarray) -> bool:

@@ -217,6 +217,7 @@ class StaticResult:
     negative_eigenvalues: int | None = None   # of the final state's tangent (inertia count)
     cpu_s: float = 0.0
     wall_s: float = 0.0
+    lowest_eigenvalue: float | None = None    # of the final state's Jacobi-scaled constrained tangent
 
 
 def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
@@ -238,7 +239,7 @@ def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
         return StaticResult(u, status, reason, counts.newton_iterations, counts.accepted,
                             counts.rejected, n_relax, verdict and verdict.stable, stability,
                             verdict and verdict.negative, time.process_time() - cpu0,
-                            time.perf_counter() - wall0)
+                            time.perf_counter() - wall0, verdict and verdict.lowest)
 
     phases = []
     if np.linalg.norm(f0) > atol:

@@ -13,9 +13,10 @@ every solver:
   the run fails with the reason; without a tolerance the step grows back to dt
   (doubling) after a rejection; with one it follows the controller, at most 10 dt;
 - the energy check: with an energy limit, the total energy is checked every
-  ``ENERGY_CHECK_EVERY`` steps and at every output time (a growth is caught at most
-  that many steps late); rising above E(0) + limit ends the run, status "failed",
-  reason "energy-growth: ...";
+  ``energy_check_every`` accepted steps (default ``ENERGY_CHECK_EVERY``; ANCF: every
+  step) and at every output time (a growth is caught at most that many steps late);
+  rising above E(0) + limit ends the run, status "failed", reason "energy-growth: ...";
+  the largest energy of any check is the record's ``energy_peak``;
 - the bounds: at most ``max_steps`` accepted steps and ``wall_time`` seconds (a run
   that reaches either fails with the reason); every loop inside a stepper is bounded
   by its own iteration count;
@@ -119,6 +120,10 @@ class DynamicResult:
     rejected_steps: int = 0
     newton_iterations: int = 0
     energy_steps: list = field(default_factory=list)    # (t, Energies) at every check
+    # (t, total) of the largest total energy at any check (every ``energy_check_every``
+    # accepted steps and every output time; compiled stretches included)
+    energy_peak: tuple[float, float] | None = None
+    energy_check_every: int | None = ENERGY_CHECK_EVERY   # None: energies at the output times only
     final: State | None = None
     cpu_s: float = 0.0
     wall_s: float = 0.0
@@ -160,6 +165,7 @@ def acceleration_error(beta: float, dt: float, a_old: np.ndarray, a_new: np.ndar
 def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_times=None,
               dt_min: float | None = None, tolerance: float | None = None,
               energy_limit: float | None = None, energy_every_step: bool = False,
+              energy_check_every: int = ENERGY_CHECK_EVERY,
               max_steps: int | None = None, wall_time: float | None = None,
               progress: Callable[[float, DynamicResult], None] | None = None,
               compiled: bool = True) -> DynamicResult:
@@ -181,6 +187,13 @@ def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_
         return res
     e0 = stepper.energies(s)
     res.energy_steps.append((0.0, e0))
+    res.energy_peak = (0.0, e0.total)
+    res.energy_check_every = 1 if energy_every_step else energy_check_every if energy_limit is not None else None
+    every = res.energy_check_every or energy_check_every
+
+    def peak(t: float, total: float) -> None:
+        if not total <= res.energy_peak[1]:
+            res.energy_peak = (t, total)
     if outs[0] == 0.0:
         res.outputs.append(stepper.output(s))
     advance = getattr(stepper, "advance", None) if compiled and not (tolerance or energy_every_step) else None
@@ -198,11 +211,13 @@ def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_
             k += 1
         if advance is not None:           # compiled steps up to outs[k], by the same rules
             adv = advance(s, h, outs[k], dt, min(max_steps - res.steps, STEPS_PER_CALL), res.steps,
-                          ENERGY_CHECK_EVERY if energy_limit is not None else 0,
+                          every if energy_limit is not None else 0,
                           e0.total + energy_limit if energy_limit is not None else math.inf)
             res.newton_iterations += adv.iterations
             res.steps += adv.steps
             s, h, land = adv.state, adv.h, adv.outcome == "landed"
+            if adv.peak > -math.inf or math.isnan(adv.peak):
+                peak(s.t, adv.peak)     # (at the stretch's end: the step of the peak is not kept)
             if adv.outcome == "energy-growth":
                 res.status, res.reason = "failed", _energy_growth(adv.energy, e0.total, s.t, energy_limit)
                 break
@@ -240,9 +255,11 @@ def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_
             out = stepper.output(s)
             res.outputs.append(out)
             energy = out.energy
-        if energy_every_step or (energy_limit is not None and (land or res.steps % ENERGY_CHECK_EVERY == 0)):
+        if energy_every_step or (energy_limit is not None and (land or res.steps % every == 0)):
             energy = energy or stepper.energies(s)
             res.energy_steps.append((s.t, energy))
+        if energy is not None:
+            peak(s.t, energy.total)
         if energy is not None and energy_limit is not None:
             if not energy.total <= e0.total + energy_limit:
                 res.status, res.reason = "failed", _energy_growth(energy.total, e0.total, s.t, energy_limit)
@@ -289,6 +306,10 @@ def record_keys(res: DynamicResult, integrator: dict, energy_limit: float, lengt
          "configurations": [{"t": o.t, "x": o.line[:, 0].tolist(), "y": o.line[:, 1].tolist()}
                             for o in res.outputs if o.line is not None],
          "energy": [o.energy.to_dict(o.t) for o in res.outputs]}
+    if res.energy_peak is not None:     # the energy verdict's input: the largest E checked, not sampled
+        t, e = res.energy_peak
+        e0 = res.energy_steps[0][1].total
+        d["energy_peak"] = {"t": t, "total": e, "rise": e - e0, "checked_every_steps": res.energy_check_every}
     if res.status == "converged" and res.outputs:
         x, y = res.outputs[-1].tip
         d["tip"] = {"ux": x - length, "uy": y}

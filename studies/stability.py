@@ -62,6 +62,46 @@ def cases(grid: dict, tiny: bool) -> list:
             for _, _, ch in hard_cases(grid) for integ in grid["integrators"]]
 
 
+def _definitions() -> str:
+    from ancf.stability import SINGULAR_TOL
+    return (
+        "## Verdicts\n\n"
+        "Static (ancf.stability, on the converged state's tangent K with the supports applied, scaled to unit "
+        "diagonal: S = D^-1/2 K D^-1/2, the same signs of eigenvalues as K; eigenvalues within "
+        f"SINGULAR_TOL = {SINGULAR_TOL:g} of zero are not resolved in double precision):\n\n"
+        "- **stable**: no eigenvalue of S below +SINGULAR_TOL (counted by Sylvester's law of inertia); the "
+        "record's lowest_eigenvalue is the margin;\n"
+        "- **unstable** (indefinite): eigenvalues below -SINGULAR_TOL; their number is negative_eigenvalues; "
+        "the solver perturbs along the lowest mode and descends, and the record states where it ended;\n"
+        "- **singular**: the lowest eigenvalue lies within the round-off band and its mode strains nothing at "
+        "the quadrature points while a full rule sees it strain (a zero-energy mode of the rule);\n"
+        "- **undetermined**: the lowest eigenvalue lies within the round-off band and is not such a mode, or the "
+        "eigen solve did not converge.\n\n"
+        "Energy (below, dynamic runs): **holds**: max |E(t) - E(0)| within the bound (conservative settings); "
+        "**no growth (dissipative)**: max (E(t) - E(0)) within the bound (rho_inf < 1); **exceeds the bound** / "
+        "**growth above the bound**: otherwise; **failed**: the run did not finish (e.g. stopped by the energy "
+        "guard). The rise is taken over every accepted step where the record carries energy_peak, else over "
+        "the output times.")
+
+
+DEFINITIONS = None   # (built on first use: it states SINGULAR_TOL from ancf.stability)
+
+
+def margin_rows(ctx) -> list[list]:
+    """[cell, status, verdict, negative eigenvalues, lowest, lowest / SINGULAR_TOL] of every Table 3 record."""
+    from ancf.stability import SINGULAR_TOL
+    from .engine.report import verdict as run_verdict
+
+    out = []
+    for r in ctx.records("table3"):
+        sc = r["scene"]
+        lo = r.get("lowest_eigenvalue")
+        out.append([f"{sc['ancf']['element']} `{sc['material']['formulation']}` {sc['material']['law']}",
+                    r["status"], run_verdict(r), r.get("negative_eigenvalues"), lo,
+                    lo / SINGULAR_TOL if lo is not None else None])
+    return out
+
+
 def bound_J(scene: dict) -> float:
     """1e-3 m g L / 2 of the scene (J)."""
     b, m = scene["beam"], scene["material"]
@@ -71,11 +111,26 @@ def bound_J(scene: dict) -> float:
 
 
 def energy_drift(rec: dict) -> tuple[float | None, float | None]:
-    """(max |E(t) - E(0)|, max E(t) - E(0)) over the recorded output times (J)."""
+    """(max |E(t) - E(0)|, max E(t) - E(0)) (J): the rise over every checked step
+    (``energy_peak``, every accepted step in ANCF records) where the record has it,
+    never below the rise at the output times; the drift over the output times (a fall
+    between them is not kept)."""
     e = [x["total"] for x in rec.get("energy") or [] if x.get("total") is not None]
     if not e:
         return None, None
-    return max(abs(x - e[0]) for x in e), max(x - e[0] for x in e)
+    rise = max(x - e[0] for x in e)
+    peak = rec.get("energy_peak") or {}
+    if peak.get("rise") is not None:
+        rise = max(rise, peak["rise"])
+    return max(max(abs(x - e[0]) for x in e), rise), rise
+
+
+def energy_checked(rec: dict) -> str:
+    """Which steps the rise is taken over."""
+    every = (rec.get("energy_peak") or {}).get("checked_every_steps")
+    if every == 1:
+        return "every step"
+    return f"every {every} steps" if every else "output times"
 
 
 def verdict(d: dict, drift: float | None, rise: float | None, bound: float) -> str:
@@ -108,6 +163,7 @@ def rows_of(ctx) -> list[dict]:
             out.append({"group": group, "label": label, "changes": ch, "integrator": integ, "d": d, "drift": drift, "rise": rise,
                         "bound": bound, "enforced": r.get("energy_limit"), "verdict": verdict(d, drift, rise, bound),
                         "wall": med if med is not None else d["wall_s"], "timed": med is not None,
+                        "checked": energy_checked(r),
                         "same_as_base": c.id in seen or r["case_id"] in seen})
             seen.update((c.id, r["case_id"]))
     return out
@@ -122,21 +178,22 @@ def report(ctx) -> Section:
                   + (f" = {bound:.3e} J" if bound else "") + " for the conservative settings (Newmark, discrete "
                   "gradient, generalized-alpha with rho_inf = 1); with dissipation (generalized-alpha rho_inf < 1) E "
                   "may fall but must not rise above E(0) by more than the bound. A run whose energy rises above it is "
-                  "stopped with status failed, reason energy-growth: shown as such. E sampled at the output times "
+                  "stopped with status failed, reason energy-growth: shown as such. The rise is the largest E - E(0) over every "
+                  "accepted step where the record carries it (energy_peak), else over the output times "
                   f"(every {1e3 * g['energy_every']:g} ms; {1e3 * g['long_energy_every']:g} ms for the long run).")
     table = []
     for x in rows:
         d = x["d"]
         table.append([x["label"], x["integrator"] + (" (= base)" if x["same_as_base"] else ""), d["status"],
-                      x["verdict"], x["drift"], x["rise"], x["bound"], d["steps"], d["rejected"], d["newton"],
+                      x["verdict"], x["drift"], x["rise"], x["checked"], x["bound"], d["steps"], d["rejected"], d["newton"],
                       x["wall"], "" if x["timed"] else "single run",
                       (str(d["reason"])[:90] if d["reason"] else "")])
     sec.table(ctx, Table("stability_runs", ["hard case", "integrator", "status", "verdict", "max abs(E - E0) (J)",
-                                       "max E - E0 (J)", "bound (J)", "steps", "rejected", "Newton", "wall s",
-                                       "timing", "reason"], table,
-                         {4: ".2e", 5: ".2e", 6: ".2e", 10: ".3f"}),
+                                       "max E - E0 (J)", "E checked", "bound (J)", "steps", "rejected", "Newton",
+                                       "wall s", "timing", "reason"], table,
+                         {4: ".2e", 5: ".2e", 7: ".2e", 11: ".3f"}),
               "Every hard case with every integrator: status, the energy verdict against the bound, the largest energy "
-              "change and rise over the sampled times, accepted and rejected steps, Newton iterations and wall time.")
+              "change and rise (over every step where the record keeps its energy peak, else over the output times), accepted and rejected steps, Newton iterations and wall time.")
     bad = [x for x in rows if x["verdict"] not in HOLDS and not x["same_as_base"]]
     runs = [x for x in rows if not x["same_as_base"]]    # each run once: "(= base)" rows repeat the base run
     lines = [f"- {sum(1 for x in runs if x['verdict'] in HOLDS)} of {len(runs)} distinct runs "
@@ -147,10 +204,23 @@ def report(ctx) -> Section:
               + (f" ({str(x['d']['reason'])[:120]})" if x["d"]["reason"] else
                  f" (max |E - E0| = {x['drift']:.2e} J)" if x["drift"] is not None else "") for x in bad]
     sec.text = "\n".join(lines)
+    margins = margin_rows(ctx)
+    if margins:
+        sec.table(ctx, Table("stability_margins", ["cell (table3)", "status", "verdict", "negative eigenvalues",
+                                                   "lowest scaled eigenvalue", "margin / SINGULAR_TOL"], margins,
+                             {4: ".3e", 5: ".3g"}),
+                  "The static verdict of every Table 3 cell with its margin: the lowest eigenvalue of the "
+                  "Jacobi-scaled constrained tangent (record key lowest_eigenvalue; '-' in records written before "
+                  "the key existed) and its ratio to the round-off band SINGULAR_TOL.")
+    global DEFINITIONS
+    DEFINITIONS = DEFINITIONS or _definitions()
     (ctx.out / "stability.md").write_text(
-        f"# {ctx.study.title}\n\n{sec.intro}\n\n{(ctx.out / 'stability_runs.md').read_text()}\n{sec.text}\n\n"
-        "Generated by `python -m studies run stability` from the records in `data/stability.jsonl` "
-        "(CSV: [stability_runs.csv](stability_runs.csv)).\n")
+        f"# {ctx.study.title}\n\n{DEFINITIONS}\n\n{sec.intro}\n\n{(ctx.out / 'stability_runs.md').read_text()}\n"
+        f"{sec.text}\n\n"
+        + (f"## Static verdicts and their margins\n\n{(ctx.out / 'stability_margins.md').read_text()}\n" if margins else "")
+        + "Generated by `python -m studies run stability` from the records in `data/stability.jsonl` and "
+        "`data/table3.jsonl` (CSV: [stability_runs.csv](stability_runs.csv)"
+        + (", [stability_margins.csv](stability_margins.csv)" if margins else "") + ").\n")
     sec.text += "\n- The hard-case report as one page: [stability.md](stability.md)."
     return sec
 
