@@ -10,7 +10,15 @@ the studies whose records it reads (``needs``), and a module
   figures from records only.
 
 Optionally ``gold_values(ctx) -> {name: (value, tolerance)}`` for the tiny-mode
-regression (tests/gold/studies_tiny.json).
+regression (tests/gold/studies_tiny.json), and ``audit(ctx) -> [problem]``: the study's
+own consistency rules, run by ``python -m studies audit`` (:mod:`.audit`).
+
+The registry: a study is either a table of cases.toml naming its module, or one file
+``studies/<module>.py`` that declares itself with a module-level ``STUDY = {"name": ...,
+"title": ..., "grid": {...}, "tiny": {...}, "needs": [...], "full": False}`` beside its
+``cases``, ``report`` (and optional ``gold_values``, ``audit``): :func:`load_catalog` finds
+such files (a text scan, no import) and appends them after the cases.toml studies; ``list``,
+``run``, ``report`` and ``audit`` see them like any other.
 """
 from __future__ import annotations
 
@@ -50,10 +58,33 @@ class Study:
         return self.module.cases(self.grid, self.tiny)
 
 
+STUDIES_DIR = CASES_TOML.parent
+
+
+def declared_studies(folder: Path = STUDIES_DIR) -> dict[str, dict]:
+    """{name: table} of the study modules that declare ``STUDY = {...}`` (found by a
+    text scan of studies/*.py; only those modules are imported), as cases.toml tables."""
+    out = {}
+    for f in sorted(folder.glob("*.py")):
+        if not any(line.startswith("STUDY = ") for line in f.read_text().splitlines()):
+            continue
+        decl = dict(importlib.import_module(f"studies.{f.stem}").STUDY)
+        name = decl.pop("name")
+        grid = decl.pop("grid", {})
+        out[name] = {"module": f.stem, **grid, **decl}
+    return out
+
+
 def load_catalog(tiny: bool = False, path: Path = CASES_TOML) -> dict[str, Study]:
-    """{name: Study} in the order of the file."""
+    """{name: Study}: the tables of ``path`` in their order, then (for the default
+    cases.toml) the studies declared in their own module (:func:`declared_studies`)."""
     data = tomllib.loads(Path(path).read_text())
     common = data.pop(COMMON, {})
+    # (a test's own case list stands alone)
+    for name, t in (declared_studies().items() if Path(path) == CASES_TOML else ()):
+        if name in data:
+            raise ValueError(f"study {name!r}: declared both in {Path(path).name} and in studies/{t['module']}.py")
+        data[name] = t
     out = {}
     for name, t in data.items():
         grid = {**common, **{k: v for k, v in t.items() if k not in META_KEYS}}

@@ -6,6 +6,8 @@ SceneError for a scene it cannot run. The source hash covers the .py files the s
 runs, so a change there invalidates its cases:
 
 - ``ancf``: every module of ``ancf/``, ``mechanics/`` and ``contract/`` (scenes, records);
+- ``ancf-effects``: the ANCF solver, then the cost of each effect's assembly (the study
+  ``effects``); its sources and this file;
 - ``fenicsx``: every module of ``reference_fem/`` (its backends included), ``mechanics/``
   and ``contract/``, and ``ancf/integrators.py`` (the integrators' coefficients, until
   they move to ``mechanics``).
@@ -28,6 +30,58 @@ def _run_ancf(scene: dict) -> dict:
     from contract.scene import scene_from_dict
 
     rec, _ = run_scene(scene_from_dict(scene))
+    return rec
+
+
+EFFECT_REPEATS = 7   # timed repeats of each assembly (median and spread), after one warm-up
+
+
+def _median_spread(f, repeats: int = EFFECT_REPEATS) -> dict:
+    import statistics
+    import time
+
+    f()
+    ts = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        f()
+        ts.append(time.perf_counter() - t0)
+    return {"median_s": statistics.median(ts), "min_s": min(ts), "max_s": max(ts), "repeats": repeats}
+
+
+def _run_ancf_effects(scene: dict) -> dict:
+    """A static ANCF scene solved as it is, then what each effect costs when it is
+    assembled, measured in the same process (median of EFFECT_REPEATS after a warm-up):
+    the whole static solve as is; the same followed by the mass matrix (inertia assembled
+    but unused by a static scene); one internal force + tangent at the converged state
+    (elastic law, and the penalty term where the formulation has one); the mass matrix;
+    each load vector the scene names (gravity, tip force). The record is the solver's own,
+    with ``effect_costs``."""
+    import numpy as np
+
+    from ancf.build import build_model
+    from ancf.simulation import run_scene
+    from contract.scene import scene_from_dict
+
+    sc = scene_from_dict(scene)
+    rec, (model, res) = run_scene(sc)
+    if rec.get("status") != "converged":
+        return rec
+    u = res.u if res.u is not None else np.zeros(model.mesh.n_dof)
+    costs = {"static_solve": _median_spread(lambda: run_scene(sc))}
+
+    def static_with_mass():
+        _, (m, _) = run_scene(sc)
+        m.mass_matrix()
+    costs["static_solve_with_mass_matrix"] = _median_spread(static_with_mass)
+    costs["build_model"] = _median_spread(lambda: build_model(sc))
+    costs["tangent"] = _median_spread(lambda: model.internal_force_and_tangent(u))
+    costs["mass_matrix"] = _median_spread(model.mass_matrix)
+    if sc.loads.gravity is not None:
+        costs["gravity"] = _median_spread(lambda: model.gravity_force(sc.loads.gravity))
+    if sc.loads.tip_force is not None:
+        costs["tip_force"] = _median_spread(lambda: model.tip_force(sc.loads.tip_force))
+    rec["effect_costs"] = costs
     return rec
 
 
@@ -63,6 +117,8 @@ class Solver:
 SOLVERS: dict[str, Solver] = {
     s.name: s for s in (
         Solver("ancf", ("ancf/*.py", "mechanics/**/*.py", "contract/*.py"), _run_ancf, _check_ancf),
+        Solver("ancf-effects", ("ancf/*.py", "mechanics/**/*.py", "contract/*.py", "studies/engine/solvers.py"),
+               _run_ancf_effects, _check_ancf),
         Solver("fenicsx", ("reference_fem/**/*.py", "mechanics/**/*.py", "contract/*.py"),
                _run_fenicsx, _check_fenicsx),
     )
