@@ -49,6 +49,25 @@ def _median_spread(f, repeats: int = EFFECT_REPEATS) -> dict:
     return {"median_s": statistics.median(ts), "min_s": min(ts), "max_s": max(ts), "repeats": repeats}
 
 
+def _paired(as_is, with_extra, repeats: int = 2 * EFFECT_REPEATS + 1) -> dict:
+    """The two variants run alternately (a warm-up each, then A B A B ...) so that a
+    busy machine slows both alike: each one's median and spread, and the median of the
+    paired differences B - A."""
+    import statistics
+    import time
+
+    as_is(), with_extra()
+    a, b = [], []
+    for _ in range(repeats):
+        for f, ts in ((as_is, a), (with_extra, b)):
+            t0 = time.perf_counter()
+            f()
+            ts.append(time.perf_counter() - t0)
+    summary = lambda ts: {"median_s": statistics.median(ts), "min_s": min(ts), "max_s": max(ts), "repeats": repeats}
+    return {"static_solve": summary(a), "static_solve_with_mass_matrix": summary(b),
+            "mass_matrix_paired_difference": summary([y - x for x, y in zip(a, b)])}
+
+
 def _run_ancf_effects(scene: dict) -> dict:
     """A static ANCF scene solved as it is, then what each effect costs when it is
     assembled, measured in the same process (median of EFFECT_REPEATS after a warm-up):
@@ -68,12 +87,7 @@ def _run_ancf_effects(scene: dict) -> dict:
     if rec.get("status") != "converged":
         return rec
     u = res.u if res.u is not None else np.zeros(model.mesh.n_dof)
-    costs = {"static_solve": _median_spread(lambda: run_scene(sc))}
-
-    def static_with_mass():
-        _, (m, _) = run_scene(sc)
-        m.mass_matrix()
-    costs["static_solve_with_mass_matrix"] = _median_spread(static_with_mass)
+    costs = _paired(lambda: run_scene(sc), lambda: run_scene(sc)[1][0].mass_matrix())
     costs["build_model"] = _median_spread(lambda: build_model(sc))
     costs["tangent"] = _median_spread(lambda: model.internal_force_and_tangent(u))
     costs["mass_matrix"] = _median_spread(model.mass_matrix)
