@@ -255,3 +255,35 @@ def pendulum_part(ctx, sec: Section) -> None:
               "For 1 % and 0.1 % pendulum accuracy (max over t of |r - r_ref| / L), the cheapest ANCF run of the Table 4 "
               "ladder (median serial warm wall time) whose every finer run (more elements, smaller step, same element) "
               "converged and stays within the accuracy, beside the wall time of the continuum gold's base run (DOLFINx, one run inside the generator's 2-process pool, not warm) and its own error estimate.")
+
+
+def audit(ctx) -> list[str]:
+    """A referee's recheck from the written CSVs alone: every 'cheapest ANCF' cell of
+    accuracy_cost.csv is a stable point of accuracy_cost_points.csv within the accuracy,
+    and so is every finer mesh of its configuration (no cell rests on cancellation)."""
+    import csv
+
+    out = []
+    cells, pts = ctx.out / "accuracy_cost.csv", ctx.out / "accuracy_cost_points.csv"
+    if not (cells.exists() and pts.exists()):
+        return out
+    points = list(csv.DictReader(open(pts)))
+    for i, row in enumerate(csv.DictReader(open(cells)), start=2):
+        if row["cheapest ANCF"] == "none":
+            continue
+        config, mesh = row["cheapest ANCF"].rsplit(" x ", 1)
+        a = float(row["accuracy"].rstrip(" %"))
+        model = MATCHING[row["formulation"]]
+        law = next((p["law"] for p in points if short(p["law"]) == row["law"]), row["law"])
+        same = [p for p in points if p["solver"] == "ancf" and p["law"] == law and p["model"] == model
+                and p["configuration"] == config]
+        me = [p for p in same if p["mesh"] == mesh]
+        if not me:
+            out.append(f"accuracy_cost.csv:{i}: {row['cheapest ANCF']} is not a point of accuracy_cost_points.csv")
+            continue
+        finer = [p for p in same if int(p["ndof"] or 0) >= int(me[0]["ndof"] or 0)]
+        bad = [p for p in finer if p["verdict"] not in GOOD or not p["error (%)"] or float(p["error (%)"]) > a]
+        if bad:
+            out.append(f"accuracy_cost.csv:{i}: cheapest at {row['accuracy']} {row['cheapest ANCF']} rests on "
+                       f"{', '.join(p['mesh'] + ' (' + p['verdict'] + ', ' + (p['error (%)'] or '-') + ' %)' for p in bad)}")
+    return out

@@ -234,3 +234,21 @@ def gold_values(ctx) -> dict:
                            + [f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in sorted(x["changes"].items())])
             out.update(gold_tips(key, d, last_only=True))
     return out
+
+
+def audit(ctx) -> list[str]:
+    """The count line of the findings against the runs table: 'n of m distinct runs'
+    recounted from stability_runs.csv (rows marked '(= ' repeat an earlier run)."""
+    import csv
+    import re
+
+    table, page = ctx.out / "stability_runs.csv", ctx.out / "stability.md"
+    if not (table.exists() and page.exists()):
+        return []
+    rows = [r for r in csv.DictReader(open(table)) if "(= " not in r["integrator"]]
+    hold = sum(1 for r in rows if r["verdict"] in HOLDS)
+    for i, line in enumerate(page.read_text().splitlines(), start=1):
+        m = re.match(r"- (\d+) of (\d+) distinct runs", line)
+        if m and (int(m[1]), int(m[2])) != (hold, len(rows)):
+            return [f"stability.md:{i}: says {m[1]} of {m[2]}, the runs table gives {hold} of {len(rows)}"]
+    return []

@@ -72,3 +72,51 @@ def test_a_report_file_the_records_do_not_give_is_named(tmp_path):
     assert not res.ok
     assert any(p.endswith("table3.md:1: missing (the records give this file)") for p in res.problems)
     assert res.not_audited == ["notes.md"]
+
+
+def _pt(mesh, err, verdict="stable", config="HB2n-16 q32", time=None):
+    return {"solver": "ancf", "config": config, "ndof": mesh * 16, "mesh": mesh, "error": err,
+            "verdict": verdict, "time": time if time is not None else mesh * 1e-4}
+
+
+def test_cheapest_does_not_rest_on_cancellation():
+    """Issue 19: HB2n-16 q32 x 160 at 0.025 % with finer meshes at 0.065 / 0.086 % must
+    not be 'cheapest at 0.05 %'; at 0.1 % it may; a warned or singular point never counts,
+    nor a point whose finer mesh is not stable."""
+    from studies.accuracy_cost import cheapest, settled, settled_steps
+
+    curve = [_pt(80, 0.0020), _pt(160, 0.00025), _pt(320, 0.00065), _pt(640, 0.00086)]
+    assert cheapest(settled(curve, 0.0005), 0.0005) is None
+    assert cheapest(settled(curve, 0.001), 0.001)["mesh"] == 160
+    warned = [_pt(160, 0.00025, "warned"), _pt(320, 0.0003), _pt(640, 0.0003)]
+    assert cheapest(settled(warned, 0.001), 0.001)["mesh"] == 320
+    finer_singular = [_pt(160, 0.00025), _pt(320, 0.0003, "singular")]
+    assert settled(finer_singular, 0.001) == []
+    # pendulum: every finer mesh and finer step keeps the accuracy
+    pend = [{"formulation": "f", "element": "E", "n": n, "dt": dt, "error": e, "verdict": "converged", "time": 1.0}
+            for n, dt, e in ((8, 2e-3, 0.004), (8, 1e-3, 0.02), (16, 2e-3, 0.003), (16, 1e-3, 0.003))]
+    assert [(p["n"], p["dt"]) for p in settled_steps(pend, 0.01)] == [(16, 2e-3), (16, 1e-3)]
+
+
+@pytest.mark.skipif(not (REPORTS / "accuracy_cost.csv").exists(), reason="no committed reports")
+def test_the_cheapest_rule_recheck_names_a_cell_on_cancellation(tmp_path):
+    """The accuracy-cost audit rule, from the written CSVs alone: the committed cells
+    pass; the former MR plane-stress 0.1 % cell (HB2n-16 q32 x 160: warned, 0.025 %, its
+    finer meshes 0.065 / 0.086 %) put back is named with its line."""
+    from types import SimpleNamespace
+
+    from studies import accuracy_cost
+
+    for f in ("accuracy_cost.csv", "accuracy_cost_points.csv"):
+        shutil.copy(REPORTS / f, tmp_path)
+    ctx = SimpleNamespace(out=tmp_path)
+    assert accuracy_cost.audit(ctx) == []
+    cells = tmp_path / "accuracy_cost.csv"
+    lines = cells.read_text().splitlines(keepends=True)
+    i = next(k for k, ln in enumerate(lines) if ln.startswith("MR,plane-stress,0.1 %,"))
+    parts = lines[i].split(",")
+    parts[3] = "HB2n-16 q32 x 160"
+    lines[i] = ",".join(parts)
+    cells.write_text("".join(lines))
+    problems = accuracy_cost.audit(ctx)
+    assert len(problems) == 1 and problems[0].startswith(f"accuracy_cost.csv:{i + 1}: ") and "warned" in problems[0]
