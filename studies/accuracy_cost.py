@@ -14,7 +14,7 @@ from .engine.case import make_case
 from .continuum import scene as continuum_scene
 from .grid import DEFAULT, cantilever_case, qlabel
 from .reference import short, MATCHING, continuum_references, describe, variant_of
-from .engine.report import GOOD, Section, Table, figure, hollow, marker, pct, vec_error, verdict
+from .engine.report import GOOD, Section, Table, draw, figure, hollow_legend, marker, pct, vec_error, verdict
 
 STYLE = {(2, 2): ":", (3, 2): "-", (5, 3): "--", (3, 3): "-.", DEFAULT: "-"}
 
@@ -63,29 +63,6 @@ def settled(pts: list[dict], target: float) -> list[dict]:
     return [p for p in pts
             if all(ok(q) for q in pts
                    if q["solver"] == p["solver"] and q["config"] == p["config"] and (q["ndof"] or 0) >= (p["ndof"] or 0))]
-
-
-def draw(ax, xs, ys, verdicts, label, **kw) -> None:
-    """A curve and its points: filled markers for good runs, hollow ones for the rest
-    (not stable, or warned): the line carries the label, the points the verdicts."""
-    mk, ms = kw.pop("marker", "o"), kw.pop("ms", 3.5)
-    (line,) = ax.plot(xs, ys, label=label, **kw)
-    good = [(x, y) for x, y, v in zip(xs, ys, verdicts) if not hollow(v)]
-    bad = [(x, y) for x, y, v in zip(xs, ys, verdicts) if hollow(v)]
-    if good:
-        ax.plot(*zip(*good), ls="none", marker=mk, ms=ms, color=line.get_color(), label="_good")
-    if bad:
-        ax.plot(*zip(*bad), ls="none", marker=mk, ms=ms, color=line.get_color(), mfc="none", label="_hollow")
-
-
-def hollow_legend(ax) -> None:
-    """The legend with one entry for hollow points."""
-    from matplotlib.lines import Line2D
-
-    h, l = ax.get_legend_handles_labels()
-    h.append(Line2D([], [], ls="none", marker="o", color="grey", mfc="none"))
-    l.append("hollow: singular, indefinite, warned or undetermined")
-    return h, l
 
 
 def cheapest(pts: list[dict], target: float) -> dict | None:

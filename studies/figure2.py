@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from .grid import cantilever_case, qlabel, rule
 from .reference import short, VARIANT_LABEL, abaqus, continuum_references, describe
+from .engine.report import GOOD, draw, hollow_legend, verdict
 from .engine.report import Section, Table, figure, marker, mm, pct, vec_error
 
 CONVERGED = 0.01
@@ -32,7 +33,7 @@ def _series(recs: list[dict], f, q, c, law, el) -> list[tuple[int, dict | None]]
     for r in recs:
         d = describe(r)
         if (d["formulation"], d["quadrature"], d["clamp"], d["law"], d["element"]) == (f, q, c, law, el):
-            out.append((d["elements"], d["tip"] if d["status"] == "converged" else None))
+            out.append((d["elements"], d["tip"] if d["status"] == "converged" else None, verdict(r)))
     return sorted(out, key=lambda p: p[0])
 
 
@@ -51,11 +52,15 @@ def report(ctx) -> Section:
         for j, law in enumerate(g["laws"]):
             for el in g["elements"]:
                 ser = _series(recs, f, q, c, law, el)
+                verdicts = {n: v for n, _, v in ser}
+                odd = [f"{n} {v}" for n, _, v in ser if v not in GOOD and v != "failed"]
+                ser = [(n, tip) for n, tip, _ in ser]
                 ns = [n for n, tip in ser if tip]
                 finest = next((tip for n, tip in reversed(ser) if tip), None)
                 for i, comp in enumerate(("ux", "uy")):
-                    axes[i][j].plot(ns, [mm(tip[comp]) for n, tip in ser if tip], marker=marker(el, g["elements"]),
-                                    ms=4, lw=1, label=el, ls="--" if el in g.get("low_order", ()) else "-")
+                    draw(axes[i][j], ns, [mm(tip[comp]) for n, tip in ser if tip], [verdicts[n] for n in ns], el,
+                         marker=marker(el, g["elements"]), ms=4, lw=1,
+                         ls="--" if el in g.get("low_order", ()) else "-")
                 first = next((n for n, tip in ser if tip and finest and vec_error(tip, (finest["ux"], finest["uy"])) <= CONVERGED), None)
                 failed = [n for n, tip in ser if tip is None]
                 done = [tip for n, tip in ser if tip]
@@ -64,7 +69,7 @@ def report(ctx) -> Section:
                 off = vec_error(finest, ref.tip) if finest and ref and ref.tip else None
                 rows.append([f"{f} {qlabel(q)} {c}", short(law), el, first, max(ns) if ns else None,
                              mm(finest["ux"]) if finest else None, mm(finest["uy"]) if finest else None,
-                             pct(last), pct(off), ", ".join(map(str, failed)) or "-"])
+                             pct(last), pct(off), ", ".join(map(str, failed)) or "-", ", ".join(odd) or "-"])
                 if last is not None and last > DRIFT and el not in g.get("low_order", ()):
                     drifting.append(f"{el} ({short(law)}, `{f}` {qlabel(q)}: {100 * last:.2f} %)")
             for i, comp in enumerate(("ux", "uy")):
@@ -77,7 +82,7 @@ def report(ctx) -> Section:
                 if ab:
                     ax.plot([160], [mm(ab[i])], "k*", ms=8, label="paper ABAQUS [160]")
                 hi = [mm(t[comp]) for el in g["elements"] if el not in g.get("low_order", ())
-                      for n, t in _series(recs, f, q, c, law, el) if t]
+                      for n, t, _ in _series(recs, f, q, c, law, el) if t]
                 if hi:  # a locked element (|u| of a few mm) would flatten the others
                     ref_vals = [mm(r.tip[i]) for v in lines if (r := refs.get((law, v))) and r.tip]
                     lo_, hi_ = min(hi + ref_vals), max(hi + ref_vals)
@@ -89,15 +94,16 @@ def report(ctx) -> Section:
                 ax.grid(True, which="both", alpha=0.3)
                 if i == 1:
                     ax.set_xlabel("number of elements")
-        axes[0][0].legend(fontsize=7, loc="best")
+        axes[0][0].legend(*hollow_legend(axes[0][0]), fontsize=7, loc="best")
         fig.suptitle(f"Tip displacement against elements: `{f}`, quadrature {q}, clamp {c}", fontsize=10)
         sec.figure(ctx, fig, f"figure2_{f}_{qlabel(q)}_{c}",
                    f"Tip ux, uy (mm) against the number of elements, `{f}` formulation, quadrature {q}, clamp {c}; "
-                   f"horizontal lines: converged continuum ({', '.join(lines)}). {', '.join(g.get('low_order', ())) or 'A locked element'} (locked, a few mm) lies "
+                   f"horizontal lines: converged continuum ({', '.join(lines)}); hollow markers: singular, indefinite or warned runs. {', '.join(g.get('low_order', ())) or 'A locked element'} (locked, a few mm) lies "
                    "below the axes where it is off scale; its values are in the table.")
     sec.table(ctx, Table("figure2_convergence", ["configuration", "law", "element", f"n within {100 * CONVERGED:.0f} %",
                                                  "finest n", "ux finest (mm)", "uy finest (mm)", "last step (%)",
-                                                 "finest vs continuum (%)", "failed at n"],
+                                                 "finest vs continuum (%)", "failed at n",
+                                                 "not stable or warned (n verdict)"],
                          rows, {5: ".2f", 6: ".2f", 7: ".3f", 8: ".3f"}),
               f"Smallest mesh whose tip lies within {100 * CONVERGED:.0f} % of the finest mesh's tip (the same "
               "element and setting), and that finest tip: which element converges with the fewest elements. Last "

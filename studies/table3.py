@@ -12,6 +12,7 @@ from __future__ import annotations
 from .grid import cantilever_case, count_for
 from .reference import (short, MATCHING, SOLID_LABEL, VARIANT_LABEL, abaqus, continuum_references,
                         describe, paper_tip, solid_references)
+from .engine.report import verdict
 from .engine.report import Section, Table, mm, pct, rel_dev
 
 
@@ -60,6 +61,7 @@ def report(ctx) -> Section:
     g = ctx.study.grid
     laws, els, forms = g["laws"], g["elements"], g["formulations"]
     got = cells(ctx.records())
+    verdicts = {(d["element"], d["formulation"], d["law"]): verdict(r) for r in ctx.records() for d in (describe(r),)}
     refs = continuum_references(ctx.records("continuum"))
     sec = Section(ctx.study.title,
                   "Free-end centre-line displacement of the paper's cantilever under its own weight. "
@@ -67,12 +69,14 @@ def report(ctx) -> Section:
                   "nodal coordinates of the left node clamped); `plane-strain` / `plane-stress`: the "
                   "consistent formulations with the defaults (each element's default quadrature at its "
                   "l_e / h, README \"Default quadrature\"; clamp of the end face).")
-    hdr = ["row", "n"] + [f"{short(l)} {c} (mm)" for l in laws for c in ("ux", "uy")]
+    hdr = ["row", "n"] + [f"{short(l)} {c} (mm)" for l in laws for c in ("ux", "uy")] + [
+        "verdict (" + " / ".join(short(l) for l in laws) + ")"]
     rows = []
     for form in forms:
         for el in els:
             n = count_for(g, el)
-            rows.append([f"{el} `{form}`", n] + [v for law in laws for v in _vals(got.get((el, form, law)))])
+            rows.append([f"{el} `{form}`", n] + [v for law in laws for v in _vals(got.get((el, form, law)))]
+                        + [" / ".join(verdicts.get((el, form, law), "not run") for law in laws)])
     for el in els:
         if paper_tip(el, laws[0]):
             rows.append([f"paper {el}", count_for({"counts": "paper"}, el)]
@@ -86,7 +90,8 @@ def report(ctx) -> Section:
         rows.append([f"continuum {SOLID_LABEL}, exactly incompressible", "conv."]
                     + [mm(x) for law in laws for x in (solid.get(law) or (None, None))])
     rows.append(["paper ABAQUS", 160] + [mm(x) for law in laws for x in (abaqus(law) or (None, None))])
-    sec.table(ctx, Table("table3", hdr, rows, {j: ".2f" for j in range(2, len(hdr))}),
+    rows = [r + [None] * (len(hdr) - len(r)) for r in rows]
+    sec.table(ctx, Table("table3", hdr, rows, {j: ".2f" for j in range(2, len(hdr) - 1)}),
               "Tip displacement (mm) of every element and formulation beside the paper's rows, the converged "
               "continuum values and ABAQUS: the paper's Table 3 with our numbers in its cells.")
 

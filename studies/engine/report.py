@@ -248,6 +248,29 @@ def hollow(v: str) -> bool:
     return v not in GOOD
 
 
+def draw(ax, xs, ys, verdicts, label, **kw) -> None:
+    """A curve and its points: filled markers for good runs, hollow ones for the rest
+    (not stable, or warned): the line carries the label, the points the verdicts."""
+    mk, ms = kw.pop("marker", "o"), kw.pop("ms", 3.5)
+    (line,) = ax.plot(xs, ys, label=label, **kw)
+    good = [(x, y) for x, y, v in zip(xs, ys, verdicts) if not hollow(v)]
+    bad = [(x, y) for x, y, v in zip(xs, ys, verdicts) if hollow(v)]
+    if good:
+        ax.plot(*zip(*good), ls="none", marker=mk, ms=ms, color=line.get_color(), label="_good")
+    if bad:
+        ax.plot(*zip(*bad), ls="none", marker=mk, ms=ms, color=line.get_color(), mfc="none", label="_hollow")
+
+
+def hollow_legend(ax) -> None:
+    """The legend with one entry for hollow points."""
+    from matplotlib.lines import Line2D
+
+    h, l = ax.get_legend_handles_labels()
+    h.append(Line2D([], [], ls="none", marker="o", color="grey", mfc="none"))
+    l.append("hollow: singular, indefinite, warned or undetermined")
+    return h, l
+
+
 def vec_error(tip: dict | None, ref: tuple[float, float] | None) -> float | None:
     """|u - u_ref| / |u_ref| over (ux, uy)."""
     if not tip or ref is None:
