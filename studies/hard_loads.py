@@ -14,6 +14,7 @@ from contract import paper
 
 from .engine.case import make_case
 from .reference import short
+from .engine.report import verdict
 from .engine.report import Section, Table, mm, pct, vec_error
 
 G = paper.GRAVITY
@@ -99,10 +100,10 @@ def report(ctx) -> Section:
         a, cont = x["ancf"], x["continuum"]
         tip = a.get("tip") or {}
         ctip = (cont or {}).get("tip") or {}
-        table.append([short(x["law"]), x["load"], x["element"], _status(a), a.get("stable"),
+        table.append([short(x["law"]), x["load"], x["element"], _status(a), verdict(a) if a.get("status") else None,
                       mm(tip.get("ux")), mm(tip.get("uy")), _status(cont), mm(ctip.get("ux")), mm(ctip.get("uy")),
                       pct(x["distance"]), a.get("load_steps"), a.get("rejected_steps"), a.get("wall_s")])
-    sec.table(ctx, Table("hard_loads", ["law", "load", "element", "ANCF status", "stable", "ANCF ux (mm)",
+    sec.table(ctx, Table("hard_loads", ["law", "load", "element", "ANCF status", "verdict", "ANCF ux (mm)",
                                         "ANCF uy (mm)", "continuum status", "continuum ux (mm)", "continuum uy (mm)",
                                         "distance (%)", "increments", "cut", "ANCF wall s"], table,
                          {5: ".2f", 6: ".2f", 8: ".2f", 9: ".2f", 10: ".2f", 13: ".3f"}),
