@@ -178,7 +178,9 @@ def _findings(got, refs, els, laws, low_order) -> str:
             if not (uy and cont):
                 continue
             locked = max(uy) < LOCKED * min(cont)
-            line = (f"- {el} `{form}` {'locks' if locked else 'does not lock'}: |uy| = {1e3 * min(uy):.2f} to "
+            partly = not locked and bool(ratios) and all(r < 1 - AGREES for r in ratios)
+            state = "locks" if locked else "locks partly" if partly else "does not lock"
+            line = (f"- {el} `{form}` {state}: |uy| = {1e3 * min(uy):.2f} to "
                     f"{1e3 * max(uy):.2f} mm, against {1e3 * min(cont):.0f} to {1e3 * max(cont):.0f} mm for the continuum")
             if ratios:
                 line += (f"; against {ref_name}" + ("" if locked else f" it {deviation_verdict(ratios)}")
