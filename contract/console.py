@@ -104,6 +104,9 @@ def command(prog: str, run, errors: tuple[type[BaseException], ...] = (SceneErro
         return 2
     except KeyboardInterrupt:
         pass
+    except BrokenPipeError:   # the reader went away (`... | head`): stop quietly, as cat does
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
     except SystemError as e:
         if not by_interrupt(e):
             raise

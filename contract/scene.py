@@ -36,6 +36,7 @@ MAX_ITERATIONS = 1000
 MAX_LOAD_STEPS = 10 ** 6
 MAX_STEPS = 10 ** 7          # default bound of a dynamic run's accepted steps
 MAX_GAUSS = 64               # Gauss points per direction (exact to degree 127)
+MAX_NESTING = 32             # tables and arrays inside one another (a scene uses at most 3)
 
 
 @dataclass(frozen=True)
@@ -149,12 +150,40 @@ def load_scene(path: str | Path) -> Scene:
         raise SceneError(f"{path}: not UTF-8 text (byte {e.start}); a scene file is TOML in UTF-8") from None
     except tomllib.TOMLDecodeError as e:
         raise SceneError(f"{path}: not valid TOML: {e}") from None
+    except RecursionError:   # tomllib parses nested arrays / inline tables recursively
+        raise SceneError(f"{path}: {_too_deep('arrays or inline tables nested hundreds of levels deep')}") from None
     return scene_from_dict(data)
+
+
+def _too_deep(what: str) -> str:
+    return (f"{what}; at most {MAX_NESTING} levels are allowed "
+            f"(a scene's tables hold numbers, strings and short lists)")
+
+
+def check_nesting(data: Any, where: str = "scene", limit: int = MAX_NESTING) -> None:
+    """Refuse values nested more than ``limit`` tables / arrays deep (a SceneError naming
+    the first key path that goes too deep), without recursion: a document nested a few
+    thousand levels would otherwise end in a RecursionError wherever it is next walked
+    (repr in an error message, JSON, a hash)."""
+    stack = [(data, where, 0)]
+    while stack:
+        value, path, depth = stack.pop()
+        if isinstance(value, Mapping):
+            children = ((f"{path}.{k}" if path else str(k), v) for k, v in value.items())
+        elif isinstance(value, (list, tuple)):
+            children = ((f"{path}[{i}]", v) for i, v in enumerate(value))
+        else:
+            continue
+        if depth >= limit:
+            shown = path if len(path) <= 80 else path[:60] + "..." + path[-17:]
+            raise SceneError(f"{shown}: {_too_deep(f'more than {limit} levels of tables or arrays')}")
+        stack.extend((v, p, depth + 1) for p, v in children if isinstance(v, (Mapping, list, tuple)))
 
 
 def scene_from_dict(data: Mapping[str, Any]) -> Scene:
     if not isinstance(data, Mapping):
         raise SceneError(f"scene: must be a table of keys, got {type(data).__name__}")
+    check_nesting(data, "")
     _keys("scene", data, required={"name", "beam", "material", "supports", "analysis"},
           optional={"ancf", "loads", "fem", "description"})
     name = data["name"]

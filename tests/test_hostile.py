@@ -197,6 +197,32 @@ def test_files_that_are_not_scenes_are_one_line(tmp_path, capsys, content, messa
     assert len(err) == 1 and message in err[0] and "Traceback" not in err[0]
 
 
+@pytest.mark.parametrize("text", [
+    "name = " + "[" * 5000 + "]" * 5000,                   # arrays in arrays: tomllib recurses
+    "name = " + "{a = " * 5000 + "1" + "}" * 5000,           # inline tables in inline tables
+    "[" + ".".join(["a"] * 5000) + "]\nx = 1",              # a table header 5000 keys deep
+    "name = " + "[" * 40 + "]" * 40,                         # parses, but deeper than a scene goes
+])
+@pytest.mark.parametrize("module", ["ancf", "reference_fem"])
+def test_a_scene_nested_thousands_deep_is_one_line(tmp_path, capsys, text, module):
+    f = tmp_path / "deep.toml"
+    f.write_text(text + "\n")
+    main = ancf_main if module == "ancf" else __import__("reference_fem.cli", fromlist=["main"]).main
+    assert main(["run", str(f)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "at most 32 levels" in err[0] and "Traceback" not in err[0]
+
+
+def test_a_deep_value_given_as_a_dict_is_refused_before_it_is_walked():
+    deep: list = []
+    for _ in range(100_000):     # far beyond Python's recursion limit
+        deep = [deep]
+    d = scene_with(analysis={"output_times": deep})
+    with pytest.raises(SceneError, match=r"analysis\.output_times\[0\]\[0\].*more than 32 levels"):
+        scene_from_dict(d)
+    scene_from_dict(scene_with(analysis={"load_steps": 3}))   # a real scene (3 levels) passes
+
+
 def test_a_folder_given_as_the_scene(tmp_path, capsys):
     assert ancf_main(["run", str(tmp_path)]) == 2
     assert "is a directory, not a scene file" in capsys.readouterr().err
@@ -463,3 +489,28 @@ def test_fuzz_small_random_runs_end_with_a_status(p):
     assert rec["status"] in ("converged", "failed")
     assert rec["status"] == "failed" and rec["reason"] or rec["status"] == "converged"
     json.dumps(rec, allow_nan=False)
+
+
+# -- the study runner's command line on a bad catalog ---------------------------------------------
+@pytest.mark.parametrize("content, message", [
+    (None, "cannot read"),                                              # no such file
+    (b"\xff", "cannot read"),
+    (b"[x\n", "not valid TOML"),
+    (b"name = " + b"[" * 5000 + b"]" * 5000, "nested hundreds of levels deep"),
+    (b"[" + b".".join([b"a"] * 200) + b"]\nx = 1", "more than 32 levels"),
+    (b"x = 5\n", "x: must be a table"),
+    (b"[x]\ntitle = 't'\n", "x.module: must name a module"),
+    (b"[x]\nmodule = '../etc'\n", "x.module: must name a module"),
+    (b"[x]\nmodule = 'table3'\nneeds = 5\n", "x.needs: must be a list"),
+    (b"[x]\nmodule = 'table3'\nneeds = ['y']\n", "needs unknown"),
+    (b"[x]\nmodule = 'table3'\ntiny = 3\n", "x.tiny: must be a table"),
+    (b"[x]\nmodule = 'table3'\n", "its grid needs the key 'formulations'"),
+])
+def test_a_bad_catalog_is_one_line(tmp_path, capsys, content, message):
+    from studies.cli import main as studies_main
+    f = tmp_path / "cases.toml"
+    if content is not None:
+        f.write_bytes(content)
+    assert studies_main(["list", "--catalog", str(f)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and message in err[0], err

@@ -55,7 +55,10 @@ class Study:
         return importlib.import_module(f"studies.{self.module_name}")
 
     def cases(self) -> list:
-        return self.module.cases(self.grid, self.tiny)
+        try:
+            return self.module.cases(self.grid, self.tiny)
+        except KeyError as e:   # a hand-edited catalog without a key the study's grid needs
+            raise ValueError(f"study {self.name!r}: its grid needs the key {e}") from None
 
 
 STUDIES_DIR = CASES_TOML.parent
@@ -78,7 +81,7 @@ def declared_studies(folder: Path = STUDIES_DIR) -> dict[str, dict]:
 def load_catalog(tiny: bool = False, path: Path = CASES_TOML) -> dict[str, Study]:
     """{name: Study}: the tables of ``path`` in their order, then (for the default
     cases.toml) the studies declared in their own module (:func:`declared_studies`)."""
-    data = tomllib.loads(Path(path).read_text())
+    data = _read(Path(path))
     common = data.pop(COMMON, {})
     # (a test's own case list stands alone)
     for name, t in (declared_studies().items() if Path(path) == CASES_TOML else ()):
@@ -98,6 +101,37 @@ def load_catalog(tiny: bool = False, path: Path = CASES_TOML) -> dict[str, Study
             raise ValueError(f"{CASES_TOML.name}: study {s.name!r} needs unknown {unknown}; "
                              f"studies: {', '.join(out)}")
     return out
+
+
+def _read(path: Path) -> dict:
+    """The catalog file as checked tables (a ValueError naming the file and the key
+    for anything else: unreadable, not TOML, nested too deep, a study without a module)."""
+    from contract.scene import check_nesting
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as e:
+        raise ValueError(f"--catalog: cannot read {path} ({getattr(e, 'strerror', None) or e})") from None
+    except tomllib.TOMLDecodeError as e:
+        raise ValueError(f"--catalog: {path}: not valid TOML: {e}") from None
+    except RecursionError:
+        raise ValueError(f"--catalog: {path}: arrays or inline tables nested hundreds of levels deep") from None
+    check_nesting(data, path.name)
+    for name, t in data.items():
+        if not isinstance(t, dict):
+            raise ValueError(f"{path.name}: {name}: must be a table ([{name}]) of a study's grid")
+        if name == COMMON:
+            continue
+        if not isinstance(t.get("module"), str) or not t["module"].isidentifier():
+            raise ValueError(f"{path.name}: {name}.module: must name a module of studies/ "
+                             f"(e.g. \"table3\"), got {t.get('module')!r}")
+        for key, kind, what in (("title", str, "a string"), ("full", bool, "true or false"),
+                                ("tiny", dict, "a table of grid overrides")):
+            if key in t and not isinstance(t[key], kind):
+                raise ValueError(f"{path.name}: {name}.{key}: must be {what}, got {t[key]!r}")
+        needs = t.get("needs", [])
+        if not isinstance(needs, list) or not all(isinstance(n, str) for n in needs):
+            raise ValueError(f"{path.name}: {name}.needs: must be a list of study names, got {needs!r}")
+    return data
 
 
 def get_study(catalog: dict[str, Study], name: str) -> Study:

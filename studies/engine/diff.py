@@ -61,11 +61,12 @@ def read(path: Path) -> dict[str, dict]:
         return out
     for line in path.read_text().splitlines():
         if line.strip():
-            try:
+            try:   # a torn or hand-edited line that is not a record is skipped, as the store does
                 rec = json.loads(line)
-            except json.JSONDecodeError:
+                rec["scene"]["name"]
+                out[key_of(rec)] = rec
+            except (json.JSONDecodeError, KeyError, TypeError, AttributeError, ValueError):
                 continue
-            out[key_of(rec)] = rec
     return out
 
 
@@ -117,7 +118,10 @@ def diff(old: Path, new: Path, rtol: float = 1e-6, atol: float = 1e-9) -> tuple[
         a, b = read(Path(old) / "data" / f"{study}.jsonl"), read(Path(new) / "data" / f"{study}.jsonl")
         changed = 0
         for k in sorted(set(a) & set(b)):
-            what = compare(a[k], b[k], rtol, atol)
+            try:
+                what = compare(a[k], b[k], rtol, atol)
+            except (TypeError, AttributeError, KeyError, ValueError) as e:   # a field of the wrong type
+                what = [f"cannot be compared (a malformed field: {type(e).__name__}: {e})"]
             if what:
                 changed += 1
                 changes.append(Change(study, a[k]["scene"]["name"], "; ".join(what)))
