@@ -25,6 +25,8 @@ from __future__ import annotations
 import concurrent.futures as cf
 import multiprocessing
 import os
+import signal
+import threading
 import time
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
@@ -58,11 +60,41 @@ def default_executor() -> str:
 
 def _make_executor(kind: str, workers: int):
     if kind == "pool":
-        return cf.ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"))
+        from .worker import init_pool_worker
+        return cf.ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"),
+                                      initializer=init_pool_worker, initargs=(os.getpid(),))
     if kind == "mpi":
         from mpi4py.futures import MPIPoolExecutor
         return MPIPoolExecutor()
     raise ValueError(f"executor: unknown {kind!r}; allowed: {', '.join(EXECUTORS)}")
+
+
+def _stop_pool(ex) -> None:
+    """After a Ctrl-C: cancel what has not started, end the pool's workers (SIGTERM, then
+    SIGKILL after 5 s) and wait until they are gone, so the command returns with no worker
+    left; a second Ctrl-C meanwhile is ignored. An MPI pool is shut down without waiting
+    for its queue."""
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    try:
+        _end_workers(ex)
+    finally:
+        if main:
+            signal.signal(signal.SIGINT, previous)
+
+
+def _end_workers(ex) -> None:
+    procs = list((getattr(ex, "_processes", None) or {}).values())
+    for p in procs:
+        if p.is_alive():
+            p.terminate()
+    deadline = time.monotonic() + 5.0
+    for p in procs:
+        p.join(max(0.0, deadline - time.monotonic()))
+        if p.is_alive():
+            p.kill()
+            p.join()
+    ex.shutdown(wait=True, cancel_futures=True)
 
 
 def _progress(total: int, desc: str, enabled: bool):
@@ -77,6 +109,35 @@ def _mark_worker_death(case: Case, exc: BaseException) -> dict:
     rec = new_record(case.solver, case.scene)
     rec.update(reason=f"worker process died: {type(exc).__name__}: {exc}", transient=True)
     return annotate(rec, case, time.perf_counter())
+
+
+def _result(fut, case: Case) -> dict:
+    try:
+        return fut.result()
+    except Exception as e:  # the worker itself died (e.g. killed, segfault)
+        return _mark_worker_death(case, e)
+
+
+def _run_pool(cases: list[Case], executor: str, workers: int, timeout_s: float | None, done,
+              recorded: set[str]) -> None:
+    """The cases on a pool, each record stored (``done``) as its future completes. On
+    Ctrl-C (or any error): the records that finished are stored, the workers ended and
+    waited for (:func:`_stop_pool`), then the interrupt goes on up."""
+    ex = _make_executor(executor, workers)
+    futures: dict = {}
+    try:
+        for c in cases:
+            futures[ex.submit(execute, c, timeout_s)] = c
+        for fut in cf.as_completed(futures):
+            done(_result(fut, futures[fut]), executor)
+    except BaseException:
+        finished = [f for f in futures if f.done() and not f.cancelled() and f.exception() is None]
+        _stop_pool(ex)
+        for f in finished:
+            if f.result()["case_id"] not in recorded:
+                done(f.result(), executor)
+        raise
+    ex.shutdown(wait=True)
 
 
 def pending(cases: Sequence[Case], store: RecordStore, force: bool = False,
@@ -99,39 +160,36 @@ def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: s
               timeout_s: float | None = DEFAULT_TIMEOUT_S) -> RunSummary:
     t0 = time.perf_counter()
     cases = list(dict.fromkeys(cases))  # the same case twice runs once
-    todo = pending(cases, store, force, timeout_s)
-    summary = RunSummary(study, cases=len(cases), reused=len(cases) - len(todo))
-    launched = [c for c in todo if c.options.get("mpi_ranks")]
-    pooled = [c for c in todo if not c.timing and c not in launched]
-    timed = [c for c in todo if c.timing and c not in launched]
-    executor = executor or default_executor()
+    with store.lock():   # another runner on this study: wait for it, then reuse its records
+        todo = pending(cases, store, force, timeout_s)
+        summary = RunSummary(study, cases=len(cases), reused=len(cases) - len(todo))
+        launched = [c for c in todo if c.options.get("mpi_ranks")]
+        pooled = [c for c in todo if not c.timing and c not in launched]
+        timed = [c for c in todo if c.timing and c not in launched]
+        executor = executor or default_executor()
 
-    def done(rec: dict, how: str) -> None:
-        rec["run"] = {"executor": how, "workers": workers if how == "pool" else None}
-        rec = store.append(rec)
-        summary.computed += 1
-        if rec.get("status") != "converged":
-            summary.failed += 1
-            summary.failures.append(f"{rec['case']['name']}: {rec.get('status')} ({rec.get('reason')})")
-        bar.update(1)
+        recorded: set[str] = set()
 
-    with _progress(len(todo), study, progress) as bar:
-        if pooled and (executor == "serial" or (executor == "pool" and workers <= 1)):
-            for c in pooled:
-                done(execute(c, timeout_s), "serial")
-        elif pooled:
-            with _make_executor(executor, workers) as ex:
-                futures = {ex.submit(execute, c, timeout_s): c for c in pooled}
-                for fut in cf.as_completed(futures):
-                    try:
-                        rec = fut.result()
-                    except Exception as e:  # the worker itself died (e.g. killed, segfault)
-                        rec = _mark_worker_death(futures[fut], e)
-                    done(rec, executor)
-        for c in launched:
-            done(execute(c, timeout_s), f"mpi-{c.options['mpi_ranks']}")
-        for c in timed:
-            done(execute_timed(c, timeout_s), "serial-timed")
-    store.compact(c.id for c in cases)
+        def done(rec: dict, how: str) -> None:
+            rec["run"] = {"executor": how, "workers": workers if how == "pool" else None}
+            rec = store.append(rec)
+            recorded.add(rec["case_id"])
+            summary.computed += 1
+            if rec.get("status") != "converged":
+                summary.failed += 1
+                summary.failures.append(f"{rec['case']['name']}: {rec.get('status')} ({rec.get('reason')})")
+            bar.update(1)
+
+        with _progress(len(todo), study, progress) as bar:
+            if pooled and (executor == "serial" or (executor == "pool" and workers <= 1)):
+                for c in pooled:
+                    done(execute(c, timeout_s), "serial")
+            elif pooled:
+                _run_pool(pooled, executor, workers, timeout_s, done, recorded)
+            for c in launched:
+                done(execute(c, timeout_s), f"mpi-{c.options['mpi_ranks']}")
+            for c in timed:
+                done(execute_timed(c, timeout_s), "serial-timed")
+        store.compact(c.id for c in cases)
     summary.seconds = time.perf_counter() - t0
     return summary

@@ -4,14 +4,20 @@ Each line is one record (a solver record plus ``case_id`` and ``case``), appende
 its case finishes and made durable at once (flush + fsync), so that a killed run keeps
 every finished record. Reading skips a torn last line (a run killed mid-write) and keeps,
 per case id, the line written last. :meth:`RecordStore.compact` rewrites the file
-atomically with only the records of the current case list.
+atomically with only the records of the current case list. :meth:`RecordStore.lock` is
+the study's lock (``flock`` on ``<study>.lock`` beside the records, released by the
+kernel however its holder ends): a second runner on the same study waits for the first,
+says so on stderr, and then reuses its records.
 """
 from __future__ import annotations
 
+import fcntl
 import json
 import os
+import sys
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Iterable
+from typing import Iterable, Iterator
 
 from contract.record import sanitize
 
@@ -72,6 +78,34 @@ class RecordStore:
             os.fsync(f.fileno())
         os.replace(tmp, self.path)
         return lines - len(kept)
+
+
+    @property
+    def lock_path(self) -> Path:
+        return self.path.with_suffix(".lock")
+
+    @contextmanager
+    def lock(self, note=lambda msg: print(msg, file=sys.stderr, flush=True)) -> Iterator[None]:
+        """Hold the study's lock for the block; wait (saying so through ``note``) while
+        another process holds it. The file holds the holder's pid, for that message."""
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        fd = os.open(self.lock_path, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                holder = os.pread(fd, 32, 0).decode(errors="replace").strip() or "?"
+                note(f"studies: {self.path.stem}: another runner (pid {holder}) is computing these records; "
+                     f"waiting for it to finish, then its records are reused")
+                t0 = os.times().elapsed
+                fcntl.flock(fd, fcntl.LOCK_EX)
+                note(f"studies: {self.path.stem}: the other runner is done (waited "
+                     f"{os.times().elapsed - t0:.1f} s); going on")
+            os.ftruncate(fd, 0)
+            os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
+            yield
+        finally:
+            os.close(fd)   # releases the lock
 
 
 def store_for(out_dir: str | Path, study: str) -> RecordStore:

@@ -11,6 +11,12 @@ JIT, imports), then up to ``repeats`` runs while their total stays within ``budg
 (at least one), each timed around the whole solver call (build + solve + tip) in this
 one process; the record gets ``timing`` with every sample and the median. The runner
 calls it serially, outside any pool.
+
+:func:`init_pool_worker` starts each pool worker: it ignores Ctrl-C (the runner decides
+what an interrupt ends, :func:`studies.engine.scheduler._stop_pool`) and dies with its
+parent: ``prctl(PR_SET_PDEATHSIG, SIGKILL)`` on Linux, and everywhere a watchdog thread
+that ends the process once its parent is gone (a runner killed with ``kill -9`` leaves
+no worker computing for nobody).
 """
 from __future__ import annotations
 
@@ -18,6 +24,8 @@ import importlib
 import os
 import signal
 import statistics
+import sys
+import threading
 import time
 import traceback
 
@@ -29,6 +37,39 @@ from .solvers import get_solver
 DEFAULT_REPEATS = 3
 DEFAULT_BUDGET_S = 5.0
 DEFAULT_TIMEOUT_S = 300.0  # a run longer than this is stopped and recorded as failed
+
+
+PR_SET_PDEATHSIG = 1          # <linux/prctl.h>
+WATCHDOG_PERIOD_S = 0.5
+
+
+def _die_with_parent_linux() -> bool:
+    """Ask the kernel for SIGKILL when the parent dies; False where there is no prctl."""
+    if not sys.platform.startswith("linux"):
+        return False
+    import ctypes
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        return libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0) == 0
+    except (OSError, AttributeError):
+        return False
+
+
+def _watch_parent(parent: int, period_s: float) -> None:
+    while os.getppid() == parent:
+        time.sleep(period_s)
+    os._exit(1)   # reparented: the runner is gone, nobody reads this result
+
+
+def init_pool_worker(parent: int) -> None:
+    """The initializer of every pool worker (see the module doc); ``parent`` is the
+    runner's pid, passed in so that a parent that died before this ran is noticed."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _die_with_parent_linux()
+    if os.getppid() != parent:
+        os._exit(1)
+    threading.Thread(target=_watch_parent, args=(parent, WATCHDOG_PERIOD_S), name="parent-watchdog",
+                     daemon=True).start()
 
 
 class CaseTimeout(Exception):
