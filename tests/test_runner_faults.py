@@ -7,11 +7,13 @@ and Ctrl-C early (while the pool starts) and late (while cases run): the command
 Each runs ``python -m studies run`` in its own session, so that every process it started
 can be found (same session id) and none is missed or left behind: on a catalog of 12
 Table 3 cells (about 0.3 s each) where a whole run is needed, and on one of 12 pendulums
-at a fine step (``LONG``: several seconds each, about 30 s in all on two workers) where the
-run is to be stopped: an interrupt that did not end it would show as a run that goes on.
+at a fine step (``LONG``: about 2 s each, 12 s in all on two workers) where the run is to
+be stopped: an interrupt that did not end it shows as a run that goes on (the bound is a
+multiple of the measured case time, so a busy machine slows both sides alike).
 """
 from __future__ import annotations
 
+import json
 import os
 import re
 import signal
@@ -29,7 +31,7 @@ CASES = 12
 
 
 LONG = -1   # count for the long catalog
-STOP_S = 10.0   # an interrupted run returns within this (a whole LONG run takes about 30 s)
+STOP_S = 10.0   # an interrupt while the pool starts ends the run within this
 
 
 def _catalog(tmp_path: Path, count: int) -> Path:
@@ -42,7 +44,7 @@ laws = ["neo-hookean", "mooney-rivlin", "yeoh"]
 elements = ["HB2n-12", "HB3n-12"]
 elements_count = 32
 formulations = ["plane-stress", "paper"]
-dt = 1e-5
+dt = 2e-5
 rho_inf = 0.5
 t_end = 0.5
 """)
@@ -156,8 +158,8 @@ def test_a_runner_waits_while_another_holds_the_study_and_says_so(tmp_path):
 
 def test_two_runners_at_once_compute_each_case_once(tmp_path):
     out = tmp_path / "out"
-    a, data = _start(tmp_path, count=40, out=out)
-    b, _ = _start(tmp_path, count=40, out=out)
+    a, data = _start(tmp_path, count=8, out=out)
+    b, _ = _start(tmp_path, count=8, out=out)
     runs = [x.communicate(timeout=180) for x in (a, b)]
     assert a.returncode == 0 and b.returncode == 0, runs
     computed = [int(re.search(r"faults: \d+ cases, \d+ reused, (\d+) computed", o).group(1)) for o, _ in runs]
@@ -180,11 +182,12 @@ def _interrupt(p: subprocess.Popen, target: str) -> tuple[str, str]:
     return out, err
 
 
-def _stopped(p: subprocess.Popen, target: str, data: Path) -> None:
+def _stopped(p: subprocess.Popen, target: str, data: Path, within: float = STOP_S) -> None:
     """Interrupt ``p``; it must end (not run on to the end of its cases) cleanly."""
     t0 = time.monotonic()
     out, err = _interrupt(p, target)
-    assert time.monotonic() - t0 < STOP_S, "the interrupt did not end the run: it went on"
+    took = time.monotonic() - t0
+    assert took < within, f"the interrupt did not end the run: it went on for {took:.1f} s"
     _assert_clean_interrupt(p, err, data)
 
 
@@ -197,7 +200,8 @@ def _assert_clean_interrupt(p: subprocess.Popen, err: str, data: Path) -> None:
     assert _records(data) == lines, "a record was written after the command returned"
     assert not _gone(p.pid, timeout=5)
     store = RecordStore(data)
-    assert len(store.read()) == lines and store.skipped_lines == 0
+    assert len(store.read()) == lines and store.skipped_lines == 0, [
+        (r.get("case_id"), r.get("pid"), r.get("run")) for r in map(json.loads, data.read_text().splitlines())]
 
 
 @pytest.mark.parametrize("target", TARGETS)
@@ -212,13 +216,15 @@ def test_ctrl_c_while_the_pool_starts_ends_the_run(tmp_path, target):
     assert _records(data) < CASES
 
 
-@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("target", [pytest.param("group", marks=pytest.mark.slow), "runner"])
 def test_ctrl_c_while_cases_run_keeps_every_finished_record_and_leaves_no_worker(tmp_path, target):
     """Late: records are on disk and both workers are in a case; the command returns 130
     with every finished record on disk and no worker alive, and nothing writes afterwards."""
     p, data = _start(tmp_path, count=LONG)
     _wait(lambda: _records(data) >= 1, 120, "a record", p)
     _wait(lambda: len(_workers(p.pid)) == 2, 30, "two live workers", p)
-    _stopped(p, target, data)
+    case_s = next(iter(RecordStore(data).read().values()))["elapsed_s"]
+    # the rest of the run is 11 cases on 2 workers, 5.5 case times; stopping takes well under one
+    _stopped(p, target, data, within=max(3.0, 2.5 * case_s))
     have = RecordStore(data).read()
     assert 1 <= len(have) < CASES and all(r["status"] == "converged" for r in have.values())

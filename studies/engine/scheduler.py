@@ -28,6 +28,7 @@ import os
 import signal
 import threading
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
@@ -97,6 +98,39 @@ def _end_workers(ex) -> None:
     ex.shutdown(wait=True, cancel_futures=True)
 
 
+@contextmanager
+def _deferred_interrupt():
+    """A Ctrl-C during the block is raised right after it (main thread; a handler swap,
+    since a signal mask is per thread and the pool's threads would take the signal)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    hit = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: hit.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if hit and callable(previous):
+            previous(signal.SIGINT, None)   # the default handler raises KeyboardInterrupt
+
+
+@contextmanager
+def _children_without_sigint():
+    """SIGINT blocked in this thread for the block: processes spawned in it inherit the
+    mask, so a Ctrl-C to the group cannot interrupt a pool worker's start-up (its
+    initializer then ignores SIGINT and unblocks it). A Ctrl-C meanwhile stays pending
+    or reaches another thread: it is raised in the main thread all the same."""
+    if not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
 def _progress(total: int, desc: str, enabled: bool):
     from tqdm import tqdm
     return tqdm(total=total, desc=desc, unit="case", disable=not enabled or total == 0,
@@ -126,8 +160,9 @@ def _run_pool(cases: list[Case], executor: str, workers: int, timeout_s: float |
     ex = _make_executor(executor, workers)
     futures: dict = {}
     try:
-        for c in cases:
-            futures[ex.submit(execute, c, timeout_s)] = c
+        with _children_without_sigint():   # the workers are spawned by submit
+            for c in cases:
+                futures[ex.submit(execute, c, timeout_s)] = c
         for fut in cf.as_completed(futures):
             done(_result(fut, futures[fut]), executor)
     except BaseException:
@@ -172,8 +207,9 @@ def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: s
 
         def done(rec: dict, how: str) -> None:
             rec["run"] = {"executor": how, "workers": workers if how == "pool" else None}
-            rec = store.append(rec)
-            recorded.add(rec["case_id"])
+            with _deferred_interrupt():   # a record is written whole and counted, or not at all
+                rec = store.append(rec)
+                recorded.add(rec["case_id"])
             summary.computed += 1
             if rec.get("status") != "converged":
                 summary.failed += 1

@@ -65,6 +65,8 @@ def init_pool_worker(parent: int) -> None:
     """The initializer of every pool worker (see the module doc); ``parent`` is the
     runner's pid, passed in so that a parent that died before this ran is noticed."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if hasattr(signal, "pthread_sigmask"):   # started with SIGINT blocked (the runner's submit)
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
     _die_with_parent_linux()
     if os.getppid() != parent:
         os._exit(1)
