@@ -19,6 +19,13 @@
    continuum) run one after another, each launched by ``mpiexec -n N`` (``srun`` under
    Slurm; :mod:`reference_fem.launch`) with the machine to themselves.
 4. The store is compacted to the current case list.
+
+All of it under the study's lock (:meth:`RecordStore.lock`): a second runner on the same
+study waits, says so on stderr, and then finds the first one's records. Under faults: the
+pool's workers die with the runner (:func:`studies.engine.worker.init_pool_worker`); a
+Ctrl-C anywhere in the pool phase cancels what has not started, ends and waits for the
+workers, stores every record that finished, and only then goes on up (exit 130); a
+record is written whole even when the Ctrl-C lands in its append.
 """
 from __future__ import annotations
 
