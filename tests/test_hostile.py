@@ -275,13 +275,13 @@ def test_ctrl_c_is_one_line_and_exit_130(tmp_path, module):
     p = subprocess.Popen([sys.executable, "-m", module, "run", str(scene), "--quiet"], cwd=ROOT,
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                          preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    if module == "ancf":
-        time.sleep(6)
-    else:   # dolfinx loaded (it takes 5 to 15 s to import here), then into the run
-        t0 = time.monotonic()
-        while time.monotonic() - t0 < 60 and p.poll() is None and "dolfinx" not in _maps(p.pid):
-            time.sleep(0.1)
-        time.sleep(4)
+    # the solver's heavy library loaded (numba's llvmlite; dolfinx: 1 to 15 s to import
+    # here), then a few seconds into the run (it lasts about 45 s)
+    library = "llvmlite" if module == "ancf" else "dolfinx"
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < 60 and p.poll() is None and library not in _maps(p.pid):
+        time.sleep(0.1)
+    time.sleep(3 if module == "ancf" else 4)
     p.send_signal(signal.SIGINT)
     out, err = p.communicate(timeout=60)
     assert p.returncode == 130, err[-2000:]
@@ -434,7 +434,7 @@ def _check_both(scene_dict) -> None:
             pass
 
 
-@fuzz(300)
+@fuzz(150)    # 4000 in make test-slow
 @given(st.sampled_from([(t, k) for t, ks in KEYS.items() for k in ks]), values)
 def test_fuzz_one_wrong_value(place, value):
     table, key = place
@@ -449,7 +449,7 @@ def test_fuzz_one_wrong_value(place, value):
     _check_both(d)
 
 
-@fuzz(150)
+@fuzz(60)     # 2000 in make test-slow, and 1500 of mutated scene text
 @given(st.dictionaries(st.sampled_from(KEYS[""]),
                        st.one_of(values, st.dictionaries(st.sampled_from(sum(KEYS.values(), [])), values,
                                                          max_size=8)), max_size=9))
@@ -457,7 +457,7 @@ def test_fuzz_random_documents(d):
     _check_both(d)
 
 
-@fuzz(150)
+@fuzz(80)     # 2000 in make test-slow
 @given(st.binary(max_size=400))
 def test_fuzz_random_bytes(tmp_path_factory, data):
     f = tmp_path_factory.mktemp("fuzz") / "x.toml"
