@@ -365,6 +365,35 @@ def col_matvec(C, first, x, y):
         y[j] += acc
 
 
+@njit(cache=True, fastmath=FASTMATH)
+def col_matvec_split(C, first, x, y):
+    """:func:`col_matvec` for a matrix that couples only dofs of the same component
+    (a mass matrix M = M_s (x) I_2 in the node order (a, i) -> 2 a + i: its entries between
+    an x and a y dof are zero, :func:`same_component_only`): the same products without
+    those zeros, half the work. Column j's loop starts at the first row of j's parity at
+    or after first[j]."""
+    n, b1 = C.shape
+    b = b1 - 1
+    for j in range(n):
+        y[j] = 0.0
+    for j in range(n):
+        xj = x[j]
+        acc = C[j, b] * xj
+        i0 = first[j] + ((j - first[j]) & 1)
+        for i in range(i0, j, 2):
+            v = C[j, b + i - j]
+            y[i] += v * xj
+            acc += v * x[i]
+        y[j] += acc
+
+
+def same_component_only(C: np.ndarray) -> bool:
+    """Are all entries of the column band C between dofs of different parity zero (a
+    mass matrix M_s (x) I_2, :func:`col_matvec_split`)?"""
+    b = C.shape[1] - 1
+    return not np.any(C[:, b - 1::-2])
+
+
 @njit(cache=True)
 def col_constrain(C, fixed):
     """Rows and columns of the fixed dofs replaced by those of the identity."""
@@ -451,4 +480,5 @@ def envelope(dofs: np.ndarray, n: int) -> np.ndarray:
     for d in dofs:
         np.minimum.at(first, d, d.min())
     return first
+
 

@@ -8,7 +8,8 @@ import pytest
 from ancf.banded import Banded
 from ancf.build import build_integrator, build_model, external_loads
 from ancf.dgkernel import assemble_dg, dg_scratch
-from ancf.kernels import (OK, assemble_fused, col_constrain, col_ldlt, col_ldlt_solve, envelope, step_scratch,
+from ancf.kernels import (OK, assemble_fused, col_constrain, col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split,
+                          envelope, same_component_only, step_scratch,
                           strain_energy_fused)
 from ancf.elements import ELEMENTS
 from mechanics.laws import LAWS, Law, register_law
@@ -234,3 +235,23 @@ def test_fused_kernel_and_ldlt_equal_the_reference(law, form):
     S3[:, b] = 1.0
     S3[5, b] = 0.0                                            # singular: the step is rejected
     assert col_ldlt(S3, first, np.empty(n)) == -6
+
+
+@pytest.mark.parametrize("element", ["HB2n-12", "HB3n-12", "HB2n-16"])
+def test_mass_matvec_without_the_cross_component_zeros(element):
+    """Every element's mass matrix couples only dofs of the same component, so the step
+    loop multiplies by it without those zeros: the same product as the whole band; a
+    tangent (x-y coupled) is not taken for one."""
+    model = build_model(scene(element=element, n=4))
+    n, b = model.mesh.n_dof, model.mesh.bandwidth
+    Mc = column_band(model.mass_matrix().ab, b)
+    first = envelope(model._dofs, n)
+    assert same_component_only(Mc)
+    x = np.random.default_rng(5).standard_normal(n)
+    y, y_ref = np.empty(n), np.empty(n)
+    col_matvec(Mc, first, x, y_ref)
+    col_matvec_split(Mc, first, x, y)
+    np.testing.assert_allclose(y, y_ref, rtol=1e-14, atol=1e-14 * np.abs(y_ref).max())
+    np.testing.assert_allclose(y_ref, model.mass_matrix().matvec(x), rtol=1e-12)
+    _, K = model.internal_force_and_tangent(1e-3 * x)
+    assert not same_component_only(column_band(K.ab, b))
