@@ -101,7 +101,8 @@ def newton(dN, w, dofs, ops, consts, first, fixed, b, target, u, atol, utol, hbe
     for k in fixed:
         is_free[k] = False
     S = np.empty((n, b + 1))
-    f, r, du, wk, ut = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    f, r, du, ut = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    wk = np.empty((2, n))
     chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
     nres = 0
     for it in range(max_it + 1):

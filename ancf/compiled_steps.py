@@ -179,7 +179,7 @@ def _correct(S, first, r, du, u, counters):
 def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
          u_n, v_n, a_n, h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, full):
     """One step u_n, v_n, a_n -> u, v, a of size h. S holds the current factorisation
-    (modified Newton), fstate = [h of that factorisation, 1 if valid]; wk: work (6, n);
+    (modified Newton), fstate = [h of that factorisation, 1 if valid]; wk: work (7, n);
     chunk, R, Fb, ab, Jb: :func:`step_scratch`; full: full Newton whatever inewton says.
     Returns (status, iterations)."""
     am, af, beta, gamma = coef[0], coef[1], coef[2], coef[3]
@@ -228,7 +228,7 @@ def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewt
                 return status, it
         if refactor:
             # S = (1 - af) K + c M, constrained, factorised in place
-            if _factorise(S, 1.0 - af, Mc, c, fixed, first, wk[5], counters) < 0:
+            if _factorise(S, 1.0 - af, Mc, c, fixed, first, wk[5:7], counters) < 0:
                 fstate[1] = 0.0
                 return SINGULAR, it
             fstate[0], fstate[1] = h, 1.0
@@ -283,7 +283,7 @@ def step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton,
             break
         if it == max_it:
             return NEWTON_FAILED, it
-        if _factorise(S, 0.5, Mc, c, fixed, first, wk[5], counters) < 0:
+        if _factorise(S, 0.5, Mc, c, fixed, first, wk[5:7], counters) < 0:
             return SINGULAR, it
         umax, dumax = _correct(S, first, r, du, u, counters)
         it += 1
@@ -323,7 +323,7 @@ def advance(dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, fixed, coef, inew
     is_free = np.ones(n, np.bool_)
     for k in fixed:
         is_free[k] = False
-    wk = np.empty((6, n))
+    wk = np.empty((7, n))
     chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
     dg = inewton[I_SCHEME] == DISCRETE_GRADIENT
     scratch = dg_scratch(ops.shape[0], dN.shape[0]) if dg else dg_scratch(1, 192)   # (unused: tiny)

@@ -413,10 +413,16 @@ def col_ldlt(C, first, wk):
     triangular (its strict upper part overwrites S's) and 1 / D on the diagonal.
     Left-looking by columns, no pivoting, so the band is kept; column j is processed
     from row first[j] (its envelope: no fill above it) and the inner products run over
-    contiguous memory. wk (n,) is work space. Returns the number of negative pivots
+    contiguous memory. wk (2, n) is work space. Returns the number of negative pivots
     (the number of negative eigenvalues of S, by Sylvester's law of inertia), or
     -(j + 1) if the pivot of column j is (near) zero, |D_j| <= 1e-12 |S_jj|, or not
     finite: S is singular to working precision.
+
+    Two columns that start on the same row (columns of one node) are taken together:
+    their entries are independent inner products over the same rows of U, computed in
+    one pass as two chains, where one column's single chain waits on each product's
+    latency (32 x HB2n-12: 11 -> 8 us, 32 x HB2n-16: 22 -> 15 us). Every inner product
+    keeps its order: the factors are the one-column loop's to the bit.
 
     Why not Cholesky: S = (1 - alpha_f) K + c M is symmetric but need not be positive
     definite at a Newton iterate. In the stiff case (plane strain, penalty 1e5 C10,
@@ -427,28 +433,75 @@ def col_ldlt(C, first, wk):
     square roots)."""
     n, b1 = C.shape
     b = b1 - 1
+    w, w2 = wk[0], wk[1]
     negative = 0
-    for j in range(n):
+    j = 0
+    while j < n:
         i0 = first[j]
         cj = C[j]
         oj = b - j
+        if j + 1 < n and first[j + 1] == i0:
+            # columns j and j + 1: rows i0 .. j - 1 of both in one pass
+            ck = C[j + 1]
+            ok = oj - 1
+            for i in range(i0, j):
+                ci = C[i]
+                oi = b - i
+                s = cj[oj + i]
+                t = ck[ok + i]
+                for k in range(max(i0, first[i]), i):
+                    c = ci[oi + k]
+                    s -= c * w[k]
+                    t -= c * w2[k]
+                w[i] = s                              # D_i U_ij
+                w2[i] = t
+                cj[oj + i] = s * ci[b]                # U_ij; ci[b] holds 1 / D_i
+                ck[ok + i] = t * ci[b]
+            # the pivot of column j, and row j of column j + 1 (the same rows i0 .. j - 1)
+            d = cj[b]
+            s = d
+            t = ck[ok + j]
+            for k in range(i0, j):
+                c = cj[oj + k]
+                s -= c * w[k]
+                t -= c * w2[k]
+            if not (abs(s) > 1e-12 * abs(d) and abs(s) < 1e300):
+                return -(j + 1)
+            if s < 0.0:
+                negative += 1
+            cj[b] = 1.0 / s
+            w2[j] = t
+            ck[ok + j] = t * cj[b]
+            # the pivot of column j + 1
+            d = ck[b]
+            s = d
+            for k in range(i0, j + 1):
+                s -= ck[ok + k] * w2[k]
+            if not (abs(s) > 1e-12 * abs(d) and abs(s) < 1e300):
+                return -(j + 2)
+            if s < 0.0:
+                negative += 1
+            ck[b] = 1.0 / s
+            j += 2
+            continue
         for i in range(i0, j):
             ci = C[i]
             oi = b - i
             s = cj[oj + i]
             for k in range(max(i0, first[i]), i):
-                s -= ci[oi + k] * wk[k]
-            wk[i] = s                                 # D_i U_ij
-            cj[oj + i] = s * ci[b]                    # U_ij; ci[b] holds 1 / D_i
+                s -= ci[oi + k] * w[k]
+            w[i] = s
+            cj[oj + i] = s * ci[b]
         d = cj[b]
         s = d
         for k in range(i0, j):
-            s -= cj[oj + k] * wk[k]
+            s -= cj[oj + k] * w[k]
         if not (abs(s) > 1e-12 * abs(d) and abs(s) < 1e300):
             return -(j + 1)
         if s < 0.0:
             negative += 1
         cj[b] = 1.0 / s
+        j += 1
     return negative
 
 

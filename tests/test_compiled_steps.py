@@ -224,17 +224,17 @@ def test_fused_kernel_and_ldlt_equal_the_reference(law, form):
     rhs = np.arange(n, dtype=float) % 7
     rhs[model.fixed] = 0.0
     x_ref = Banded(0.6 * K_ref.ab + 4e6 * M.ab, b).constrain(model.fixed).solve(rhs)
-    assert col_ldlt(S, first, np.empty(n)) == 0
+    assert col_ldlt(S, first, np.empty((2, n))) == 0
     col_ldlt_solve(S, first, rhs)
     np.testing.assert_allclose(rhs, x_ref, rtol=1e-10, atol=1e-12 * np.abs(x_ref).max())
     S2 = column_band(K_ref.ab + 4e6 * M.ab, b)
     S2[:, b] -= 1e12 * np.abs(S2).max()                       # every free pivot negative
     col_constrain(S2, model.fixed.astype(np.int64))
-    assert col_ldlt(S2, first, np.empty(n)) == n - len(model.fixed)
+    assert col_ldlt(S2, first, np.empty((2, n))) == n - len(model.fixed)
     S3 = np.zeros_like(S2)
     S3[:, b] = 1.0
     S3[5, b] = 0.0                                            # singular: the step is rejected
-    assert col_ldlt(S3, first, np.empty(n)) == -6
+    assert col_ldlt(S3, first, np.empty((2, n))) == -6
 
 
 @pytest.mark.parametrize("element", ["HB2n-12", "HB3n-12", "HB2n-16"])
