@@ -66,7 +66,7 @@ from numba import njit
 
 from mechanics import alpha_family, time_loop
 from .dgkernel import assemble_dg, dg_scratch
-from .kernels import same_component_only
+from .kernels import live_tape, same_component_only
 from .kernels import (INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, col_constrain,
                       col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split, assemble_fused, step_scratch, strain_energy_fused)
 
@@ -422,6 +422,7 @@ class CompiledLoop:
         b = model.mesh.bandwidth
         self.n, self.b = model.mesh.n_dof, b
         dN, w, dofs, ops, consts, first = model.fused
+        ops, consts = live_tape(ops, consts)
         self.data = (dN, w, dofs, ops, consts, column_band(M.ab, b), first, np.ascontiguousarray(f_ext, dtype=float),
                      np.ascontiguousarray(model.mesh.reference, dtype=float),
                      np.ascontiguousarray(model.fixed, dtype=np.int64))

@@ -149,6 +149,26 @@ OK, NEWTON_FAILED, SINGULAR, INADMISSIBLE, ENERGY_GROWTH, BUDGET = range(6)
 # zeros (~25 % of the work for the node-block structure).
 
 
+def live_tape(ops: np.ndarray, consts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The energy tape (:func:`ancf.tape.trace`) without the instructions its result does
+    not depend on (a formulation's I2 where the law reads only I1, e.g. Yeoh: 3 of 16),
+    operands renumbered; the result stays the last instruction. The replay computes the
+    same numbers at fewer passes over the points."""
+    n = ops.shape[0]
+    live = np.zeros(n, bool)
+    live[n - 1] = True
+    for k in range(n - 1, -1, -1):
+        if live[k]:
+            for x in ops[k, 1:3]:
+                if x >= 0:
+                    live[x] = True
+    index = np.cumsum(live) - 1
+    kept = ops[live].copy()
+    for col in (1, 2):
+        kept[:, col] = np.where(kept[:, col] >= 0, index[np.maximum(kept[:, col], 0)], kept[:, col])
+    return np.ascontiguousarray(kept), np.ascontiguousarray(consts[live])
+
+
 @njit(cache=True)
 def step_scratch(n_ops, nq):
     """Work arrays of the element loop for chunks of about 192 points: (chunk, R (n_ops,
@@ -167,14 +187,16 @@ def point_gradients(u, u_n, alpha_f, dN, dofs, e0, e1, Fb, ab, Jb):
     nd = dofs.shape[1]
     nq, ns = dN.shape[0], dN.shape[1]
     g = 1.0 - alpha_f
+    ue = np.empty(nd)
     m = 0
     for e in range(e0, e1):
+        for k in range(nd):                  # the element's ue, once for all its points
+            d = dofs[e, k]
+            ue[k] = g * u[d] + alpha_f * u_n[d]
         for q in range(nq):
             F00, F01, F10, F11 = 1.0, 0.0, 0.0, 1.0
             for s in range(ns):
-                d0, d1 = dofs[e, 2 * s], dofs[e, 2 * s + 1]
-                ux = g * u[d0] + alpha_f * u_n[d0]
-                uy = g * u[d1] + alpha_f * u_n[d1]
+                ux, uy = ue[2 * s], ue[2 * s + 1]
                 g0, g1 = dN[q, s, 0], dN[q, s, 1]
                 F00 += g0 * ux
                 F01 += g1 * ux
