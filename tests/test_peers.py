@@ -25,7 +25,7 @@ def fake_peer(status="converged"):
 def fake_ours(wall=0.25):
     return {
         "element": "HB2n-12", "elements": 32, "formulation": "plane-stress", "law": "yeoh",
-        "dt": 1e-3, "rho_inf": 0.8, "wall_s": [wall] * 5, "wall_median_s": wall, "cpu_median_s": wall,
+        "dt": 1e-3, "rho_inf": 0.8, "wall_s": [wall] * 5, "wall_median_s": wall, "cpu_s": [wall] * 5, "cpu_median_s": wall,
         "setup_median_s": 0.002, "first_run_s": 1.0, "steps": 500, "rejected_steps": 0,
         "newton_iterations": 1000, "ndof": 196,
         # t = 0 is ours only; the others are Exudyn's + (1 mm, -2 mm), off by round-off in t
@@ -44,16 +44,17 @@ def test_parse_takes_the_last_json_line_after_exudyn_chatter():
 
 
 def test_table_ratio_and_tip_differences():
-    text = compare.format_table(fake_ours(0.08), fake_peer(), ((1.0, 1.0, 1.0), (1.5, 1.0, 1.0)))
-    assert ("ratio ours / Exudyn: 0.80 wall, 0.80 CPU (ours 0.0800 s, Exudyn 0.1000 s CPU; target: within 1x) "
+    text = compare.format_table(fake_ours(0.04), fake_peer(), ((1.0, 1.0, 1.0), (1.5, 1.0, 1.0)))
+    assert ("ratio ours / Exudyn: 0.40 wall, 0.40 CPU (ours 0.0400 s, Exudyn 0.1000 s CPU; target: within 0.5x) "
             "-> within target") in text
+    assert "spread (min-max): ours 0.0400-0.0400 s wall" in text and "Exudyn 0.1000-0.2000 s wall" in text
     rows = [ln.split() for ln in text.splitlines() if ln.startswith(" 0.") and len(ln.split()) == 8]
     assert [float(r[0]) for r in rows] == list(TIMES)
     for r in rows:
         assert (float(r[5]), float(r[6]), float(r[7])) == pytest.approx((1.0, -2.0, 5 ** 0.5), abs=0.006)
     assert "linearSolver = LinearSolverType.EigenSparse" in text and "useModifiedNewton = True" in text
     assert "before 1.00 1.00 1.00, after 1.50 1.00 1.00" in text
-    assert "NOT within target" in compare.format_table(fake_ours(0.11), fake_peer())
+    assert "NOT within target" in compare.format_table(fake_ours(0.06), fake_peer())     # HB2n-12: 0.5x
 
 
 def test_missing_output_time_is_an_error():
