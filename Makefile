@@ -39,6 +39,7 @@ study-full: study
 bench: setup
 	$(PY) -m studies.bench table3
 	$(PY) -m studies.bench pendulum
+	$(PY) -m studies.bench kernels
 
 bench-penalty: setup
 	$(PY) -m studies.bench penalty
