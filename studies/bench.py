@@ -181,23 +181,28 @@ def kernel_rows(calls: int = 100, repeats: int = 10, elements: int = KERNEL_ELEM
         d = pendulum_dict(element, elements, form, 1e-3, 0.5)
         d["material"] = _kernel_material(law, form)
         model = build_model(scene_from_dict(d))
-        dN, w, dofs, ops, consts, _ = model.fused
-        ops, consts = live_tape(ops, consts)
         n = model.mesh.n_dof
         u = 1e-4 * np.random.default_rng(0).standard_normal(n)
-        f, K = np.empty(n), np.empty((n, model.mesh.bandwidth + 1))
-        scratch = step_scratch(ops.shape[0], dN.shape[0])
         times = {}
-        for name, tangent in (("force", False), ("tangent", True)):
-            def call():
-                return assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, f, K, tangent, *scratch)
-            if call() != 0:
-                raise RuntimeError(f"{element} {law} {form}: det F <= 0 at the benchmark state")
-            times[name] = _per_call(call, calls, repeats)
-        ne = dofs.shape[0]
+        if model.compiled:
+            dN, w, dofs, ops, consts, _ = model.fused
+            ops, consts = live_tape(ops, consts)
+            f, K = np.empty(n), np.empty((n, model.mesh.bandwidth + 1))
+            scratch = step_scratch(ops.shape[0], dN.shape[0])
+            for name, tangent in (("force", False), ("tangent", True)):
+                def call():
+                    return assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, f, K, tangent, *scratch)
+                if call() != 0:
+                    raise RuntimeError(f"{element} {law} {form}: det F <= 0 at the benchmark state")
+                times[name] = _per_call(call, calls, repeats)
+            what = "compiled"
+        else:         # a model the compiled loops do not run (a pressure field): its own kernel
+            times["force"] = _per_call(lambda: model.internal_force(u), calls, repeats)
+            times["tangent"] = _per_call(lambda: model.internal_force_and_tangent(u), calls, repeats)
+            what = "model"
+        ne = model.mesh.n_elements
         row = {"solver": "ours", "element": element, "law": law, "formulation": form, "elements": ne,
-               "points_per_element": dN.shape[0], "calls": calls, "repeats": repeats,
-               "what": "assemble_fused (compiled step loop's kernel), force + tangent in one pass"}
+               "points_per_element": len(model.rule.weight), "calls": calls, "repeats": repeats, "what": what}
         for name, ts in times.items():
             med = statistics.median(ts)
             row[f"{name}_us_per_element"] = round(med * 1e6 / ne, 4)
@@ -226,14 +231,24 @@ def exudyn_kernel_row(elements: int = KERNEL_ELEMENTS) -> dict | None:
     row = {"solver": f"Exudyn {out['exudyn']}", "element": "ANCFCable2D", "law": "linear elastic",
            "formulation": "Euler-Bernoulli", "elements": out["elements"], "points_per_element": "",
            "calls": out["calls"], "repeats": out["repeats"],
-           "what": "MainSolverImplicitSecondOrder.ComputeODE2RHS / ComputeJacobianODE2RHS from Python "
-                   "(the whole system: gravity loads and the Python call included)"}
+           "what": "exudyn"}
     for name in ("force", "tangent"):
         ts = out[name]["us_per_call"]
         med = statistics.median(ts)
         row[f"{name}_us_per_element"] = round(out[name]["us_per_element"], 4)
         row[f"{name}_spread"] = round((max(ts) - min(ts)) / med, 3)
     return row
+
+
+KERNELS = {
+    "compiled": "`ancf.kernels.assemble_fused`, the compiled step and static loops' kernel (force and "
+                "tangent in one pass)",
+    "model": "`BeamModel.internal_force` / `internal_force_and_tangent`, for an element the compiled "
+             "loops do not run (a pressure field: the Python solvers run it)",
+    "exudyn": "`MainSolverImplicitSecondOrder.ComputeODE2RHS` / `ComputeJacobianODE2RHS` called from "
+              "Python: the whole system (the gravity loads and the Python call included) per element; "
+              "Exudyn exposes no single element's force",
+}
 
 
 def kernel_markdown(rows: list[dict]) -> str:
@@ -244,19 +259,20 @@ def kernel_markdown(rows: list[dict]) -> str:
              "do not edit. Microseconds per element per call, warm: 10 untimed calls, then "
              "repeats x calls timed calls, the median over the repeats (spread = (max - min) / median "
              "of the repeats), in the CPU time of the calling thread (`time.thread_time`: time the thread "
-             "waits for a core on a loaded machine is not counted). Ours: the compiled step loop's kernel "
-             "(`ancf.kernels.assemble_fused`) on the pendulum's mesh at a deformed state; its tangent "
-             "call computes the force too (the step loop never needs the tangent alone). "
+             "waits for a core on a loaded machine is not counted). Ours: on the pendulum's mesh at a "
+             "deformed state; the tangent call computes the force too (the loops never need the "
+             "tangent alone). "
              "Times depend on the machine and its load (measured on a shared 2-core machine); "
              "compare rows of one run.", ""]
     for solver in dict.fromkeys(r["solver"] for r in rows):
         sub = [r for r in rows if r["solver"] == solver]
-        lines += [f"## {solver}", "", f"{sub[0]['what']}; {sub[0]['elements']} elements, "
-                  f"{sub[0]['repeats']} x {sub[0]['calls']} calls.", "",
-                  "| element | law | formulation | points | force us/el | spread | force+tangent us/el | spread |",
-                  "|---|---|---|---:|---:|---:|---:|---:|"]
+        lines += [f"## {solver}", "", f"{sub[0]['elements']} elements, {sub[0]['repeats']} x {sub[0]['calls']} "
+                  "calls. Kernel: " + "; ".join(f"{k}: {KERNELS.get(k, k)}" for k in dict.fromkeys(r["what"] for r in sub))
+                  + ".", "",
+                  "| element | law | formulation | kernel | points | force us/el | spread | force+tangent us/el | spread |",
+                  "|---|---|---|---|---:|---:|---:|---:|---:|"]
         for r in sub:
-            lines.append(f"| {r['element']} | {r['law']} | {r['formulation']} | {r['points_per_element']} | "
+            lines.append(f"| {r['element']} | {r['law']} | {r['formulation']} | {r['what']} | {r['points_per_element']} | "
                          f"{float(r['force_us_per_element']):.3f} | {float(r['force_spread']):.2f} | "
                          f"{float(r['tangent_us_per_element']):.3f} | {float(r['tangent_spread']):.2f} |")
         lines.append("")
