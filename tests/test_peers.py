@@ -116,3 +116,24 @@ def test_work_precision_does_not_count_accuracy_by_cancellation():
     # 5 ms reaches 0.1 % only by luck (the 2.5 ms step loses it); 1.25 ms is the first that holds
     assert wp.cheapest(recs, "exudyn", None, 0.001)["dt"] == 1.25e-3
     assert wp.cheapest(recs, "exudyn", None, 0.002)["dt"] == 5e-3
+
+
+def test_work_precision_floors_are_read_at_fine_steps_and_the_rules_are_stated():
+    from studies.peers import work_precision as wp
+
+    def rec(n, dt, e, guard="none", runs=None):
+        return {"solver": "exudyn", "element": "ANCFCable2D", "elements": n, "dt": dt, "rho_inf": 0.5,
+                "status": "converged", "time_s": 0.01, "error": e, "energy_guard": guard, "time_runs_s": runs}
+    # 16 x 2.5 ms cancels to 0.039 %; the finest mesh at its finest step says 0.09 %
+    recs = [rec(16, 2.5e-3, 0.00039), rec(16, 1.25e-3, 0.0008), rec(32, 2.5e-3, 0.0007),
+            rec(32, 1.25e-3, 0.0009, runs=[0.01, 0.012, 0.011, 0.01, 0.013])]
+    f = wp.floors(recs)[("exudyn", "ANCFCable2D")]
+    assert (f["elements"], f["dt"], f["error"]) == (32, 1.25e-3, 0.0009)
+    ours = {**rec(32, 1.25e-3, 0.001, runs=[0.02] * 5), "solver": "ancf", "element": "HB2n-12"}
+    text = wp.report_markdown(recs + [ours])
+    assert "| exudyn | ANCFCable2D | 32 | 1.25 | 0.0900 |" in text
+    assert "Energy guard: none on either side" in text
+    assert "| exudyn | ANCFCable2D | 32 | 1.25 | converged | 0.0100 | 0.0100-0.0130 | 0.0900 |" in text
+    old = {**ours, "energy_guard": None}
+    old.pop("energy_guard")
+    assert "NOT the same on both sides" in wp.report_markdown(recs + [old])
