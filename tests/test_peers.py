@@ -137,3 +137,13 @@ def test_work_precision_floors_are_read_at_fine_steps_and_the_rules_are_stated()
     old = {**ours, "energy_guard": None}
     old.pop("energy_guard")
     assert "NOT the same on both sides" in wp.report_markdown(recs + [old])
+
+
+def test_peers_report_is_generated_from_the_record():
+    o16 = {**fake_ours(0.07), "element": "HB2n-16"}
+    md = compare.peers_markdown({"ours": [fake_ours(0.04), o16], "exudyn": fake_peer(),
+                                 "load": [(1.0, 1.0, 1.0), (2.0, 1.0, 1.0)]})
+    assert "| 0.0400-0.0400 | 0.0400 | 0.0400-0.0400 | 0.40, 0.40 | 0.5: met |" in md
+    assert "| 0.70, 0.70 | 0.8: met |" in md
+    assert "load average (1 min) 1.00 before, 2.00 after" in md
+    assert "| HB2n-12 | 0.10 | 1.00 | -2.00 | 2.24 |" in md
