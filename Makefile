@@ -39,13 +39,14 @@ study-full: study
 bench: setup
 	$(PY) -m studies.bench table3
 	$(PY) -m studies.bench pendulum
+	$(PY) -m studies.bench kernels
 
 bench-penalty: setup
 	$(PY) -m studies.bench penalty
 
 # Exudyn in a separate venv (.venv-peers), never in .venv
 bench-peers: setup
-	bash tools/setup_peers.sh && $(PY) -m studies.peers.compare
+	bash tools/setup_peers.sh && $(PY) -m studies.peers.compare --report
 	$(PY) -m studies.peers.work_precision --import examples.cubic_slope \
 		--element HB2n-12 --element HB2n-16 --element HB2n-20xy
 

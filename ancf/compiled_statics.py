@@ -25,7 +25,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .kernels import INADMISSIBLE, OK, assemble_fused, col_constrain, col_ldlt, col_ldlt_solve, \
+from .kernels import INADMISSIBLE, OK, assemble_fused, live_tape, col_constrain, col_ldlt, col_ldlt_solve, \
     point_gradients, step_scratch
 from .tape import tape_batch
 
@@ -101,7 +101,8 @@ def newton(dN, w, dofs, ops, consts, first, fixed, b, target, u, atol, utol, hbe
     for k in fixed:
         is_free[k] = False
     S = np.empty((n, b + 1))
-    f, r, du, wk, ut = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    f, r, du, ut = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    wk = np.empty((2, n))
     chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
     nres = 0
     for it in range(max_it + 1):
@@ -181,7 +182,8 @@ class StaticKernel:
     """The arrays :func:`newton` reads, for one model (built once per model)."""
 
     def __init__(self, model):
-        self.data = model.fused + (np.ascontiguousarray(model.fixed, dtype=np.int64),)
+        dN, w, dofs, ops, consts, first = model.fused
+        self.data = (dN, w, dofs, *live_tape(ops, consts), first, np.ascontiguousarray(model.fixed, dtype=np.int64))
         self.hbeam = float(model.mesh.height)
         self.bandwidth = int(model.mesh.bandwidth)
 

@@ -66,8 +66,9 @@ from numba import njit
 
 from mechanics import alpha_family, time_loop
 from .dgkernel import assemble_dg, dg_scratch
+from .kernels import live_tape, same_component_only
 from .kernels import (INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, col_constrain,
-                      col_ldlt, col_ldlt_solve, col_matvec, assemble_fused, step_scratch, strain_energy_fused)
+                      col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split, assemble_fused, step_scratch, strain_energy_fused)
 
 NEWTON = ("chord", "full", "modified")
 STATUS = {NEWTON_FAILED: "Newton failed", SINGULAR: "singular step matrix", INADMISSIBLE: "det F <= 0"}
@@ -98,7 +99,7 @@ COUNTER_NAMES = ("steps", "iterations", "residuals", "tangents", "factorisations
                  "indefinite_factorisations", "full_newton_fallbacks")
 
 # Integer Newton settings (``inewton``) and float ones (``fnewton``).
-I_MAX_IT, I_MODIFIED, I_STOP, I_MAX_MODIFIED, I_ENERGY_EVERY, I_JAC_PER_STEP, I_SCHEME = range(7)
+I_MAX_IT, I_MODIFIED, I_STOP, I_MAX_MODIFIED, I_ENERGY_EVERY, I_JAC_PER_STEP, I_SCHEME, I_MASS_SPLIT = range(8)
 ALPHA_FAMILY, DISCRETE_GRADIENT = 0, 1            # inewton[I_SCHEME]
 STOP_RESIDUAL, STOP_BOTH = 0, 1
 F_RTOL, F_UTOL, F_KAPPA, F_HBEAM, F_ELIMIT = range(5)
@@ -118,12 +119,27 @@ def _norm2_free(x, is_free):
 
 
 @njit(cache=True)
-def _residual(Mc, first, c, u, u_ref, base, f, f_ext, is_free, du, r):
+def _mass(Mc, first, split, x, y):
+    """y = M x (:func:`col_matvec`; :func:`col_matvec_split` if ``split``: M couples only
+    dofs of the same component)."""
+    if split:
+        col_matvec_split(Mc, first, x, y)
+    else:
+        col_matvec(Mc, first, x, y)
+
+
+@njit(cache=True)
+def _residual(Mc, first, split, c, u, u_ref, base, f, f_ext, is_free, du, r, at_ref):
     """r = c M (u - u_ref) + base + f - f_ext on the free dofs (0 on the fixed ones);
-    returns |r|_2. du: work."""
+    returns |r|_2. du: work. at_ref: u is u_ref (the predictor), M (u - u_ref) = 0 is not
+    computed (the same r to the bit)."""
+    if at_ref:
+        for i in range(u.shape[0]):
+            r[i] = (base[i] + f[i] - f_ext[i]) if is_free[i] else 0.0
+        return _norm2_free(r, is_free)
     for i in range(u.shape[0]):
         du[i] = u[i] - u_ref[i]
-    col_matvec(Mc, first, du, r)
+    _mass(Mc, first, split, du, r)
     for i in range(u.shape[0]):
         r[i] = (c * r[i] + base[i] + f[i] - f_ext[i]) if is_free[i] else 0.0
     return _norm2_free(r, is_free)
@@ -163,7 +179,7 @@ def _correct(S, first, r, du, u, counters):
 def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
          u_n, v_n, a_n, h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, full):
     """One step u_n, v_n, a_n -> u, v, a of size h. S holds the current factorisation
-    (modified Newton), fstate = [h of that factorisation, 1 if valid]; wk: work (6, n);
+    (modified Newton), fstate = [h of that factorisation, 1 if valid]; wk: work (7, n);
     chunk, R, Fb, ab, Jb: :func:`step_scratch`; full: full Newton whatever inewton says.
     Returns (status, iterations)."""
     am, af, beta, gamma = coef[0], coef[1], coef[2], coef[3]
@@ -178,7 +194,8 @@ def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewt
     for i in range(n):
         u_pred[i] = _predict(u_n[i], v_n[i], a_n[i], h)
         u[i] = u_pred[i]
-    col_matvec(Mc, first, a_n, Ma_n)
+    split = inewton[I_MASS_SPLIT] != 0
+    _mass(Mc, first, split, a_n, Ma_n)
     scale = _norm2_free(f_ext, is_free) + _norm2_free(Ma_n, is_free)
     tol = rtol * max(scale, 1e-30)
     if inewton[I_JAC_PER_STEP] != 0 or not (fstate[1] == 1.0 and abs(fstate[0] - h) <= 1e-9 * h):
@@ -195,7 +212,7 @@ def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewt
             counters[C_TANGENTS] += 1
         if status != OK:
             return status, it
-        rn = _residual(Mc, first, c, u, u_pred, Ma_n, f, f_ext, is_free, du, r)
+        rn = _residual(Mc, first, split, c, u, u_pred, Ma_n, f, f_ext, is_free, du, r, it == 0)
         if not rn < 1e300:
             return NEWTON_FAILED, it
         if rn <= tol:
@@ -211,7 +228,7 @@ def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewt
                 return status, it
         if refactor:
             # S = (1 - af) K + c M, constrained, factorised in place
-            if _factorise(S, 1.0 - af, Mc, c, fixed, first, wk[5], counters) < 0:
+            if _factorise(S, 1.0 - af, Mc, c, fixed, first, wk[5:7], counters) < 0:
                 fstate[1] = 0.0
                 return SINGULAR, it
             fstate[0], fstate[1] = h, 1.0
@@ -245,8 +262,9 @@ def step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton,
     c = 2.0 / (h * h)
     for i in range(n):
         u[i] = u_n[i] + h * v_n[i] + 0.5 * h * h * a_n[i]
-    col_matvec(Mc, first, a_n, Ma_n)
-    col_matvec(Mc, first, v_n, Mv)
+    split = inewton[I_MASS_SPLIT] != 0
+    _mass(Mc, first, split, a_n, Ma_n)
+    _mass(Mc, first, split, v_n, Mv)
     tol = rtol * max(_norm2_free(f_ext, is_free) + _norm2_free(Ma_n, is_free), 1e-30)
     for i in range(n):
         Mv[i] *= -2.0 / h                             # the residual's constant part, -2 M v_n / h
@@ -257,7 +275,7 @@ def step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton,
         counters[C_TANGENTS] += 1
         if status != OK:
             return status, it
-        rn = _residual(Mc, first, c, u, u_n, Mv, f, f_ext, is_free, du, r)
+        rn = _residual(Mc, first, split, c, u, u_n, Mv, f, f_ext, is_free, du, r, False)
         if not rn < 1e300:
             return NEWTON_FAILED, it
         if rn <= tol:
@@ -265,7 +283,7 @@ def step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton,
             break
         if it == max_it:
             return NEWTON_FAILED, it
-        if _factorise(S, 0.5, Mc, c, fixed, first, wk[5], counters) < 0:
+        if _factorise(S, 0.5, Mc, c, fixed, first, wk[5:7], counters) < 0:
             return SINGULAR, it
         umax, dumax = _correct(S, first, r, du, u, counters)
         it += 1
@@ -305,7 +323,7 @@ def advance(dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, fixed, coef, inew
     is_free = np.ones(n, np.bool_)
     for k in fixed:
         is_free[k] = False
-    wk = np.empty((6, n))
+    wk = np.empty((7, n))
     chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
     dg = inewton[I_SCHEME] == DISCRETE_GRADIENT
     scratch = dg_scratch(ops.shape[0], dN.shape[0]) if dg else dg_scratch(1, 192)   # (unused: tiny)
@@ -404,13 +422,15 @@ class CompiledLoop:
         b = model.mesh.bandwidth
         self.n, self.b = model.mesh.n_dof, b
         dN, w, dofs, ops, consts, first = model.fused
+        ops, consts = live_tape(ops, consts)
         self.data = (dN, w, dofs, ops, consts, column_band(M.ab, b), first, np.ascontiguousarray(f_ext, dtype=float),
                      np.ascontiguousarray(model.mesh.reference, dtype=float),
                      np.ascontiguousarray(model.fixed, dtype=np.int64))
         c = coefficients
         self.coef = np.array([c["alpha_m"], c["alpha_f"], c["beta"], c["gamma"]], dtype=float)
         self.newton = newton
-        self.inewton = np.zeros(7, np.int64)
+        self.inewton = np.zeros(8, np.int64)
+        self.inewton[I_MASS_SPLIT] = int(same_component_only(self.data[5]))
         self.inewton[I_SCHEME] = DISCRETE_GRADIENT if discrete_gradient else ALPHA_FAMILY
         self.inewton[I_MAX_IT] = max_iterations
         self.inewton[I_MODIFIED] = int(newton != "full")

@@ -8,7 +8,8 @@ import pytest
 from ancf.banded import Banded
 from ancf.build import build_integrator, build_model, external_loads
 from ancf.dgkernel import assemble_dg, dg_scratch
-from ancf.kernels import (OK, assemble_fused, col_constrain, col_ldlt, col_ldlt_solve, envelope, step_scratch,
+from ancf.kernels import (OK, assemble_fused, col_constrain, col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split,
+                          envelope, same_component_only, step_scratch,
                           strain_energy_fused)
 from ancf.elements import ELEMENTS
 from mechanics.laws import LAWS, Law, register_law
@@ -223,14 +224,53 @@ def test_fused_kernel_and_ldlt_equal_the_reference(law, form):
     rhs = np.arange(n, dtype=float) % 7
     rhs[model.fixed] = 0.0
     x_ref = Banded(0.6 * K_ref.ab + 4e6 * M.ab, b).constrain(model.fixed).solve(rhs)
-    assert col_ldlt(S, first, np.empty(n)) == 0
+    assert col_ldlt(S, first, np.empty((2, n))) == 0
     col_ldlt_solve(S, first, rhs)
     np.testing.assert_allclose(rhs, x_ref, rtol=1e-10, atol=1e-12 * np.abs(x_ref).max())
     S2 = column_band(K_ref.ab + 4e6 * M.ab, b)
     S2[:, b] -= 1e12 * np.abs(S2).max()                       # every free pivot negative
     col_constrain(S2, model.fixed.astype(np.int64))
-    assert col_ldlt(S2, first, np.empty(n)) == n - len(model.fixed)
+    assert col_ldlt(S2, first, np.empty((2, n))) == n - len(model.fixed)
     S3 = np.zeros_like(S2)
     S3[:, b] = 1.0
     S3[5, b] = 0.0                                            # singular: the step is rejected
-    assert col_ldlt(S3, first, np.empty(n)) == -6
+    assert col_ldlt(S3, first, np.empty((2, n))) == -6
+
+
+@pytest.mark.parametrize("element", ["HB2n-12", "HB3n-12", "HB2n-16"])
+def test_mass_matvec_without_the_cross_component_zeros(element):
+    """Every element's mass matrix couples only dofs of the same component, so the step
+    loop multiplies by it without those zeros: the same product as the whole band; a
+    tangent (x-y coupled) is not taken for one."""
+    model = build_model(scene(element=element, n=4))
+    n, b = model.mesh.n_dof, model.mesh.bandwidth
+    Mc = column_band(model.mass_matrix().ab, b)
+    first = envelope(model._dofs, n)
+    assert same_component_only(Mc)
+    x = np.random.default_rng(5).standard_normal(n)
+    y, y_ref = np.empty(n), np.empty(n)
+    col_matvec(Mc, first, x, y_ref)
+    col_matvec_split(Mc, first, x, y)
+    np.testing.assert_allclose(y, y_ref, rtol=1e-14, atol=1e-14 * np.abs(y_ref).max())
+    np.testing.assert_allclose(y_ref, model.mass_matrix().matvec(x), rtol=1e-12)
+    _, K = model.internal_force_and_tangent(1e-3 * x)
+    assert not same_component_only(column_band(K.ab, b))
+
+
+@pytest.mark.parametrize("law", ["neo-hookean", "mooney-rivlin", "yeoh"])
+@pytest.mark.parametrize("form", ["paper", "plane-strain", "plane-stress"])
+def test_live_tape_replays_the_same_numbers(law, form):
+    """The tape without its dead instructions (the compiled loops' tape) gives W and its
+    derivatives of the whole tape to the bit; Yeoh in plane stress loses its unused I2."""
+    from ancf.kernels import live_tape
+    from ancf.tape import evaluate
+    model = build_model(scene(material=paper.material_table(law, form), n=2))
+    ops, consts = model._tape
+    lops, lconsts = live_tape(ops, consts)
+    assert len(lops) <= len(ops) and lops[-1][0] == ops[-1][0]
+    rng = np.random.default_rng(2)
+    a = 2.0 + 0.1 * rng.random((3, 4))
+    J = 1.0 + 0.05 * rng.random((3, 4))
+    np.testing.assert_array_equal(evaluate(lops, lconsts, a, J), evaluate(ops, consts, a, J))
+    if law == "yeoh" and form == "plane-stress":
+        assert len(lops) == len(ops) - 3

@@ -25,7 +25,7 @@ def fake_peer(status="converged"):
 def fake_ours(wall=0.25):
     return {
         "element": "HB2n-12", "elements": 32, "formulation": "plane-stress", "law": "yeoh",
-        "dt": 1e-3, "rho_inf": 0.8, "wall_s": [wall] * 5, "wall_median_s": wall, "cpu_median_s": wall,
+        "dt": 1e-3, "rho_inf": 0.8, "wall_s": [wall] * 5, "wall_median_s": wall, "cpu_s": [wall] * 5, "cpu_median_s": wall,
         "setup_median_s": 0.002, "first_run_s": 1.0, "steps": 500, "rejected_steps": 0,
         "newton_iterations": 1000, "ndof": 196,
         # t = 0 is ours only; the others are Exudyn's + (1 mm, -2 mm), off by round-off in t
@@ -44,16 +44,17 @@ def test_parse_takes_the_last_json_line_after_exudyn_chatter():
 
 
 def test_table_ratio_and_tip_differences():
-    text = compare.format_table(fake_ours(0.08), fake_peer(), ((1.0, 1.0, 1.0), (1.5, 1.0, 1.0)))
-    assert ("ratio ours / Exudyn: 0.80 wall, 0.80 CPU (ours 0.0800 s, Exudyn 0.1000 s CPU; target: within 1x) "
+    text = compare.format_table(fake_ours(0.04), fake_peer(), ((1.0, 1.0, 1.0), (1.5, 1.0, 1.0)))
+    assert ("ratio ours / Exudyn: 0.40 wall, 0.40 CPU (ours 0.0400 s, Exudyn 0.1000 s CPU; target: within 0.5x) "
             "-> within target") in text
+    assert "spread (min-max): ours 0.0400-0.0400 s wall" in text and "Exudyn 0.1000-0.2000 s wall" in text
     rows = [ln.split() for ln in text.splitlines() if ln.startswith(" 0.") and len(ln.split()) == 8]
     assert [float(r[0]) for r in rows] == list(TIMES)
     for r in rows:
         assert (float(r[5]), float(r[6]), float(r[7])) == pytest.approx((1.0, -2.0, 5 ** 0.5), abs=0.006)
     assert "linearSolver = LinearSolverType.EigenSparse" in text and "useModifiedNewton = True" in text
     assert "before 1.00 1.00 1.00, after 1.50 1.00 1.00" in text
-    assert "NOT within target" in compare.format_table(fake_ours(0.11), fake_peer())
+    assert "NOT within target" in compare.format_table(fake_ours(0.06), fake_peer())     # HB2n-12: 0.5x
 
 
 def test_missing_output_time_is_an_error():
@@ -115,3 +116,34 @@ def test_work_precision_does_not_count_accuracy_by_cancellation():
     # 5 ms reaches 0.1 % only by luck (the 2.5 ms step loses it); 1.25 ms is the first that holds
     assert wp.cheapest(recs, "exudyn", None, 0.001)["dt"] == 1.25e-3
     assert wp.cheapest(recs, "exudyn", None, 0.002)["dt"] == 5e-3
+
+
+def test_work_precision_floors_are_read_at_fine_steps_and_the_rules_are_stated():
+    from studies.peers import work_precision as wp
+
+    def rec(n, dt, e, guard="none", runs=None):
+        return {"solver": "exudyn", "element": "ANCFCable2D", "elements": n, "dt": dt, "rho_inf": 0.5,
+                "status": "converged", "time_s": 0.01, "error": e, "energy_guard": guard, "time_runs_s": runs}
+    # 16 x 2.5 ms cancels to 0.039 %; the finest mesh at its finest step says 0.09 %
+    recs = [rec(16, 2.5e-3, 0.00039), rec(16, 1.25e-3, 0.0008), rec(32, 2.5e-3, 0.0007),
+            rec(32, 1.25e-3, 0.0009, runs=[0.01, 0.012, 0.011, 0.01, 0.013])]
+    f = wp.floors(recs)[("exudyn", "ANCFCable2D")]
+    assert (f["elements"], f["dt"], f["error"]) == (32, 1.25e-3, 0.0009)
+    ours = {**rec(32, 1.25e-3, 0.001, runs=[0.02] * 5), "solver": "ancf", "element": "HB2n-12"}
+    text = wp.report_markdown(recs + [ours])
+    assert "| exudyn | ANCFCable2D | 32 | 1.25 | 0.0900 |" in text
+    assert "Energy guard: none on either side" in text
+    assert "| exudyn | ANCFCable2D | 32 | 1.25 | converged | 0.0100 | 0.0100-0.0130 | 0.0900 |" in text
+    old = {**ours, "energy_guard": None}
+    old.pop("energy_guard")
+    assert "NOT the same on both sides" in wp.report_markdown(recs + [old])
+
+
+def test_peers_report_is_generated_from_the_record():
+    o16 = {**fake_ours(0.07), "element": "HB2n-16"}
+    md = compare.peers_markdown({"ours": [fake_ours(0.04), o16], "exudyn": fake_peer(),
+                                 "load": [(1.0, 1.0, 1.0), (2.0, 1.0, 1.0)]})
+    assert "| 0.0400-0.0400 | 0.0400 | 0.0400-0.0400 | 0.40, 0.40 | 0.5: met |" in md
+    assert "| 0.70, 0.70 | 0.8: met |" in md
+    assert "load average (1 min) 1.00 before, 2.00 after" in md
+    assert "| HB2n-12 | 0.10 | 1.00 | -2.00 | 2.24 |" in md

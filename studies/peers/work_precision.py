@@ -2,7 +2,7 @@
 work-precision diagram, timed side by side in one run (``make bench-peers``, issue 10).
 
     .venv/bin/python -m studies.peers.work_precision [--counts 8 16 32 64]
-        [--element HB2n-12 --element HB2n-16] [--import MODULE] [--rho-inf 0.5] [--repeats 3]
+        [--element HB2n-12 --element HB2n-16] [--import MODULE] [--rho-inf 0.5] [--repeats 5]
         [--out reports]
 
 Grid: the element counts, and the step ladder dt = 0.1 s / k for k = 20, 40, 80, 160,
@@ -10,10 +10,14 @@ Grid: the element counts, and the step ladder dt = 0.1 s / k for k = 20, 40, 80,
 Exudyn's fixed step must). Each (solver, element, count, step) is one run: the median of
 ``--repeats`` warm runs (ours: ``wall_s`` of :func:`ancf.simulation.run_scene`, the solve
 alone; Exudyn: ``SolveDynamic`` alone, see exudyn_pendulum.py), Exudyn's and ours in
-turn for each point. Error: max over t = 0.1 ... 0.5 s of |r(t) - r_ref(t)| / L against
+turn for each point; the runs' times are kept for their spread. Neither side has an
+energy guard (:data:`ENERGY_GUARD`): Exudyn's fixed-step run has none, so ours runs with
+``energy_limit = inf``. Error: max over t = 0.1 ... 0.5 s of |r(t) - r_ref(t)| / L against
 the converged continuum plane-stress pendulum (tests/gold/fem_pendulum.json), the
 reference of the accuracy-cost diagram. Exudyn's cable is linear elastic (E = 6 C10) and
-Euler-Bernoulli: its error has a floor set by its physics, not by its mesh or step.
+Euler-Bernoulli: its error has a floor set by its physics, not by its mesh or step; the
+floors are read at the finest step of the finest mesh (:func:`floors`), not as the
+smallest error over the grid.
 
 Records go to ``<out>/data/peers/peers-work-precision.jsonl`` as each point finishes (an
 interrupted run keeps them; a rerun skips the points it has, ``--force`` redoes all);
@@ -41,6 +45,11 @@ ROOT = Path(__file__).resolve().parents[2]
 STEPS_PER_OUTPUT = (20, 40, 80, 160, 320)           # dt = 0.1 s / k
 ACCURACIES = (0.01, 0.001)
 NAME = "peers-work-precision"
+SCENE = "pendulum"          # the records' scene (a second scene is left: it needs its continuum reference)
+# The same rule for both sides: Exudyn's fixed-step run has no energy check, so ours runs
+# without its guard too (a run that gains energy shows it in its error, not by stopping).
+ENERGY_GUARD = "none"
+MIN_REPEATS = 5
 
 
 def key(r: dict) -> tuple:
@@ -52,12 +61,15 @@ def ours(element: str, n: int, dt: float, rho_inf: float, repeats: int) -> dict:
     from contract.scene import scene_from_dict
     from ..pendulum_cases import pendulum_dict
 
-    scene = scene_from_dict(pendulum_dict(element, n, "plane-stress", dt, rho_inf=rho_inf))
+    d = pendulum_dict(element, n, "plane-stress", dt, rho_inf=rho_inf)
+    d["analysis"]["energy_limit"] = "inf"      # no energy guard: Exudyn's run has none (ENERGY_GUARD)
+    scene = scene_from_dict(d)
     recs = [run_scene(scene)[0] for _ in range(repeats + 1)][1:]     # one untimed warm-up
     last = recs[-1]
     ok = last["status"] == "converged"
-    return {"status": last["status"], "reason": last.get("reason"),
+    return {"status": last["status"], "reason": last.get("reason"), "energy_guard": ENERGY_GUARD,
             "time_s": statistics.median(r["wall_s"] for r in recs) if ok else None,
+            "time_runs_s": [r["wall_s"] for r in recs] if ok else None,
             "cpu_s": statistics.median(r["cpu_s"] for r in recs) if ok else None,
             "ndof": last["ndof"], "newton_iterations": last.get("newton_iterations"),
             "tip_history": last.get("tip_history") if ok else None}
@@ -69,7 +81,8 @@ def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path) -> dic
     except RuntimeError as e:
         return {"status": "failed", "reason": str(e).splitlines()[0][:300], "time_s": None, "cpu_s": None,
                 "tip_history": None}
-    return {"status": "converged", "reason": None, "time_s": p["solve_median_s"], "cpu_s": p["solve_cpu_median_s"],
+    return {"status": "converged", "reason": None, "energy_guard": ENERGY_GUARD, "time_s": p["solve_median_s"],
+            "time_runs_s": p["solve_s"], "cpu_s": p["solve_cpu_median_s"],
             "ndof": p["counters"].get("ODE2_coordinates"), "newton_iterations": p["counters"]["newtonSteps"],
             "tip_history": p["tip_history"], "exudyn": p["settings"]["exudyn"]}
 
@@ -101,7 +114,8 @@ def run(a) -> list[dict]:
             dt = 0.1 / k
             todo = [("exudyn", "ANCFCable2D")] + [("ancf", e) for e in a.element]
             for solver, element in todo:
-                base = {"solver": solver, "element": element, "elements": n, "dt": dt, "rho_inf": a.rho_inf,
+                base = {"solver": solver, "scene": SCENE, "element": element, "elements": n, "dt": dt,
+                        "rho_inf": a.rho_inf,
                         "law": "yeoh", "formulation": "plane-stress" if solver == "ancf" else "linear cable"}
                 if key(base) in have:
                     continue
@@ -135,13 +149,39 @@ def cheapest(recs: list[dict], solver: str, element: str | None, accuracy: float
     return min(ok, key=lambda r: r["time_s"]) if ok else None
 
 
-def report(recs: list[dict], out: Path) -> str:
-    """The table (markdown) and the figure from the records."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+def floors(recs: list[dict]) -> dict[tuple, dict]:
+    """(solver, element) -> the run at the finest step of its finest mesh: its error is
+    the model's accuracy floor read where step and mesh errors are smallest (not the
+    smallest error over the grid, which a cancellation of the two can reach)."""
+    out = {}
+    for r in recs:
+        if r["error"] is None:
+            continue
+        k = (r["solver"], r["element"])
+        q = out.get(k)
+        if q is None or (r["elements"], -r["dt"]) > (q["elements"], -q["dt"]):
+            out[k] = r
+    return out
 
-    els = list(dict.fromkeys(r["element"] for r in recs if r["solver"] == "ancf"))
+
+def spread(r: dict) -> str:
+    """'min-max' of the record's timed runs, or '-' (older records kept the median only)."""
+    runs = r.get("time_runs_s")
+    return f"{min(runs):.4f}-{max(runs):.4f}" if runs else "-"
+
+
+def report(recs: list[dict], out: Path) -> str:
+    """The table (markdown, :func:`report_markdown`) and the figure from the records."""
+    text = report_markdown(recs)
+    figure(recs, out / "peers_work_precision.png")
+    (out / "peers_work_precision.md").write_text(text)
+    return text
+
+
+def report_markdown(recs: list[dict]) -> str:
+    """reports/peers_work_precision.md from the records alone (a plain function)."""
+    guards = {r.get("energy_guard", "the scene's energy limit") for r in recs if r["solver"] == "ancf"}
+    runs = [len(r["time_runs_s"]) for r in recs if r.get("time_runs_s")]
     lines = ["# Work-precision: our pendulum against Exudyn's ANCF cable",
              "",
              "Generated by `python -m studies.peers.work_precision` (`make bench-peers`) from "
@@ -149,6 +189,14 @@ def report(recs: list[dict], out: Path) -> str:
              "of |r - r_ref| / L against the converged continuum plane-stress Yeoh pendulum; time: median warm "
              "solve wall time, both solvers in one run, one thread. A run counts for an accuracy only if every "
              "finer step of its mesh reaches it too (no accuracy by cancellation of step and mesh errors).",
+             "",
+             f"Scene: {SCENE}. Energy guard: "
+             + ("none on either side (Exudyn's run has none; ours runs with energy_limit = inf)"
+                if guards == {"none"} else "NOT the same on both sides in these records (ours: "
+                + ", ".join(sorted(guards)) + "; Exudyn: none): rerun with --force")
+             + ". Timed runs per point: " + (f"{min(runs)} to {max(runs)}" if runs else "not recorded (older records)")
+             + (f" (fewer than {MIN_REPEATS}: rerun with --repeats {MIN_REPEATS})" if not runs or min(runs) < MIN_REPEATS
+                else "") + "; time = their median, spread = min-max.",
              "",
              "| accuracy | cheapest ours | time (s) | error (%) | cheapest Exudyn cable | time (s) | error (%) | "
              "ours / Exudyn |",
@@ -161,15 +209,30 @@ def report(recs: list[dict], out: Path) -> str:
               f"{100 * p['error']:.3f}") if p else "none | - | -"
         ratio = f"{o['time_s'] / p['time_s']:.2f}" if o and p else "-"
         lines.append(f"| {100 * a:g} % | {fo} | {fp} | {ratio} |")
-    floor = [r["error"] for r in recs if r["solver"] == "exudyn" and r["error"] is not None]
-    if floor:
-        lines += ["", f"Exudyn's smallest error over the grid: {100 * min(floor):.3f} % of L (the cable's physics: "
-                  "linear elastic E = 6 C10, no thickness deformation)."]
-    lines += ["", "| solver | element | n | dt (ms) | status | time (s) | error (%) |", "|---|---|---|---|---|---|---|"]
+    fl = floors(recs)
+    if fl:
+        lines += ["", "Accuracy floors, read at the finest step of the finest mesh (the cable's: its physics, "
+                  "linear elastic E = 6 C10, no thickness deformation):", "",
+                  "| solver | element | n | dt (ms) | error (%) |", "|---|---|---|---|---|"]
+        for (solver, element), r in sorted(fl.items()):
+            lines.append(f"| {solver} | {element} | {r['elements']} | {r['dt'] * 1e3:g} | {100 * r['error']:.4f} |")
+    lines += ["", "| solver | element | n | dt (ms) | status | time (s) | spread (s) | error (%) |",
+              "|---|---|---|---|---|---|---|---|"]
     for r in sorted(recs, key=lambda r: (r["solver"], r["element"], r["elements"], -r["dt"])):
         lines.append(f"| {r['solver']} | {r['element']} | {r['elements']} | {r['dt'] * 1e3:g} | {r['status']} | "
-                     + (f"{r['time_s']:.4f}" if r["time_s"] else "-") + " | "
+                     + (f"{r['time_s']:.4f}" if r["time_s"] else "-") + f" | {spread(r)} | "
                      + (f"{100 * r['error']:.4f}" if r["error"] is not None else "-") + " |")
+    lines += ["", "![work-precision](peers_work_precision.png)", ""]
+    return "\n".join(lines)
+
+
+def figure(recs: list[dict], path: Path) -> None:
+    """The work-precision figure from the records."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    els = list(dict.fromkeys(r["element"] for r in recs if r["solver"] == "ancf"))
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
     markers = {"ANCFCable2D": "s", **{e: m for e, m in zip(els, "o^vD")}}
     for solver, element in [("exudyn", "ANCFCable2D")] + [("ancf", e) for e in els]:
@@ -190,12 +253,8 @@ def report(recs: list[dict], out: Path) -> str:
     ax.set_title("pendulum, Yeoh: ours (plane stress) vs Exudyn ANCF cable; step 5 ms halving", fontsize=9)
     ax.legend(fontsize=5, ncol=3)
     fig.tight_layout()
-    fig.savefig(out / "peers_work_precision.png", dpi=150)
+    fig.savefig(path, dpi=150)
     plt.close(fig)
-    lines += ["", "![work-precision](peers_work_precision.png)", ""]
-    text = "\n".join(lines)
-    (out / "peers_work_precision.md").write_text(text)
-    return text
 
 
 def main(argv=None) -> int:
@@ -206,7 +265,7 @@ def main(argv=None) -> int:
                     "Table 4's)")
     ap.add_argument("--steps-per-output", type=int, nargs="+", default=list(STEPS_PER_OUTPUT),
                     help="the step ladder: dt = 0.1 s / k for each k (default 20 40 80 160 320)")
-    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--repeats", type=int, default=MIN_REPEATS, help=f"timed warm runs per point (default {MIN_REPEATS})")
     ap.add_argument("--peer-python", type=Path, default=PEER_PYTHON)
     ap.add_argument("--out", type=Path, default=ROOT / "reports")
     ap.add_argument("--import", dest="imports", action="append", default=[],
