@@ -110,6 +110,21 @@ def evaluate(ops, consts, a, J):
 
 
 # -- batched replay: the compiled step loop (:mod:`ancf.compiled_steps`) ---------------------------
+@njit(inline="always")
+def _unary(Rk, Rx, p, nc, f, d1, d2):
+    """Chain rule of a unary op g(x) at point p: the jet of g(x) from x's jet (Rx) and
+    g, g', g'' at x (f, d1, d2); nc components as in :func:`tape_batch`."""
+    Rk[0, p] = f
+    if nc > 1:
+        a1, a2 = Rx[1, p], Rx[2, p]
+        Rk[1, p] = d1 * a1
+        Rk[2, p] = d1 * a2
+        if nc > 3:
+            Rk[3, p] = d2 * a1 * a1 + d1 * Rx[3, p]
+            Rk[4, p] = d2 * a1 * a2 + d1 * Rx[4, p]
+            Rk[5, p] = d2 * a2 * a2 + d1 * Rx[5, p]
+
+
 @njit(cache=True, fastmath=FASTMATH)
 def tape_batch(ops, consts, a, J, R, m, order):
     """Replay the energy tape at m points (a, J) = (F:F, det F) in jet arithmetic.
@@ -176,16 +191,7 @@ def tape_batch(ops, consts, a, J, R, m, order):
                     f, d1 = np.log(v), 1.0 / v
                 else:
                     f, d1 = np.nan, np.nan
-                Rk[0, p] = f
-                if nc > 1:
-                    d2 = -d1 * d1
-                    a1, a2 = Rx[1, p], Rx[2, p]
-                    Rk[1, p] = d1 * a1
-                    Rk[2, p] = d1 * a2
-                    if nc > 3:
-                        Rk[3, p] = d2 * a1 * a1 + d1 * Rx[3, p]
-                        Rk[4, p] = d2 * a1 * a2 + d1 * Rx[4, p]
-                        Rk[5, p] = d2 * a2 * a2 + d1 * Rx[5, p]
+                _unary(Rk, Rx, p, nc, f, d1, -d1 * d1)
         else:  # POWC: v^c, with the common exponents without pow()
             Rx = R[x]
             for p in range(m):
@@ -205,13 +211,5 @@ def tape_batch(ops, consts, a, J, R, m, order):
                     f = v ** c
                     d1 = c * v ** (c - 1.0)
                     d2 = c * (c - 1.0) * v ** (c - 2.0)
-                Rk[0, p] = f
-                if nc > 1:
-                    a1, a2 = Rx[1, p], Rx[2, p]
-                    Rk[1, p] = d1 * a1
-                    Rk[2, p] = d1 * a2
-                    if nc > 3:
-                        Rk[3, p] = d2 * a1 * a1 + d1 * Rx[3, p]
-                        Rk[4, p] = d2 * a1 * a2 + d1 * Rx[4, p]
-                        Rk[5, p] = d2 * a2 * a2 + d1 * Rx[5, p]
+                _unary(Rk, Rx, p, nc, f, d1, d2)
 
