@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from .engine.case import make_case
 from .continuum import scene as continuum_scene
-from .grid import DEFAULT, cantilever_case, qlabel
+from .grid import DEFAULT, cantilever_case, counts_of, qlabel, takes
 from .reference import short, MATCHING, continuum_references, describe, variant_of
 from .engine.report import GOOD, Section, Table, draw, figure, hollow_legend, marker, pct, vec_error, verdict
 
@@ -23,7 +23,7 @@ def cases(grid: dict, tiny: bool) -> list:
     opts = {"timing": dict(grid["timing"])}
     out = [cantilever_case("accuracy-cost", law, f, el, n, q, grid["clamp"], opts)
            for law in grid["laws"] for f in grid["formulations"] for el in grid["elements"]
-           for q in grid["quadratures"] for n in grid["counts"]]
+           for q in grid["quadratures"] if takes(grid, el, q) for n in counts_of(grid, el)]
     out += [make_case("accuracy-cost", "fenicsx", continuum_scene(law, MATCHING[f], tuple(lv)), opts)
             for law in grid["laws"] for f in grid["formulations"] for lv in grid["continuum_levels"]]
     return out

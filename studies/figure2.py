@@ -9,7 +9,7 @@ smallest mesh whose tip lies within 1 % of the finest mesh's tip (|u - u_finest|
 """
 from __future__ import annotations
 
-from .grid import cantilever_case, qlabel, rule
+from .grid import cantilever_case, counts_of, qlabel, rule, takes
 from .reference import short, VARIANT_LABEL, abaqus, continuum_references, describe
 from .engine.report import GOOD, draw, hollow_legend, verdict
 from .engine.report import Section, Table, figure, marker, mm, pct, vec_error
@@ -25,7 +25,7 @@ def configurations(grid: dict) -> list[tuple[str, tuple[int, int], str]]:
 def cases(grid: dict, tiny: bool) -> list:
     return [cantilever_case("figure2", law, f, el, n, q, c)
             for f, q, c in configurations(grid) for law in grid["laws"]
-            for el in grid["elements"] for n in grid["counts"]]
+            for el in grid["elements"] if takes(grid, el, q) for n in counts_of(grid, el)]
 
 
 def _series(recs: list[dict], f, q, c, law, el) -> list[tuple[int, dict | None]]:
@@ -51,6 +51,8 @@ def report(ctx) -> Section:
             "plane-stress" if f == "plane-stress" else "plane-strain-penalty"]
         for j, law in enumerate(g["laws"]):
             for el in g["elements"]:
+                if not takes(g, el, q):
+                    continue
                 ser = _series(recs, f, q, c, law, el)
                 verdicts = {n: v for n, _, v in ser}
                 odd = [f"{n} {v}" for n, _, v in ser if v not in GOOD and v != "failed"]

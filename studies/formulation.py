@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from .grid import cantilever_case, qlabel, rule
+from .grid import cantilever_case, counts_of, qlabel, rule, takes
 from .pendulum_cases import LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case, tip_errors
 from .reference import short, SOLID_LABEL, VARIANT_LABEL, abaqus, continuum_references, describe, solid_references
 from .engine.report import Section, Table, mm, pct, vec_error
@@ -25,7 +25,7 @@ def configurations(grid: dict) -> list[tuple[str, tuple[int, int], str]]:
 def cases(grid: dict, tiny: bool) -> list:
     out = [cantilever_case("formulation", law, f, el, n, q, c)
            for law in grid["laws"] for f, q, c in configurations(grid)
-           for el in grid["elements"] for n in grid["counts"]]
+           for el in grid["elements"] if takes(grid, el, q) for n in counts_of(grid, el)]
     p = grid.get("pendulum")
     if p:
         out += [pendulum_case("formulation", el, p["count"], f, p["dt"], rho_inf=p["rho_inf"], t_end=p["t_end"],

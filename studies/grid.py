@@ -33,6 +33,19 @@ def qlabel(quadrature) -> str:
     return "qdef" if q == DEFAULT else f"q{q[0]}{q[1]}"
 
 
+def takes(grid: dict, element: str, quadrature) -> bool:
+    """Whether ``element`` runs with ``quadrature`` in this grid: every rule, unless the
+    grid's ``per_element.<element>.quadratures`` lists the rules it takes (an element with
+    a pressure field refuses a rule too coarse for it, :mod:`ancf.pressure`)."""
+    allowed = grid.get("per_element", {}).get(element, {}).get("quadratures")
+    return allowed is None or rule(quadrature) in {rule(a) for a in allowed}
+
+
+def counts_of(grid: dict, element: str) -> list[int]:
+    """The mesh counts of ``element``: ``per_element.<element>.counts``, else the grid's."""
+    return grid.get("per_element", {}).get(element, {}).get("counts", grid["counts"])
+
+
 def cantilever_case(study: str, law: str, formulation: str, element: str, elements: int,
                     quadrature, clamp: str, options: dict | None = None) -> Case:
     q = rule(quadrature)

@@ -1,0 +1,41 @@
+"""The study grids ask each element only for what it runs.
+
+An element with a pressure field refuses a rule that cannot resolve it (a SceneError from
+:func:`ancf.build.check`); a grid lists the rules such an element takes under
+``per_element`` (:func:`studies.grid.takes`). Here every ANCF case of every study, full
+and tiny, passes the same check a run starts with."""
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from ancf.build import check
+from contract.scene import scene_from_dict
+from studies.engine.catalog import load_catalog
+from studies.grid import counts_of, takes
+
+
+@pytest.mark.parametrize("tiny", [False, True], ids=["full", "tiny"])
+def test_every_ancf_case_of_every_study_passes_the_solvers_check(tiny):
+    n = 0
+    for study in load_catalog(tiny=tiny).values():
+        for case in study.cases():
+            if case.solver == "ancf":
+                check(scene_from_dict(json.loads(case.scene_json)))
+                n += 1
+    assert n > 100
+
+
+def test_per_element_rules_and_counts_select_cases():
+    grid = {"counts": [4, 8], "per_element": {"E": {"quadratures": ["default"], "counts": [4]}}}
+    assert takes(grid, "E", "default") and not takes(grid, "E", [2, 2])
+    assert takes(grid, "other", [2, 2])
+    assert counts_of(grid, "E") == [4] and counts_of(grid, "other") == [4, 8]
+
+
+def test_a_fixed_rule_a_pressure_element_refuses_is_a_scene_error():
+    from contract.paper import cantilever_scene
+    from contract.scene import SceneError
+    with pytest.raises(SceneError, match="ancf.quadrature"):
+        check(scene_from_dict(cantilever_scene("yeoh", "plane-strain", "HB2n-40p", 8, quadrature=(2, 2))))
