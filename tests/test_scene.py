@@ -161,3 +161,23 @@ def test_records_never_hold_nan(tmp_path):
     text = (tmp_path / "r.json").read_text()
     assert "NaN" not in text and "Infinity" not in text
     json.loads(text)
+
+
+def test_the_solvers_are_siblings_and_mechanics_imports_neither():
+    """Layout (issue 23): contract <- mechanics <- {ancf, reference_fem}; no import between
+    the two solvers, none from mechanics or contract into them (read from the sources, every
+    import statement, lazy ones inside functions included)."""
+    import ast
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    forbidden = {"ancf": {"reference_fem", "studies"}, "reference_fem": {"ancf", "studies"},
+                 "mechanics": {"ancf", "reference_fem", "studies"}, "contract": {"ancf", "reference_fem", "mechanics", "studies"}}
+    bad = []
+    for pkg, banned in forbidden.items():
+        for f in (root / pkg).rglob("*.py"):
+            for node in ast.walk(ast.parse(f.read_text())):
+                names = [a.name for a in node.names] if isinstance(node, ast.Import) else \
+                    [node.module] if isinstance(node, ast.ImportFrom) and node.module and node.level == 0 else []
+                bad += [f"{f.relative_to(root)}:{node.lineno} imports {n}" for n in names if n.split(".")[0] in banned]
+    assert not bad, bad
