@@ -36,3 +36,19 @@ if ! .venv/bin/python -c "import ancf" 2>/dev/null || [ ! -f "$stamp" ] || [ pyp
   .venv/bin/python -m pip install -q --no-deps --no-build-isolation -e .
   touch "$stamp"
 fi
+
+# FElupe, the second continuum code (reference_fem backend "felupe"): pure Python,
+# pinned, with --no-deps so pip never touches Debian's numpy/scipy. Versions checked
+# to run on Debian bookworm's numpy 1.24 / scipy 1.10 (tests/test_felupe_install.py).
+felupe_pins="felupe==9.1.0 tensortrax==0.29.0"
+if ! .venv/bin/python - $felupe_pins <<'PY' 2>/dev/null
+import sys
+from importlib.metadata import version
+for pin in sys.argv[1:]:
+    name, wanted = pin.split("==")
+    assert version(name) == wanted
+PY
+then
+  echo "setup: installing $felupe_pins (--no-deps)"
+  .venv/bin/python -m pip install -q --no-deps $felupe_pins
+fi
