@@ -36,6 +36,10 @@ Keys (all optional except ``model`` for ``paper`` scenes):
 
 Any model:
 
+- ``backend``: "dolfinx" (default) | "felupe" (:mod:`reference_fem.felupe_backend`: the
+  same problem on a second code; quadrilateral / hexahedral Q2 cells, static analyses).
+  Records of "dolfinx" do not name it; a "felupe" record has ``fem.backend`` and ``felupe``
+  (its version);
 - ``linear_solver``: "direct" (default: MUMPS LU of every Newton increment) |
   "iterative" (FGMRES with the augmented-Lagrangian block preconditioner and a two-level
   p-multigrid on its displacement block,
@@ -59,11 +63,13 @@ INCOMPRESSIBILITY = ("mixed", "penalty")
 MODELS = ("plane-strain", "plane-stress", "3d")
 SIDE_FACES = ("free", "plane-strain")
 LINEAR_SOLVERS = ("direct", "iterative")
+BACKENDS = ("dolfinx", "felupe")
 # The lowest displacement degree of each incompressibility: a pressure field (mixed,
 # penalty) is one degree lower (Taylor-Hood), so the displacement needs degree 2.
 MIN_DEGREE = {"mixed": 2, "penalty": 2, "exact": 1}
 KEYS = ("cells_height", "cells_length", "aspect", "cell", "degree", "quadrature_degree",
-        "incompressibility", "model", "cells_width", "progression", "side_faces", "linear_solver")
+        "incompressibility", "model", "cells_width", "progression", "side_faces", "linear_solver",
+        "backend")
 KEYS_3D = ("cells_width", "progression", "side_faces")
 
 # Defaults: chosen by the convergence study in reports/reference_fem.md so that the
@@ -95,6 +101,7 @@ class FemSettings:
     progression: float = 1.0         # 3D only
     side_faces: str = "free"         # 3D only
     linear_solver: str = "direct"    # "direct" | "iterative"
+    backend: str = "dolfinx"         # "dolfinx" | "felupe"
 
     @property
     def geometry(self) -> Geometry:
@@ -128,6 +135,8 @@ class FemSettings:
                 d.pop(k)
         if self.linear_solver == "direct":   # records of the direct solver keep their keys
             d.pop("linear_solver")
+        if self.backend == "dolfinx":   # records of the default backend keep their keys
+            d.pop("backend")
         return d
 
 
@@ -208,12 +217,14 @@ def fem_settings(scene: Scene) -> FemSettings:
     qdeg = _int("quadrature_degree", t.get("quadrature_degree", default_quadrature_degree(degree)), 1,
                 4 * MAX_DEGREE)
     solver = _choice("linear_solver", t.get("linear_solver", "direct"), LINEAR_SOLVERS)
+    backend = _choice("backend", t.get("backend", "dolfinx"), BACKENDS)
     if model != "3d":
-        return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg, linear_solver=solver)
+        return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg, linear_solver=solver,
+                           backend=backend)
     b = scene.beam
     nz = _int("cells_width", t.get("cells_width", max(1, math.ceil(ny * b.width / (1.5 * b.height) - 1e-9))))
     q = t.get("progression", 1.0)
     if isinstance(q, bool) or not isinstance(q, (int, float)) or not 0 < q < float("inf"):
         raise SceneError(f"fem.progression: must be a positive number (cell-to-cell growth along x), got {q!r}")
     side = _choice("side_faces", t.get("side_faces", "free"), SIDE_FACES)
-    return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg, nz, float(q), side, solver)
+    return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg, nz, float(q), side, solver, backend)

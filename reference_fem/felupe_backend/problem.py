@@ -1,0 +1,287 @@
+"""The static continuum problem on FElupe: mesh, fields, energy, supports, loads and the
+Newton system that :func:`reference_fem.statics.solve_static` drives.
+
+The total potential is the DOLFINx backend's (:mod:`reference_fem.dolfinx_backend.problem`):
+
+    Pi(u, phat) = int W(F, phat) dV - t * ( int rho g . u dV + int tbar . u dA )
+
+with W = psi(invariants of the model) (+ mu phat (J - 1) for a pressure field, and
+- (mu phat)^2 / (2 alpha) for the penalty): the pressure p = mu phat is scaled by the
+law's shear modulus as there. Meshes are structured grids of degree-2 Lagrange cells
+(FElupe's quad9 and hexahedron27, from its Rectangle and Cube converted to order 2), the
+pressure field (Taylor-Hood Q2/Q1) lives on the cells' corner nodes. Quadrature: Gauss-
+Legendre with ``quadrature_degree // 2 + 1`` points per direction (exact to degree
+``quadrature_degree`` and one more, as DOLFINx's choice for the same degree on quads and
+hexahedra). The 3D mesh is graded along x as gmsh's "Progression" (cell lengths growing
+by ``progression`` from the clamp).
+
+Dead loads as consistent nodal forces: gravity int N rho g dV (FElupe's shape functions
+and quadrature), the tip traction int N tbar dA on the end face (composite Simpson
+weights, exact for the face's quadratic shape functions). Supports as in the DOLFINx
+backend: clamp = every node of the face x = 0; pin = the nodes at (0, 0) (3D: the line
+(0, 0, z)); ``side_faces = "plane-strain"`` fixes u_z on z = +-w/2.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from contract.errors import SceneError
+from contract.scene import Scene
+from mechanics.laws import get_law
+
+from ..settings import FemSettings
+from .laws import strain_energy
+
+CELLS = {"plane-strain": "quadrilateral", "plane-stress": "quadrilateral", "3d": "hexahedron"}
+DEGREES = (2,)
+
+
+def check_settings(settings: FemSettings) -> None:
+    """What FElupe's backend offers (a SceneError naming the field otherwise)."""
+    want = CELLS[settings.model]
+    if settings.cell != want:
+        raise SceneError(f"fem.cell: {settings.cell!r} with fem.backend = \"felupe\"; allowed for "
+                         f"{settings.model}: {want!r}")
+    if settings.degree not in DEGREES:
+        raise SceneError(f"fem.degree: {settings.degree} with fem.backend = \"felupe\"; allowed: 2")
+    if settings.linear_solver != "direct":
+        raise SceneError("fem.linear_solver: \"iterative\" with fem.backend = \"felupe\"; allowed: 'direct'")
+
+
+def _graded(n: int, length: float, q: float) -> np.ndarray:
+    """n + 1 points on [0, length], cell lengths growing by q (gmsh's "Progression")."""
+    if q == 1.0:
+        return np.linspace(0.0, length, n + 1)
+    return length * (q ** np.arange(n + 1) - 1.0) / (q ** n - 1.0)
+
+
+def beam_meshes(scene: Scene, settings: FemSettings):
+    """(displacement mesh of degree 2, corner mesh for the pressure; the same points first)."""
+    import felupe as fe
+
+    b = scene.beam
+    if settings.model == "3d":
+        nx, ny, nz = settings.cells(3)
+        lin = fe.Cube(a=(0.0, -b.height / 2, -b.width / 2), b=(b.length, b.height / 2, b.width / 2),
+                      n=(nx + 1, ny + 1, nz + 1))
+        x = lin.points[:, 0] / b.length * nx   # the grid index along x
+        lin.points[:, 0] = _graded(nx, b.length, settings.progression)[np.rint(x).astype(int)]
+        quad = fe.mesh.convert(lin, order=2, calc_midfaces=True, calc_midvolumes=True)
+    else:
+        nx, ny = settings.cells(2)
+        lin = fe.Rectangle(a=(0.0, -b.height / 2), b=(b.length, b.height / 2), n=(nx + 1, ny + 1))
+        quad = fe.mesh.convert(lin, order=2, calc_midfaces=True)
+    corner = fe.Mesh(quad.points[:lin.npoints], quad.cells[:, :lin.cells.shape[1]], lin.cell_type)
+    return quad, corner
+
+
+class MixedMaterial:
+    """W(F, phat) = psi(F) + mu phat (J - 1) [- (mu phat)^2 / (2 alpha)]: FElupe's material
+    interface (``gradient``/``hessian`` of the extracted fields [F, phat]); psi and the
+    F-derivatives by tensortrax, the phat-derivatives in closed form. Without a pressure
+    field (plane stress): W = psi(F)."""
+
+    def __init__(self, psi, mu: float, alpha: float | None, has_pressure: bool):
+        self.psi, self.mu, self.alpha, self.has_pressure = psi, mu, alpha, has_pressure
+
+    def _W(self, F, phat):
+        return self.psi(F) + self.mu * phat * (_det(F) - 1.0)
+
+    def evaluate(self, x, hessian: bool):
+        import tensortrax as tr
+
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            F = np.ascontiguousarray(x[0])
+            if not self.has_pressure:
+                if hessian:
+                    return [tr.hessian(self.psi, ntrax=2)(F)]
+                return [tr.gradient(self.psi, ntrax=2)(F)]
+            phat = np.ascontiguousarray(x[1][0])
+            J = np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))
+            if hessian:
+                dJ = J * np.moveaxis(np.linalg.inv(np.moveaxis(F, (0, 1), (-2, -1))), (-1, -2), (0, 1))
+                App = np.zeros_like(phat) if self.alpha is None else -self.mu ** 2 / self.alpha * np.ones_like(phat)
+                return [tr.hessian(self._W, ntrax=2)(F, phat), self.mu * dJ, App]
+            dp = self.mu * (J - 1.0)
+            if self.alpha is not None:
+                dp = dp - self.mu ** 2 * phat / self.alpha
+            return [tr.gradient(self._W, ntrax=2)(F, phat), dp]
+
+
+def _det(F):
+    import tensortrax.math as tm
+
+    return tm.linalg.det(F)
+
+
+def _simpson(coords: np.ndarray) -> np.ndarray:
+    """Weights of int f ds over sorted node coordinates of a row of quadratic elements
+    (2 n + 1 nodes: ends and midpoints)."""
+    w = np.zeros(len(coords))
+    for k in range(0, len(coords) - 2, 2):
+        d = coords[k + 2] - coords[k]
+        w[k:k + 3] += np.array([1.0, 4.0, 1.0]) * d / 6.0
+    return w
+
+
+@dataclass
+class Setup:
+    settings: FemSettings
+    mesh: object
+    fields: object            # FElupe FieldContainer [u] or [u, phat]
+    material: MixedMaterial
+    fixed: np.ndarray         # bool mask of the global dofs the supports fix
+    f_ext: np.ndarray         # consistent nodal forces at full load (N per unit width in 2D)
+    effects: list
+    mu: float
+
+    @property
+    def ndof(self) -> int:
+        return sum(f.values.size for f in self.fields.fields)
+
+    @property
+    def n_free(self) -> int:
+        return int(self.ndof - self.fixed.sum())
+
+    def point_displacement(self, point) -> np.ndarray:
+        """The displacement of the mesh node at ``point`` (reference coordinates)."""
+        pts = self.mesh.points
+        d = np.linalg.norm(pts - np.asarray(point), axis=1)
+        k = int(np.argmin(d))
+        if d[k] > 1e-9 * np.ptp(pts[:, 0]):
+            raise SceneError(f"fem: no mesh node at {tuple(point)} (tip); use an even fem.cells_height")
+        return self.fields[0].values[k].copy()
+
+
+def set_up(scene: Scene, settings: FemSettings) -> Setup:
+    import felupe as fe
+
+    check_settings(settings)
+    g, b, m, loads = settings.geometry, scene.beam, scene.material, scene.loads
+    quad, corner = beam_meshes(scene, settings)
+    gdim = g.gdim
+    q = fe.GaussLegendre(order=settings.quadrature_degree // 2, dim=gdim)
+    if gdim == 3:
+        region = fe.RegionTriQuadraticHexahedron(quad, quadrature=q)
+        region_p = fe.RegionHexahedron(corner, quadrature=q)
+        u = fe.Field(region, dim=3)
+    else:
+        region = fe.RegionBiQuadraticQuad(quad, quadrature=q)
+        region_p = fe.RegionQuad(corner, quadrature=q)
+        u = (fe.FieldPlaneStrain if settings.model == "plane-strain" else fe.Field)(region, dim=2)
+    fields = [u] + ([fe.Field(region_p, dim=1)] if settings.has_pressure else [])
+    container = fe.FieldContainer(fields)
+
+    law = get_law(m.law)
+    constants = dict(m.constants)
+    mu = law.shear_modulus(constants)
+    alpha = m.penalty if settings.incompressibility == "penalty" else None
+    psi = strain_energy(law, settings.model, constants)
+    material = MixedMaterial(psi, mu, alpha, settings.has_pressure)
+
+    # supports
+    pts = quad.points
+    nu = u.values.size
+    fixed = np.zeros(nu + (corner.npoints if settings.has_pressure else 0), bool)
+    fixed_u = fixed[:nu].reshape(-1, gdim)
+    if scene.supports.left == "clamp":
+        fixed_u[g.at_left(b)(pts.T)] = True
+    else:
+        if settings.cells_height % 2:
+            raise SceneError("fem.cells_height: supports.left = \"pin\" fixes the node at the "
+                             "centre of the left face; needs an even number of cells across")
+        fixed_u[g.pin(b)(pts.T)] = True
+    if gdim == 3 and settings.side_faces == "plane-strain":
+        fixed_u[g.sides(b)(pts.T), 2] = True
+
+    # loads
+    f = np.zeros((quad.npoints, gdim))
+    if loads.gravity is not None:
+        body = m.density * g.vector(loads.gravity)
+        h = region.h.reshape(region.h.shape[0], region.h.shape[1], -1)[:, :, 0]   # (node, point)
+        per_node = np.einsum("aq,qc->ca", h, region.dV)                            # (cell, node)
+        for i in range(gdim):
+            np.add.at(f[:, i], quad.cells, per_node * body[i])
+    if loads.tip_force is not None:
+        tbar = g.vector(loads.tip_force) / (b.height * b.width)
+        end = np.flatnonzero(g.at_right(b)(pts.T))
+        w = np.ones(len(end))
+        for axis in range(1, gdim):
+            c = np.unique(pts[end, axis])
+            w *= _simpson(c)[np.searchsorted(c, pts[end, axis])]
+        f[end] += w[:, None] * tbar
+    f_ext = np.concatenate([f.ravel(), np.zeros(fixed.size - nu)])
+    effects = ["elastic"] + (["penalty"] if alpha is not None else []) + \
+        [k for k in ("gravity", "tip_force") if getattr(loads, k) is not None]
+    return Setup(settings, quad, container, material, fixed, f_ext, effects, mu)
+
+
+class System:
+    """The Newton system of the static problem for :func:`reference_fem.statics.solve_static`:
+    R(w) = f_int(w) - t f_ext on the free dofs; K = dR/dw (FElupe's assembly of the
+    material's gradient and hessian), solved by SuperLU."""
+
+    def __init__(self, setup: Setup):
+        self.s = setup
+        self.w = np.zeros(setup.ndof)
+        self.free = ~setup.fixed
+        self.t = 0.0
+        self._R = None
+        self._dw = np.zeros(setup.ndof)
+        self._offsets = np.cumsum([0] + [f.values.size for f in setup.fields.fields])
+
+    def set_load(self, t: float) -> None:
+        self.t = float(t)
+
+    def _push(self) -> None:
+        for f, a, b in zip(self.s.fields.fields, self._offsets[:-1], self._offsets[1:]):
+            f.values[:] = self.w[a:b].reshape(f.values.shape)
+
+    def _forms(self, hessian: bool):
+        import felupe as fe
+
+        self._push()
+        fields = self.s.fields
+        x = fields.extract()
+        fun = self.s.material.evaluate(x, hessian)
+        dV = fields[0].region.dV
+        if hessian:
+            return fe.IntegralForm(fun=fun, v=fields, u=fields, dV=dV).assemble().tocsr()
+        return np.asarray(fe.IntegralForm(fun=fun, v=fields, dV=dV).assemble().todense()).ravel()
+
+    def residual_norm(self) -> float:
+        r = self._forms(False) - self.t * self.s.f_ext
+        r[self.s.fixed] = 0.0
+        self._R = r
+        return float(np.linalg.norm(r))
+
+    def newton_update(self) -> float:
+        from scipy.sparse.linalg import spsolve
+
+        K = self._forms(True)[self.free][:, self.free]
+        with np.errstate(all="ignore"):
+            dw = spsolve(K.tocsc(), self._R[self.free])
+        if not np.all(np.isfinite(dw)):
+            raise ArithmeticError("singular or failed linear solve (SuperLU)")
+        self._dw[:] = 0.0
+        self._dw[self.free] = dw
+        self.w -= self._dw
+        return float(np.linalg.norm(dw))
+
+    def last_increment(self) -> np.ndarray:
+        return self._dw
+
+    def state_norm(self) -> float:
+        return float(np.linalg.norm(self.w))
+
+    def save(self) -> np.ndarray:
+        return self.w.copy()
+
+    def restore(self, saved: np.ndarray) -> None:
+        self.w[:] = saved
+
+    def reset(self) -> None:
+        self.w[:] = 0.0
