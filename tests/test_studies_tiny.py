@@ -45,6 +45,14 @@ def test_every_study_leaves_a_record_per_case_and_its_report(tiny):
     assert not str(out).startswith(str(REPORTS))
 
 
+def test_the_two_continuum_codes_agree_within_their_bars(tiny):
+    """continuum-agreement's check on the tiny meshes: every row within its bar."""
+    out, _ = tiny
+    readme = (out / "README.md").read_text()
+    section = readme[readme.index("Continuum agreement: DOLFINx and FElupe"):]
+    assert section.split("\n## ")[0].count("Check: **PASS**") == 1
+
+
 def test_timed_cases_carry_serial_warm_timings(tiny):
     out, _ = tiny
     recs = store_for(out, "accuracy-cost").read().values()
