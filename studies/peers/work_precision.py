@@ -1,7 +1,7 @@
 """Who is cheaper at equal accuracy: our pendulum and Exudyn's ANCF cable pendulum on one
 work-precision diagram, timed side by side in one run (``make bench-peers``, issue 10).
 
-    .venv/bin/python -m studies.peers.work_precision [--counts 8 16 32 64]
+    .venv/bin/python -m studies.peers.work_precision [--scene pendulum|thick] [--counts 8 16 32 64]
         [--element HB2n-12 --element HB2n-16] [--import MODULE] [--rho-inf 0.5] [--repeats 5]
         [--out reports]
 
@@ -19,8 +19,15 @@ Euler-Bernoulli: its error has a floor set by its physics, not by its mesh or st
 floors are read at the finest step of the finest mesh (:func:`floors`), not as the
 smallest error over the grid.
 
-Records go to ``<out>/data/peers/peers-work-precision.jsonl`` as each point finishes (an
-interrupted run keeps them; a rerun skips the points it has, ``--force`` redoes all);
+Scenes (:data:`SCENES`, ``--scene``): ``pendulum``, the paper's slender pendulum (h = 5 mm,
+L / h = 70, small strains), and ``thick``, the same pendulum with h = 20 mm (L / h = 17.5),
+where transverse shear and the cross-section's deformation matter and the cable's physics
+differs from the continuum's; its reference is the DOLFINx plane-stress run of
+:mod:`studies.peers.thick_reference` (reports/data/peers/thick-pendulum-reference.json).
+
+Records go to ``<out>/data/peers/peers-work-precision.jsonl`` (one file, every record
+keyed by its scene) as each point finishes (an interrupted run keeps them; a rerun skips
+the points it has, ``--force`` redoes the chosen scene's);
 the table ``<out>/peers_work_precision.md`` and the figure ``.png`` are drawn from that
 file alone (``--report-only`` redraws them).
 """
@@ -45,7 +52,13 @@ ROOT = Path(__file__).resolve().parents[2]
 STEPS_PER_OUTPUT = (20, 40, 80, 160, 320)           # dt = 0.1 s / k
 ACCURACIES = (0.01, 0.001)
 NAME = "peers-work-precision"
-SCENE = "pendulum"          # the records' scene (a second scene is left: it needs its continuum reference)
+SCENE = "pendulum"          # the default scene
+# scene -> cross-section height (m) and what its reference is
+SCENES = {"pendulum": {"height": 0.005, "title": "the paper's slender pendulum, h = 5 mm (L / h = 70)",
+                       "reference": "the converged continuum plane-stress Yeoh pendulum (tests/gold/fem_pendulum.json)"},
+          "thick": {"height": 0.020, "title": "thick pendulum, h = 20 mm (L / h = 17.5)",
+                    "reference": "the continuum plane-stress Yeoh pendulum with h = 20 mm "
+                                 "(data/peers/thick-pendulum-reference.json, studies.peers.thick_reference)"}}
 # The same rule for both sides: Exudyn's fixed-step run has no energy check, so ours runs
 # without its guard too (a run that gains energy shows it in its error, not by stopping).
 ENERGY_GUARD = "none"
@@ -53,18 +66,19 @@ MIN_REPEATS = 5
 
 
 def key(r: dict) -> tuple:
-    return (r["solver"], r["element"], r["elements"], round(r["dt"], 12), r["rho_inf"])
+    return (r.get("scene", SCENE), r["solver"], r["element"], r["elements"], round(r["dt"], 12), r["rho_inf"])
 
 
-def ours(element: str, n: int, dt: float, rho_inf: float, repeats: int) -> dict:
+def ours(element: str, n: int, dt: float, rho_inf: float, repeats: int, scene: str = SCENE) -> dict:
     from ancf.simulation import run_scene
     from contract.scene import scene_from_dict
     from ..pendulum_cases import pendulum_dict
 
     d = pendulum_dict(element, n, "plane-stress", dt, rho_inf=rho_inf)
+    d["beam"]["height"] = SCENES[scene]["height"]
     d["analysis"]["energy_limit"] = "inf"      # no energy guard: Exudyn's run has none (ENERGY_GUARD)
-    scene = scene_from_dict(d)
-    recs = [run_scene(scene)[0] for _ in range(repeats + 1)][1:]     # one untimed warm-up
+    sc = scene_from_dict(d)
+    recs = [run_scene(sc)[0] for _ in range(repeats + 1)][1:]     # one untimed warm-up
     last = recs[-1]
     ok = last["status"] == "converged"
     return {"status": last["status"], "reason": last.get("reason"), "energy_guard": ENERGY_GUARD,
@@ -75,9 +89,9 @@ def ours(element: str, n: int, dt: float, rho_inf: float, repeats: int) -> dict:
             "tip_history": last.get("tip_history") if ok else None}
 
 
-def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path) -> dict:
+def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path, scene: str = SCENE) -> dict:
     try:
-        p = peer(dt, rho_inf, repeats, python, elements=n)
+        p = peer(dt, rho_inf, repeats, python, elements=n, height=SCENES[scene]["height"])
     except RuntimeError as e:
         return {"status": "failed", "reason": str(e).splitlines()[0][:300], "time_s": None, "cpu_s": None,
                 "tip_history": None}
@@ -87,15 +101,20 @@ def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path) -> dic
             "tip_history": p["tip_history"], "exudyn": p["settings"]["exudyn"]}
 
 
-def error(tips: list[dict] | None) -> float | None:
-    """max over the output times after 0 of |r - r_ref| / L against the continuum
-    plane-stress Yeoh pendulum; None without tips or gold."""
+def error(tips: list[dict] | None, scene: str = SCENE) -> float | None:
+    """max over the output times after 0 of |r - r_ref| / L against the scene's continuum
+    plane-stress Yeoh pendulum; None without tips or reference."""
     from ..pendulum_cases import continuum_pendulum, tip_errors
+    from .thick_reference import reference
 
-    ref = continuum_pendulum().get(("yeoh", "plane-stress"))
+    if scene == "thick":
+        ref = reference()
+    else:
+        c = continuum_pendulum().get(("yeoh", "plane-stress"))
+        ref = c.tips if c else None
     if not tips or ref is None:
         return None
-    e = tip_errors({round(h["t"], 9): (h["x"], h["y"]) for h in tips}, ref.tips)
+    e = tip_errors({round(h["t"], 9): (h["x"], h["y"]) for h in tips}, ref)
     return max(e.values()) if e else None
 
 
@@ -106,24 +125,26 @@ def read(path: Path) -> list[dict]:
 def run(a) -> list[dict]:
     path = a.out / "data" / "peers" / f"{NAME}.jsonl"
     path.parent.mkdir(parents=True, exist_ok=True)
-    if a.force and path.exists():
-        path.unlink()
+    if a.force and path.exists():                  # redo this scene's points, keep the others'
+        keep = [r for r in read(path) if r.get("scene", SCENE) != a.scene]
+        path.write_text("".join(json.dumps(r) + "\n" for r in keep))
     have = {key(r) for r in read(path)}
     for n in a.counts:
         for k in a.steps_per_output:
             dt = 0.1 / k
             todo = [("exudyn", "ANCFCable2D")] + [("ancf", e) for e in a.element]
             for solver, element in todo:
-                base = {"solver": solver, "scene": SCENE, "element": element, "elements": n, "dt": dt,
+                base = {"solver": solver, "scene": a.scene, "height": SCENES[a.scene]["height"], "element": element, "elements": n, "dt": dt,
                         "rho_inf": a.rho_inf,
                         "law": "yeoh", "formulation": "plane-stress" if solver == "ancf" else "linear cable"}
                 if key(base) in have:
                     continue
                 t0 = time.perf_counter()
-                res = (exudyn(n, dt, a.rho_inf, a.repeats, a.peer_python) if solver == "exudyn"
-                       else ours(element, n, dt, a.rho_inf, a.repeats))
-                rec = {**base, **res, "error": error(res.get("tip_history")), "repeats": a.repeats,
-                       "host_load": os.getloadavg()[0]}
+                load0 = os.getloadavg()[0]
+                res = (exudyn(n, dt, a.rho_inf, a.repeats, a.peer_python, a.scene) if solver == "exudyn"
+                       else ours(element, n, dt, a.rho_inf, a.repeats, a.scene))
+                rec = {**base, **res, "error": error(res.get("tip_history"), a.scene), "repeats": a.repeats,
+                       "host_load": [load0, os.getloadavg()[0]]}
                 with path.open("a") as f:
                     f.write(json.dumps(rec) + "\n")
                 e = rec["error"]
@@ -170,49 +191,73 @@ def spread(r: dict) -> str:
     return f"{min(runs):.4f}-{max(runs):.4f}" if runs else "-"
 
 
+def scenes_of(recs: list[dict]) -> list[str]:
+    """The records' scenes, in :data:`SCENES` order (older records: the pendulum)."""
+    have = {r.get("scene", SCENE) for r in recs}
+    return [s for s in SCENES if s in have] + sorted(have - set(SCENES))
+
+
+def figure_name(scene: str) -> str:
+    return "peers_work_precision.png" if scene == SCENE else f"peers_work_precision_{scene}.png"
+
+
 def report(recs: list[dict], out: Path) -> str:
-    """The table (markdown, :func:`report_markdown`) and the figure from the records."""
+    """The tables (markdown, :func:`report_markdown`) and one figure per scene from the records."""
     text = report_markdown(recs)
-    figure(recs, out / "peers_work_precision.png")
+    for scene in scenes_of(recs):
+        figure([r for r in recs if r.get("scene", SCENE) == scene], out / figure_name(scene), scene)
     (out / "peers_work_precision.md").write_text(text)
     return text
 
 
-def report_markdown(recs: list[dict]) -> str:
-    """reports/peers_work_precision.md from the records alone (a plain function)."""
+def ratio_range(o: dict, p: dict) -> str:
+    """'lo-hi' of ours / Exudyn's over their timed runs (slowest against fastest and back)."""
+    a, b = o.get("time_runs_s"), p.get("time_runs_s")
+    return f"{min(a) / max(b):.2f}-{max(a) / min(b):.2f}" if a and b else "-"
+
+
+def load_text(recs: list[dict]) -> str:
+    loads = [x for r in recs for x in (r["host_load"] if isinstance(r.get("host_load"), list)
+                                        else [r["host_load"]] if r.get("host_load") is not None else [])]
+    return (f"{min(loads):.2f} to {max(loads):.2f} (median {statistics.median(loads):.2f}; before and after each point)"
+            if loads else "not recorded")
+
+
+def scene_markdown(recs: list[dict], scene: str) -> list[str]:
+    """The section of one scene's records."""
     guards = {r.get("energy_guard", "the scene's energy limit") for r in recs if r["solver"] == "ancf"}
     runs = [len(r["time_runs_s"]) for r in recs if r.get("time_runs_s")]
-    lines = ["# Work-precision: our pendulum against Exudyn's ANCF cable",
-             "",
-             "Generated by `python -m studies.peers.work_precision` (`make bench-peers`) from "
-             f"`data/peers/{NAME}.jsonl`; see the module's docstring for the method. Error: max over t = 0.1 ... 0.5 s "
-             "of |r - r_ref| / L against the converged continuum plane-stress Yeoh pendulum; time: median warm "
-             "solve wall time, both solvers in one run, one thread. A run counts for an accuracy only if every "
-             "finer step of its mesh reaches it too (no accuracy by cancellation of step and mesh errors).",
-             "",
-             f"Scene: {SCENE}. Energy guard: "
+    els = sorted({r["element"] for r in recs if r["solver"] == "ancf"})
+    info = SCENES.get(scene, {"title": scene, "reference": "?"})
+    lines = [f"## Scene `{scene}`: {info['title']}", "",
+             f"Reference: {info['reference']}. Our elements: {', '.join(els)}"
+             + (" (HB2n-40p runs on the Python steppers, not the compiled kernels: its times are what they are)"
+                if "HB2n-40p" in els else "") + ".", "",
+             "Energy guard: "
              + ("none on either side (Exudyn's run has none; ours runs with energy_limit = inf)"
                 if guards == {"none"} else "NOT the same on both sides in these records (ours: "
                 + ", ".join(sorted(guards)) + "; Exudyn: none): rerun with --force")
-             + ". Timed runs per point: " + (f"{min(runs)} to {max(runs)}" if runs else "not recorded (older records)")
+             + ". Timed runs per point: " + ((f"{min(runs)}" if min(runs) == max(runs) else f"{min(runs)} to {max(runs)}") if runs else "not recorded (older records)")
              + (f" (fewer than {MIN_REPEATS}: rerun with --repeats {MIN_REPEATS})" if not runs or min(runs) < MIN_REPEATS
-                else "") + "; time = their median, spread = min-max.",
+                else "") + "; time = their median, spread = min-max. Load average (1 min) during the runs: "
+             + load_text(recs) + ".",
              "",
              "| accuracy | cheapest ours | time (s) | error (%) | cheapest Exudyn cable | time (s) | error (%) | "
-             "ours / Exudyn |",
-             "|---|---|---|---|---|---|---|---|"]
+             "ours / Exudyn (medians) | range over runs |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for a in ACCURACIES:
         o, p = cheapest(recs, "ancf", None, a), cheapest(recs, "exudyn", None, a)
         fo = (f"{o['element']} x {o['elements']}, dt {o['dt'] * 1e3:g} ms | {o['time_s']:.4f} | "
               f"{100 * o['error']:.3f}") if o else "none | - | -"
         fp = (f"{p['elements']} elements, dt {p['dt'] * 1e3:g} ms | {p['time_s']:.4f} | "
               f"{100 * p['error']:.3f}") if p else "none | - | -"
-        ratio = f"{o['time_s'] / p['time_s']:.2f}" if o and p else "-"
+        ratio = (f"{o['time_s'] / p['time_s']:.2f} | {ratio_range(o, p)}" if o and p
+                 else "- (ours reaches it, the cable does not) | -" if o else "- | -")
         lines.append(f"| {100 * a:g} % | {fo} | {fp} | {ratio} |")
     fl = floors(recs)
     if fl:
         lines += ["", "Accuracy floors, read at the finest step of the finest mesh (the cable's: its physics, "
-                  "linear elastic E = 6 C10, no thickness deformation):", "",
+                  "linear elastic E = 6 C10, Euler-Bernoulli, no thickness deformation):", "",
                   "| solver | element | n | dt (ms) | error (%) |", "|---|---|---|---|---|"]
         for (solver, element), r in sorted(fl.items()):
             lines.append(f"| {solver} | {element} | {r['elements']} | {r['dt'] * 1e3:g} | {100 * r['error']:.4f} |")
@@ -222,12 +267,29 @@ def report_markdown(recs: list[dict]) -> str:
         lines.append(f"| {r['solver']} | {r['element']} | {r['elements']} | {r['dt'] * 1e3:g} | {r['status']} | "
                      + (f"{r['time_s']:.4f}" if r["time_s"] else "-") + f" | {spread(r)} | "
                      + (f"{100 * r['error']:.4f}" if r["error"] is not None else "-") + " |")
-    lines += ["", "![work-precision](peers_work_precision.png)", ""]
+    lines += ["", f"![work-precision, {scene}]({figure_name(scene)})", ""]
+    return lines
+
+
+def report_markdown(recs: list[dict]) -> str:
+    """reports/peers_work_precision.md from the records alone (a plain function): one
+    section per scene."""
+    lines = ["# Work-precision: our pendulum against Exudyn's ANCF cable",
+             "",
+             "Generated by `python -m studies.peers.work_precision` (`make bench-peers`) from "
+             f"`data/peers/{NAME}.jsonl`; do not edit; see the module's docstring for the method. Error: max over "
+             "t = 0.1 ... 0.5 s of |r - r_ref| / L against the scene's converged continuum plane-stress Yeoh pendulum; "
+             "time: median warm solve wall time, both solvers in one run (each point: Exudyn's runs, then ours), "
+             "one thread. A run counts for an accuracy only if every finer step of its mesh reaches it too (no "
+             "accuracy by cancellation of step and mesh errors). Ratios below 1: ours is cheaper.",
+             ""]
+    for scene in scenes_of(recs):
+        lines += scene_markdown([r for r in recs if r.get("scene", SCENE) == scene], scene)
     return "\n".join(lines)
 
 
-def figure(recs: list[dict], path: Path) -> None:
-    """The work-precision figure from the records."""
+def figure(recs: list[dict], path: Path, scene: str = SCENE) -> None:
+    """The work-precision figure of one scene's records."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -250,7 +312,9 @@ def figure(recs: list[dict], path: Path) -> None:
     ax.grid(True, alpha=0.3)
     ax.set_xlabel("solve wall time, median warm (s)")
     ax.set_ylabel("max over t of |r - r_ref| / L")
-    ax.set_title("pendulum, Yeoh: ours (plane stress) vs Exudyn ANCF cable; step 5 ms halving", fontsize=9)
+    h = SCENES.get(scene, {}).get("height")
+    ax.set_title(f"{scene}" + (f" (h = {h * 1e3:g} mm)" if h else "") + ", Yeoh: ours (plane stress) vs Exudyn "
+                 "ANCF cable; step 5 ms halving", fontsize=9)
     ax.legend(fontsize=5, ncol=3)
     fig.tight_layout()
     fig.savefig(path, dpi=150)
@@ -259,6 +323,8 @@ def figure(recs: list[dict], path: Path) -> None:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m studies.peers.work_precision", description=__doc__.splitlines()[0])
+    ap.add_argument("--scene", choices=sorted(SCENES), default=SCENE, help="pendulum (h = 5 mm, default) or thick "
+                    "(h = 20 mm)")
     ap.add_argument("--counts", type=int, nargs="+", default=[8, 16, 32, 64])
     ap.add_argument("--element", action="append", help="our element (repeatable; default HB2n-12 and HB2n-16)")
     ap.add_argument("--rho-inf", type=float, default=0.5, help="generalized-alpha spectral radius (default 0.5, "
