@@ -28,8 +28,9 @@ differs from the continuum's; its reference is the DOLFINx plane-stress run of
 Records go to ``<out>/data/peers/peers-work-precision.jsonl`` (one file, every record
 keyed by its scene) as each point finishes (an interrupted run keeps them; a rerun skips
 the points it has, ``--force`` redoes the chosen scene's);
-the table ``<out>/peers_work_precision.md`` and the figure ``.png`` are drawn from that
-file alone (``--report-only`` redraws them).
+the table ``<out>/peers_work_precision.md`` and the figures ``.png`` (one per scene) are
+drawn from that file alone (``--report-only`` redraws them; ``--rescore`` first recomputes
+every error from the records' tip histories against the current references).
 """
 from __future__ import annotations
 
@@ -101,17 +102,27 @@ def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path, scene:
             "tip_history": p["tip_history"], "exudyn": p["settings"]["exudyn"]}
 
 
+def reference(scene: str = SCENE) -> tuple[dict | None, float | None]:
+    """The scene's continuum reference: ({t: (x, y)} or None, its largest error estimate / L
+    or None)."""
+    from ..pendulum_cases import LENGTH, continuum_pendulum
+    from . import thick_reference
+
+    if scene == "thick":
+        tips = thick_reference.reference()
+        est = thick_reference.error_estimate()
+    else:
+        c = continuum_pendulum().get(("yeoh", "plane-stress"))
+        tips, est = (c.tips, c.error_estimate) if c else (None, None)
+    return tips, (est / LENGTH if est is not None else None)
+
+
 def error(tips: list[dict] | None, scene: str = SCENE) -> float | None:
     """max over the output times after 0 of |r - r_ref| / L against the scene's continuum
     plane-stress Yeoh pendulum; None without tips or reference."""
-    from ..pendulum_cases import continuum_pendulum, tip_errors
-    from .thick_reference import reference
+    from ..pendulum_cases import tip_errors
 
-    if scene == "thick":
-        ref = reference()
-    else:
-        c = continuum_pendulum().get(("yeoh", "plane-stress"))
-        ref = c.tips if c else None
+    ref = reference(scene)[0]
     if not tips or ref is None:
         return None
     e = tip_errors({round(h["t"], 9): (h["x"], h["y"]) for h in tips}, ref)
@@ -143,7 +154,8 @@ def run(a) -> list[dict]:
                 load0 = os.getloadavg()[0]
                 res = (exudyn(n, dt, a.rho_inf, a.repeats, a.peer_python, a.scene) if solver == "exudyn"
                        else ours(element, n, dt, a.rho_inf, a.repeats, a.scene))
-                rec = {**base, **res, "error": error(res.get("tip_history"), a.scene), "repeats": a.repeats,
+                rec = {**base, **res, "error": error(res.get("tip_history"), a.scene),
+                       "reference_error": reference(a.scene)[1], "repeats": a.repeats,
                        "host_load": [load0, os.getloadavg()[0]]}
                 with path.open("a") as f:
                     f.write(json.dumps(rec) + "\n")
@@ -152,6 +164,18 @@ def run(a) -> list[dict]:
                       f"time {rec['time_s'] or float('nan'):8.4f} s  error {100 * e if e is not None else float('nan'):8.4f} %"
                       f"  ({time.perf_counter() - t0:.1f} s)", flush=True)
     return read(path)
+
+
+def rescore(path: Path) -> list[dict]:
+    """Every record's error (and the reference's estimate) recomputed from its tip history
+    against its scene's current reference; no solver runs (``--rescore``)."""
+    recs = read(path)
+    for r in recs:
+        sc = r.get("scene", SCENE)
+        r["error"] = error(r.get("tip_history"), sc)
+        r["reference_error"] = reference(sc)[1]
+    path.write_text("".join(json.dumps(r) + "\n" for r in recs))
+    return recs
 
 
 def holds(r: dict, recs: list[dict], accuracy: float) -> bool:
@@ -223,6 +247,11 @@ def load_text(recs: list[dict]) -> str:
             if loads else "not recorded")
 
 
+def ref_text(recs: list[dict]) -> str:
+    e = {r.get("reference_error") for r in recs} - {None}
+    return (f", its error estimate at most {100 * max(e):.3f} % of L" if e else ", its error estimate not recorded")
+
+
 def scene_markdown(recs: list[dict], scene: str) -> list[str]:
     """The section of one scene's records."""
     guards = {r.get("energy_guard", "the scene's energy limit") for r in recs if r["solver"] == "ancf"}
@@ -230,7 +259,7 @@ def scene_markdown(recs: list[dict], scene: str) -> list[str]:
     els = sorted({r["element"] for r in recs if r["solver"] == "ancf"})
     info = SCENES.get(scene, {"title": scene, "reference": "?"})
     lines = [f"## Scene `{scene}`: {info['title']}", "",
-             f"Reference: {info['reference']}. Our elements: {', '.join(els)}"
+             f"Reference: {info['reference']}" + ref_text(recs) + ". Our elements: {', '.join(els)}"
              + (" (HB2n-40p runs on the Python steppers, not the compiled kernels: its times are what they are)"
                 if "HB2n-40p" in els else "") + ".", "",
              "Energy guard: "
@@ -338,11 +367,14 @@ def main(argv=None) -> int:
                     help="a module that registers a user's element (repeatable)")
     ap.add_argument("--force", action="store_true", help="redo every point")
     ap.add_argument("--report-only", action="store_true", help="redraw the table and figure from the records")
+    ap.add_argument("--rescore", action="store_true", help="recompute every record's error from its tip history "
+                    "against its scene's current reference (no solver runs), then redraw")
     a = ap.parse_args(argv)
     a.element = a.element or ["HB2n-12", "HB2n-16"]
     for m in a.imports:
         importlib.import_module(m)
-    recs = read(a.out / "data" / "peers" / f"{NAME}.jsonl") if a.report_only else run(a)
+    path = a.out / "data" / "peers" / f"{NAME}.jsonl"
+    recs = rescore(path) if a.rescore else read(path) if a.report_only else run(a)
     print(report(recs, a.out))
     return 0
 
