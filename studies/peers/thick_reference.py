@@ -1,0 +1,136 @@
+"""The continuum reference of the work-precision's second scene: the paper's pendulum
+(Yeoh, plane stress, pinned at the centre of the left face, released from horizontal at
+rest, 0.5 s) with a thick cross-section, h = 20 mm (L / h = 17.5), where transverse shear
+and the cross-section's own deformation are no longer negligible and the cable's
+Euler-Bernoulli, linear-elastic physics differs from the continuum's.
+
+    .venv/bin/python -m studies.peers.thick_reference [--cells-height 8] [--dt 1e-3]
+        [--reuse FILE ...]
+
+The DOLFINx plane-stress model of ``reference_fem`` (the one that produced
+tests/gold/fem_pendulum.json, see :mod:`reference_fem.gold_pendulum`: Q2 cells of aspect
+2, generalized-alpha rho_inf = 0.8), run on three meshes, c, 2c and 4c cells across the
+height at dt, and on the middle mesh at dt / 2. The reference is the finest mesh's run.
+Its error estimate at time t (Richardson):
+
+    e(t) = 4/3 d_dt(t) + d_h(t) r / (1 - r)
+
+d_dt: the middle mesh's change when dt is halved (second order in time: the error at dt
+is d_dt / (1 - 1/4)); d_h: the change from the middle to the finest mesh; r: the
+observed contraction of the mesh changes, max_t d_h / max_t d_h' with d_h' the change
+from the coarsest to the middle mesh (r = 1/2 for first order, 1/4 for second). The
+point pin is a logarithmic singularity of the 2D continuum, so r need not reach its
+asymptotic value: when r >= 0.8 the mesh changes do not contract and the estimate is
+None (status ``not-converged``). The file keeps every run, the changes, r and e(t):
+``reports/data/peers/thick-pendulum-reference.json``. ``--reuse`` takes runs (same
+scene, cells and dt) from earlier files of this script instead of recomputing them.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+HEIGHT = 0.020                                       # m
+PATH = ROOT / "reports" / "data" / "peers" / "thick-pendulum-reference.json"
+LAW, MODEL = "yeoh", "plane-stress"
+T_END = 0.5                                          # s, the pendulum's
+LENGTH = 0.350                                       # m
+
+
+def scene(dt: float, cells_height: int, aspect: float = 2.0, rho_inf: float = 0.8) -> dict:
+    from reference_fem.gold_pendulum import pendulum_dict
+
+    d = pendulum_dict(LAW, MODEL, dt, cells_height, aspect, rho_inf=rho_inf)
+    d["beam"]["height"] = HEIGHT
+    d["name"] = f"pendulum-thick-h{HEIGHT * 1e3:g}mm-{LAW}-{MODEL}-fem"
+    return d
+
+
+def _key(run: dict) -> tuple[int, float]:
+    return run["fem"]["cells_height"], round(T_END / run["steps"], 12)
+
+
+def compute(dt: float, cells_height: int, aspect: float = 2.0, reuse: list[Path] = ()) -> dict:
+    from reference_fem.gold_pendulum import differences, run_case
+
+    have = {}
+    for f in reuse:
+        for r in json.loads(Path(f).read_text())["runs"].values():
+            f_ = r.get("fem") or {}
+            if (r.get("status") == "converged" and f_.get("cells_length")     # aspect = L c_h / (c_l h)
+                    and abs(LENGTH * f_["cells_height"] / (f_["cells_length"] * HEIGHT) - aspect) < 1e-9 * aspect):
+                have[_key(r)] = r
+    c = cells_height
+    plan = {"coarse": (c, dt), "middle": (2 * c, dt), "middle_half_dt": (2 * c, dt / 2), "fine": (4 * c, dt)}
+    runs = {}
+    for name, (cells, step) in plan.items():
+        t0 = time.perf_counter()
+        r = have.get((cells, round(step, 12)))
+        if r is None:
+            r = run_case(scene(step, cells, aspect))
+            r = {k: r.get(k) for k in ("status", "reason", "ndof", "steps", "newton_iterations", "wall_s", "fem",
+                                       "tip_history")}
+        runs[name] = r
+        print(f"{name} ({cells} across, dt {step:g}): {r['status']} ndof {r.get('ndof')} "
+              f"({time.perf_counter() - t0:.0f} s)", flush=True)
+    fine = runs["fine"]
+    d_dt = differences(runs["middle"], runs["middle_half_dt"])
+    d_h = differences(runs["middle"], fine)
+    d_h0 = differences(runs["coarse"], runs["middle"])
+    out = {"description": __doc__.split("\n\n")[0].replace("\n", " "),
+           "generator": "python -m studies.peers.thick_reference", "units": "m, s",
+           "law": LAW, "continuum_model": MODEL, "height_m": HEIGHT, "dt": dt,
+           "mesh": {"cells_height": 4 * c, "aspect": aspect}, "scene": scene(dt, 4 * c, aspect),
+           "status": fine["status"], "runs": runs}
+    if d_dt is None or d_h is None or d_h0 is None:
+        return out | {"status": "failed", "reason": "a convergence run failed", "tip_history": None}
+    r = max(d_h) / max(d_h0) if max(d_h0) > 0 else 0.0
+    est = [4.0 / 3.0 * a + b * r / (1 - r) for a, b in zip(d_dt, d_h)] if r < 0.8 else None
+    return out | {"status": "converged" if est else "not-converged",
+                  "reason": None if est else f"mesh changes do not contract (r = {r:.2f})",
+                  "tip_history": fine["tip_history"], "change_half_dt_m": d_dt, "change_refined_mesh_m": d_h,
+                  "change_coarse_to_middle_m": d_h0, "contraction": r, "error_estimate_m": est,
+                  "max_error_estimate_m": max(est) if est else None}
+
+
+def reference(path: Path = PATH) -> dict[float, tuple[float, float]] | None:
+    """{t: (x, y)} of the thick pendulum's continuum reference, None without it."""
+    if not Path(path).exists():
+        return None
+    g = json.loads(Path(path).read_text())
+    if g.get("status") != "converged" or not g.get("tip_history"):
+        return None
+    return {round(h["t"], 9): (h["x"], h["y"]) for h in g["tip_history"]}
+
+
+def error_estimate(path: Path = PATH) -> float | None:
+    """The reference's largest error estimate (m), None without it."""
+    if not Path(path).exists():
+        return None
+    return json.loads(Path(path).read_text()).get("max_error_estimate_m")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m studies.peers.thick_reference", description=__doc__.splitlines()[0])
+    ap.add_argument("--cells-height", type=int, default=8)
+    ap.add_argument("--aspect", type=float, default=2.0)
+    ap.add_argument("--dt", type=float, default=1e-3)
+    ap.add_argument("--out", type=Path, default=PATH)
+    ap.add_argument("--reuse", type=Path, nargs="*", default=[], help="earlier files of this script whose runs "
+                    "(same cells and dt) are taken instead of recomputed")
+    a = ap.parse_args(argv)
+    doc = compute(a.dt, a.cells_height, a.aspect, a.reuse)
+    a.out.parent.mkdir(parents=True, exist_ok=True)
+    a.out.write_text(json.dumps(doc, indent=1) + "\n")
+    if doc.get("error_estimate_m"):
+        print("max error estimate %.4f mm = %.4f %% of L" % (1e3 * doc["max_error_estimate_m"],
+                                                             100 * doc["max_error_estimate_m"] / 0.35))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
