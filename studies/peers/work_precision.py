@@ -51,7 +51,7 @@ from .compare import PEER_PYTHON, peer
 
 ROOT = Path(__file__).resolve().parents[2]
 STEPS_PER_OUTPUT = (20, 40, 80, 160, 320)           # dt = 0.1 s / k
-ACCURACIES = (0.01, 0.001)
+ACCURACIES = (0.01, 0.003, 0.001)     # 0.3 % added after the thick scene's run: its floors lie between 1 % and 0.1 %
 NAME = "peers-work-precision"
 SCENE = "pendulum"          # the default scene
 # scene -> cross-section height (m) and what its reference is
@@ -59,7 +59,11 @@ SCENES = {"pendulum": {"height": 0.005, "title": "the paper's slender pendulum, 
                        "reference": "the converged continuum plane-stress Yeoh pendulum (tests/gold/fem_pendulum.json)"},
           "thick": {"height": 0.020, "title": "thick pendulum, h = 20 mm (L / h = 17.5)",
                     "reference": "the continuum plane-stress Yeoh pendulum with h = 20 mm "
-                                 "(data/peers/thick-pendulum-reference.json, studies.peers.thick_reference)"}}
+                                 "(data/peers/thick-pendulum-reference.json, studies.peers.thick_reference: 8, 16 "
+                                 "and 32 Q2 cells across; the tip moves by the same 0.14 mm at each halving, the point "
+                                 "pin's logarithmic singularity, so the reference is the 16-cell run, a 1.25 mm pin as "
+                                 "in the slender pendulum's gold, and its estimate is the time error plus one pin "
+                                 "halving)"}}
 # The same rule for both sides: Exudyn's fixed-step run has no energy check, so ours runs
 # without its guard too (a run that gains energy shows it in its error, not by stopping).
 ENERGY_GUARD = "none"
@@ -259,7 +263,7 @@ def scene_markdown(recs: list[dict], scene: str) -> list[str]:
     els = sorted({r["element"] for r in recs if r["solver"] == "ancf"})
     info = SCENES.get(scene, {"title": scene, "reference": "?"})
     lines = [f"## Scene `{scene}`: {info['title']}", "",
-             f"Reference: {info['reference']}" + ref_text(recs) + ". Our elements: {', '.join(els)}"
+             f"Reference: {info['reference']}" + ref_text(recs) + f". Our elements: {', '.join(els)}"
              + (" (HB2n-40p runs on the Python steppers, not the compiled kernels: its times are what they are)"
                 if "HB2n-40p" in els else "") + ".", "",
              "Energy guard: "
