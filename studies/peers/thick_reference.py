@@ -25,7 +25,9 @@ middle mesh (Richardson: r = 1/2 for first order, 1/4 for second).
   (tests/gold/fem_pendulum.json), and e(t) = 4/3 d_dt(t) + d_h(t): the time error plus
   the change of one halving of the pin (a pin between about half and twice that size).
 
-The file keeps every run, the changes, r, which rule applied and e(t):
+The file also keeps runs on c / 4 and c / 2 cells across (pins of 10 and 5 mm at c = 8):
+with the others, the pin-size sweep of :func:`pin_references`. It keeps every run, the
+changes, r, which rule applied and e(t):
 ``reports/data/peers/thick-pendulum-reference.json``. ``--reuse`` takes runs (same
 scene, cells and dt) from earlier files of this script instead of recomputing them.
 """
@@ -69,7 +71,9 @@ def compute(dt: float, cells_height: int, aspect: float = 2.0, reuse: list[Path]
                     and abs(LENGTH * f_["cells_height"] / (f_["cells_length"] * HEIGHT) - aspect) < 1e-9 * aspect):
                 have[_key(r)] = r
     c = cells_height
-    plan = {"coarse": (c, dt), "middle": (2 * c, dt), "middle_half_dt": (2 * c, dt / 2), "fine": (4 * c, dt)}
+    plan = {"coarse": (c, dt), "middle": (2 * c, dt), "middle_half_dt": (2 * c, dt / 2), "fine": (4 * c, dt),
+            # the pin-size sweep (pin_references): coarser meshes, larger pins
+            "pin_quarter": (max(c // 4, 1), dt), "pin_half": (max(c // 2, 1), dt)}
     runs = {}
     for name, (cells, step) in plan.items():
         t0 = time.perf_counter()
@@ -117,6 +121,17 @@ def reference(path: Path = PATH) -> dict[float, tuple[float, float]] | None:
     if g.get("status") != "converged" or not g.get("tip_history"):
         return None
     return {round(h["t"], 9): (h["x"], h["y"]) for h in g["tip_history"]}
+
+
+def pin_references(path: Path = PATH) -> dict[float, dict[float, tuple[float, float]]]:
+    """{pin size (m, the cell height): {t: (x, y)}} of every run at the reference's dt: the
+    same continuum with pins from h / 2 down (the point pin's size is its cell's)."""
+    if not Path(path).exists():
+        return {}
+    g = json.loads(Path(path).read_text())
+    return {HEIGHT / r["fem"]["cells_height"]: {round(h["t"], 9): (h["x"], h["y"]) for h in r["tip_history"]}
+            for r in g["runs"].values()
+            if r.get("status") == "converged" and abs(T_END / r["steps"] - g["dt"]) < 1e-12 and r.get("tip_history")}
 
 
 def error_estimate(path: Path = PATH) -> float | None:
