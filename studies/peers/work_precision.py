@@ -2,7 +2,7 @@
 work-precision diagram, timed side by side in one run (``make bench-peers``, issue 10).
 
     .venv/bin/python -m studies.peers.work_precision [--scene pendulum|thick] [--counts 8 16 32 64]
-        [--element HB2n-12 --element HB2n-16] [--import MODULE] [--rho-inf 0.5] [--repeats 5]
+        [--element HB2n-12 --element HB2n-16 --element HB2n-40p] [--import MODULE] [--rho-inf 0.5] [--repeats 5]
         [--out reports]
 
 Grid: the element counts, and the step ladder dt = 0.1 s / k for k = 20, 40, 80, 160,
@@ -68,6 +68,7 @@ SCENES = {"pendulum": {"height": 0.005, "title": "the paper's slender pendulum, 
 # without its guard too (a run that gains energy shows it in its error, not by stopping).
 ENERGY_GUARD = "none"
 MIN_REPEATS = 5
+ELEMENTS = ("HB2n-12", "HB2n-16", "HB2n-40p")      # the paper's two and the lock-free one with a pressure field
 
 
 def key(r: dict) -> tuple:
@@ -384,7 +385,7 @@ def main(argv=None) -> int:
     ap.add_argument("--scene", choices=sorted(SCENES), default=SCENE, help="pendulum (h = 5 mm, default) or thick "
                     "(h = 20 mm)")
     ap.add_argument("--counts", type=int, nargs="+", default=[8, 16, 32, 64])
-    ap.add_argument("--element", action="append", help="our element (repeatable; default HB2n-12 and HB2n-16)")
+    ap.add_argument("--element", action="append", help="our element (repeatable; default: ELEMENTS)")
     ap.add_argument("--rho-inf", type=float, default=0.5, help="generalized-alpha spectral radius (default 0.5, "
                     "Table 4's)")
     ap.add_argument("--steps-per-output", type=int, nargs="+", default=list(STEPS_PER_OUTPUT),
@@ -399,7 +400,7 @@ def main(argv=None) -> int:
     ap.add_argument("--rescore", action="store_true", help="recompute every record's error from its tip history "
                     "against its scene's current reference (no solver runs), then redraw")
     a = ap.parse_args(argv)
-    a.element = a.element or ["HB2n-12", "HB2n-16"]
+    a.element = a.element or list(ELEMENTS)
     for m in a.imports:
         importlib.import_module(m)
     path = a.out / "data" / "peers" / f"{NAME}.jsonl"
