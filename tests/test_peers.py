@@ -189,16 +189,24 @@ def test_the_peer_reports_are_audited_against_their_records(tmp_path):
     for name, (record, _) in PEER_REPORTS.items():
         shutil.copy(reports / name, copy / name)
         shutil.copy(reports / "data" / "peers" / record, copy / "data" / "peers" / record)
+    figures = sorted(p.name for p in reports.glob("peers_work_precision*.figure.csv"))
+    for name in figures:
+        shutil.copy(reports / name, copy / name)
     res = AuditResult()
-    audit_peers(copy, res)
+    covered = audit_peers(copy, res)
     assert res.ok, "\n".join(res.problems)
-    assert sorted(res.checked) == sorted(PEER_REPORTS)
+    assert sorted(res.checked) == sorted([*PEER_REPORTS, *figures]) and len(figures) == 2
+    assert {n[:-len(".figure.csv")] + ".png" for n in figures} <= covered
     wp = copy / "peers_work_precision.md"
     lines = wp.read_text().splitlines(keepends=True)
     i = next(i for i, ln in enumerate(lines) if ln.startswith("| 1 % |"))
     lines[i] = lines[i].replace(" | 0.", " | 9.", 1)
     wp.write_text("".join(lines))
     (copy / "data" / "peers" / PEER_REPORTS["peers.md"][0]).unlink()
+    fig = copy / figures[0]
+    rows = fig.read_text().splitlines(keepends=True)
+    rows[1] = rows[1].replace(",True,", ",False,")       # a filled point drawn hollow
+    fig.write_text("".join(rows))
     res = AuditResult()
     audit_peers(copy, res)
-    assert [p.split(": ")[0] for p in res.problems] == [f"{copy / 'peers.md'}:1", f"{wp}:{i + 1}"]
+    assert [p.split(": ")[0] for p in res.problems] == [f"{copy / 'peers.md'}:1", f"{wp}:{i + 1}", f"{fig}:2"]

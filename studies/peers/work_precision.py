@@ -348,7 +348,42 @@ def report_markdown(recs: list[dict]) -> str:
 
 
 def figure(recs: list[dict], path: Path, scene: str = SCENE) -> None:
-    """The work-precision figure of one scene's records."""
+    """The work-precision figure of one scene's records (``path``, a .png) and the data it
+    draws beside it (``<name>.figure.csv``, :func:`figure_csv`, which the audit compares)."""
+    import matplotlib.pyplot as plt
+
+    fig = make_figure(recs, scene)
+    fig.savefig(path, dpi=150)
+    path.with_name(path.stem + ".figure.csv").write_text(_csv(fig))
+    plt.close(fig)
+
+
+def _csv(fig) -> str:
+    import csv
+    import io
+
+    from ..engine.report import figure_data
+
+    buf = io.StringIO()
+    w = csv.writer(buf)
+    w.writerow(["panel", "title", "x label", "y label", "label", "marker", "filled", "x", "y"])
+    w.writerows(figure_data(fig))
+    return buf.getvalue()
+
+
+def figure_csv(recs: list[dict], scene: str = SCENE) -> str:
+    """Every point the scene's figure draws, as the audit's figure data (CSV text)."""
+    import matplotlib.pyplot as plt
+
+    fig = make_figure([r for r in recs if r.get("scene", SCENE) == scene], scene)
+    try:
+        return _csv(fig)
+    finally:
+        plt.close(fig)
+
+
+def make_figure(recs: list[dict], scene: str = SCENE):
+    """The work-precision figure of one scene's records (a matplotlib Figure)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -376,8 +411,7 @@ def figure(recs: list[dict], path: Path, scene: str = SCENE) -> None:
                  "ANCF cable; step 5 ms halving", fontsize=9)
     ax.legend(fontsize=5, ncol=3)
     fig.tight_layout()
-    fig.savefig(path, dpi=150)
-    plt.close(fig)
+    return fig
 
 
 def main(argv=None) -> int:
