@@ -47,8 +47,8 @@ bench-penalty: setup
 # Exudyn in a separate venv (.venv-peers), never in .venv
 bench-peers: setup
 	bash tools/setup_peers.sh && $(PY) -m studies.peers.compare --report
-	$(PY) -m studies.peers.work_precision --import examples.cubic_slope \
-		--element HB2n-12 --element HB2n-16 --element HB2n-20xy
+	$(PY) -m studies.peers.work_precision --scene pendulum
+	$(PY) -m studies.peers.work_precision --scene thick
 
 clean-venv:
 	rm -rf .venv

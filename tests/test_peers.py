@@ -1,5 +1,6 @@
 """studies.peers.compare without Exudyn: parsing the peer script's output and the table."""
 import json
+from pathlib import Path
 
 import pytest
 
@@ -96,14 +97,40 @@ def test_work_precision_keeps_finished_points_and_skips_them_on_a_rerun(tmp_path
     def fake(*args):
         calls.append(args)
         return {"status": "converged", "reason": None, "time_s": 0.01, "cpu_s": 0.01, "tip_history": None}
-    monkeypatch.setattr(wp, "ours", lambda element, n, dt, rho, rep: fake("ancf", element, n, dt))
-    monkeypatch.setattr(wp, "exudyn", lambda n, dt, rho, rep, py: fake("exudyn", n, dt))
+    monkeypatch.setattr(wp, "ours", lambda element, n, dt, rho, rep, scene: fake("ancf", element, n, dt, scene))
+    monkeypatch.setattr(wp, "exudyn", lambda n, dt, rho, rep, py, scene: fake("exudyn", n, dt, scene))
     a = SimpleNamespace(out=tmp_path, force=False, counts=[4, 8], steps_per_output=[20], element=["HB2n-12"],
-                        rho_inf=0.5, repeats=1, peer_python=None)
+                        rho_inf=0.5, repeats=1, peer_python=None, scene="pendulum")
     assert len(wp.run(a)) == 4 and len(calls) == 4
     assert len(wp.run(a)) == 4 and len(calls) == 4          # nothing recomputed
     a.force = True
     assert len(wp.run(a)) == 4 and len(calls) == 8
+    # a second scene: same points, its own records, keyed by scene; --force redoes only its own
+    a.scene = "thick"
+    recs = wp.run(a)
+    assert len(recs) == 8 and len(calls) == 12 and {r["scene"] for r in recs} == {"pendulum", "thick"}
+    assert {r["height"] for r in recs if r["scene"] == "thick"} == {0.020} and calls[-1][-1] == "thick"
+    assert len(wp.run(a)) == 8 and len(calls) == 16 and wp.scenes_of(wp.run(a)) == ["pendulum", "thick"]
+
+
+def test_work_precision_report_has_a_section_per_scene_with_its_ratios():
+    from studies.peers import work_precision as wp
+
+    def rec(scene, solver, n, dt, e, runs):
+        return {"scene": scene, "solver": solver, "element": "ANCFCable2D" if solver == "exudyn" else "HB2n-16",
+                "elements": n, "dt": dt, "rho_inf": 0.5, "status": "converged", "time_s": sorted(runs)[len(runs) // 2],
+                "time_runs_s": runs, "error": e, "energy_guard": "none", "host_load": [1.0, 1.5]}
+    five = [0.01] * 5
+    recs = [rec("pendulum", "exudyn", 8, 1e-3, 0.0005, [0.02] * 5), rec("pendulum", "ancf", 8, 1e-3, 0.0005, five),
+            rec("thick", "exudyn", 8, 1e-3, 0.004, [0.02] * 5), rec("thick", "ancf", 8, 1e-3, 0.0005, five)]
+    text = wp.report_markdown(recs)
+    pend, thick = text.split("## Scene `pendulum`")[1].split("## Scene `thick`")
+    assert "| 0.1 % | HB2n-16 x 8, dt 1 ms | 0.0100 | 0.050 | 8 elements, dt 1 ms | 0.0200 | 0.050 | 0.50 | 0.50-0.50 |" in pend
+    # the cable's 0.4 % floor: it reaches 1 % but not 0.1 %
+    assert "| 1 % | HB2n-16 x 8, dt 1 ms | 0.0100 | 0.050 | 8 elements, dt 1 ms | 0.0200 | 0.400 | 0.50 |" in thick
+    assert "| 0.1 % | HB2n-16 x 8, dt 1 ms | 0.0100 | 0.050 | none | - | - | - (ours reaches it, the cable does not) | - |" in thick
+    assert "| exudyn | ANCFCable2D | 8 | 1 | 0.4000 |" in thick and "1.00 to 1.50" in thick
+    assert "Our elements: HB2n-16." in thick and "h = 20 mm" in thick
 
 
 def test_work_precision_does_not_count_accuracy_by_cancellation():
@@ -147,3 +174,39 @@ def test_peers_report_is_generated_from_the_record():
     assert "| 0.70, 0.70 | 0.8: met |" in md
     assert "load average (1 min) 1.00 before, 2.00 after" in md
     assert "| HB2n-12 | 0.10 | 1.00 | -2.00 | 2.24 |" in md
+
+
+def test_the_peer_reports_are_audited_against_their_records(tmp_path):
+    """The audit's peer rule redraws peers.md and peers_work_precision.md from their
+    records (their own plain functions) and names a tampered line."""
+    import shutil
+
+    from studies.engine.audit import PEER_REPORTS, AuditResult, audit_peers
+
+    reports = Path(__file__).resolve().parents[1] / "reports"
+    copy = tmp_path / "reports"
+    (copy / "data" / "peers").mkdir(parents=True)
+    for name, (record, _) in PEER_REPORTS.items():
+        shutil.copy(reports / name, copy / name)
+        shutil.copy(reports / "data" / "peers" / record, copy / "data" / "peers" / record)
+    figures = sorted(p.name for p in reports.glob("peers_work_precision*.figure.csv"))
+    for name in figures:
+        shutil.copy(reports / name, copy / name)
+    res = AuditResult()
+    covered = audit_peers(copy, res)
+    assert res.ok, "\n".join(res.problems)
+    assert sorted(res.checked) == sorted([*PEER_REPORTS, *figures]) and len(figures) == 2
+    assert {n[:-len(".figure.csv")] + ".png" for n in figures} <= covered
+    wp = copy / "peers_work_precision.md"
+    lines = wp.read_text().splitlines(keepends=True)
+    i = next(i for i, ln in enumerate(lines) if ln.startswith("| 1 % |"))
+    lines[i] = lines[i].replace(" | 0.", " | 9.", 1)
+    wp.write_text("".join(lines))
+    (copy / "data" / "peers" / PEER_REPORTS["peers.md"][0]).unlink()
+    fig = copy / figures[0]
+    rows = fig.read_text().splitlines(keepends=True)
+    rows[1] = rows[1].replace(",True,", ",False,")       # a filled point drawn hollow
+    fig.write_text("".join(rows))
+    res = AuditResult()
+    audit_peers(copy, res)
+    assert [p.split(": ")[0] for p in res.problems] == [f"{copy / 'peers.md'}:1", f"{wp}:{i + 1}", f"{fig}:2"]

@@ -10,7 +10,10 @@ hand is a mismatch named by file and line. Figures are compared by the data they
 (``<name>.figure.csv``: every point, its label and whether its marker is hollow), not by
 their pixels. Then each study's own audit rules (``audit(ctx) -> [problem]`` in its module,
 see :mod:`.catalog`) check what a referee would recompute: counts against lists, verdicts
-against the records.
+against the records. The peer reports (``peers.md``, ``peers_work_precision.md``), which
+``make bench-peers`` writes outside the study pipeline, are rebuilt from their records in
+``DIR/data/peers/`` by their own plain functions (:data:`PEER_REPORTS`) and compared too,
+with the data of the work-precision figures.
 
 What it cannot check: that the records themselves are right (the solvers' tests and
 ``python -m studies diff`` do that), files no study writes (listed as not audited), and
@@ -70,6 +73,51 @@ def compare_text(name: str, expected: str, found: str) -> list[str]:
     return out
 
 
+def _peer_markdown(kind: str, path: Path) -> str:
+    import json
+
+    if kind == "compare":
+        from ..peers.compare import peers_markdown
+        return peers_markdown(json.loads(path.read_text()))
+    from ..peers.work_precision import read, report_markdown
+    return report_markdown(read(path))
+
+
+# peer report -> (its record under DIR/data/peers/, the function that draws it)
+PEER_REPORTS = {"peers.md": ("peers-compare.json", "compare"),
+                "peers_work_precision.md": ("peers-work-precision.jsonl", "work_precision")}
+
+
+def audit_peers(reports: Path, res: AuditResult) -> set[str]:
+    """The peer rule: each peer report that exists is redrawn from its record and compared,
+    and so is the data of every work-precision figure (one per scene). Returns the files
+    the rule covers."""
+    covered = set()
+    for name, (record, kind) in PEER_REPORTS.items():
+        if not (reports / name).exists():
+            continue
+        covered.add(name)
+        rec = reports / "data" / "peers" / record
+        if not rec.exists():
+            res.problems.append(f"{reports / name}:1: its record data/peers/{record} is missing")
+            continue
+        res.checked.append(name)
+        res.problems += compare_text(str(reports / name), _peer_markdown(kind, rec), (reports / name).read_text())
+        if kind == "work_precision":
+            from ..peers.work_precision import figure_csv, figure_name, read, scenes_of
+            recs = read(rec)
+            for scene in scenes_of(recs):
+                png = figure_name(scene)
+                data = png[:-4] + FIGURE_DATA
+                covered |= {png, data}
+                if not (reports / data).exists():
+                    res.problems.append(f"{reports / data}:1: missing (the records give this file)")
+                    continue
+                res.checked.append(data)
+                res.problems += compare_text(str(reports / data), figure_csv(recs, scene), (reports / data).read_text())
+    return covered
+
+
 def audit(reports: Path, catalog_path: Path = CASES_TOML, tiny: bool = False, log=None) -> AuditResult:
     """Rebuild every report of ``reports`` from ``reports/data`` in a temporary directory
     and compare; never runs a solver."""
@@ -103,7 +151,8 @@ def audit(reports: Path, catalog_path: Path = CASES_TOML, tiny: bool = False, lo
                 res.problems.append(f"{reports / name}:1: missing (the records give this file)")
                 continue
             res.problems += compare_text(str(reports / name), (tmp / name).read_text(), (reports / name).read_text())
-        res.not_audited = sorted(have - made)
+        peers = audit_peers(reports, res)
+        res.not_audited = sorted(have - made - peers)
         catalog = load_catalog(tiny, catalog_path)
         for study in catalog.values():
             rules = getattr(study.module, "audit", None)

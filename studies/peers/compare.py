@@ -91,7 +91,7 @@ def parse_peer_output(stdout: str) -> dict:
 
 
 def peer(dt: float, rho_inf: float, repeats: int = 5, python: Path = PEER_PYTHON,
-         module: str = "fast", elements: int = 32) -> dict:
+         module: str = "fast", elements: int = 32, height: float | None = None) -> dict:
     """Run the Exudyn script in .venv-peers (in a scratch directory, so that nothing it
     might write lands in the repository) and return its JSON output."""
     if not Path(python).exists():
@@ -99,6 +99,8 @@ def peer(dt: float, rho_inf: float, repeats: int = 5, python: Path = PEER_PYTHON
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME")}
     cmd = [str(python), str(PEER_SCRIPT), "--dt", repr(dt), "--rho-inf", repr(rho_inf),
            "--repeats", str(repeats), "--module", module, "--elements", str(elements)]
+    if height is not None:
+        cmd += ["--height", repr(height)]
     with tempfile.TemporaryDirectory(prefix="exudyn-peer-") as cwd:
         p = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
     if p.returncode != 0:

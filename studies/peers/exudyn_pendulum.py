@@ -6,7 +6,7 @@ Imports only exudyn, numpy and the standard library (not ``ancf``): this file ru
 separate venv that ``tools/setup_peers.sh`` creates, never in ``.venv``.
 
 The model: 32 (``--elements``) ObjectANCFCable2D elements (Euler-Bernoulli, linear elastic, 2 nodes with
-position and slope, 8 coordinates each), L = 0.350 m, h = 0.005 m, w = 0.007 m, density
+position and slope, 8 coordinates each), L = 0.350 m, h = 0.005 m (``--height``), w = 0.007 m, density
 2150 kg/m^3, E = 6 C10 with C10 = 0.545235 MPa (the small-strain Young's modulus of the
 incompressible plane-stress Yeoh law: E = 3 mu, mu = 2 C10), A = h w, I = w h^3 / 12.
 The left node's position is held at the origin by two CoordinateConstraints (its slope,
@@ -106,7 +106,7 @@ def settings_summary(exu, s, steps: int, dt: float, elements: int = ELEMENTS) ->
         "exudyn": exu.__version__, "module": exu.__dict__.get("_compiledModuleName", "?"),
         "python": platform.python_version(),
         "element": "ObjectANCFCable2D", "elements": elements,
-        "E_Pa": E, "EA_N": E * H * W, "EI_Nm2": E * W * H ** 3 / 12.0, "rhoA_kg_m": DENSITY * H * W,
+        "height_m": H, "E_Pa": E, "EA_N": E * H * W, "EI_Nm2": E * W * H ** 3 / 12.0, "rhoA_kg_m": DENSITY * H * W,
         "pin": "CoordinateConstraint x, y of node 0 to ground (slope free)",
         "gravity": "MarkerBodyMass + LoadMassProportional (0, -9.81, 0) per element",
         "solverType": str(ti.solverType), "spectralRadius": ti.generalizedAlpha.spectralRadius,
@@ -157,16 +157,22 @@ def kernel_times(exu, elements: int, calls: int = 100, repeats: int = 10) -> dic
 
 
 def main(argv=None) -> int:
+    global H
     p = argparse.ArgumentParser(prog="exudyn_pendulum.py", description=__doc__.splitlines()[0])
     p.add_argument("--dt", type=float, default=1e-3, help="fixed time step, s (default 1e-3)")
     p.add_argument("--rho-inf", type=float, default=0.8, help="generalized-alpha spectral radius (default 0.8)")
     p.add_argument("--repeats", type=int, default=5, help="timed warm repetitions (default 5)")
     p.add_argument("--elements", type=int, default=ELEMENTS, help=f"cable elements (default {ELEMENTS})")
+    p.add_argument("--height", type=float, default=H, help=f"cross-section height h, m (default {H}; the "
+                   "work-precision's thick scene: 0.02)")
     p.add_argument("--module", choices=("fast", "regular"), default="fast",
                    help="Exudyn compiled module: fast (no range checks, AVX2, if the CPU has it) or regular")
     p.add_argument("--kernels", action="store_true", help="time the force and Jacobian calls instead "
                    "(kernel_times) and print them as JSON")
     a = p.parse_args(argv)
+    if not a.height > 0:
+        p.error(f"--height must be > 0 (m), got {a.height}")
+    H = a.height                                   # build() and settings_summary() read it
     steps = int(round(T_END / a.dt))
     if abs(steps * a.dt - T_END) > 1e-9 * T_END:
         p.error(f"--dt {a.dt} does not divide t_end = {T_END}")
