@@ -279,8 +279,8 @@ def scene_markdown(recs: list[dict], scene: str) -> list[str]:
     info = SCENES.get(scene, {"title": scene, "reference": "?"})
     lines = [f"## Scene `{scene}`: {info['title']}", "",
              f"Reference: {info['reference']}" + ref_text(recs) + f". Our elements: {', '.join(els)}"
-             + (" (HB2n-40p runs on the Python steppers, not the compiled kernels: its times are what they are)"
-                if "HB2n-40p" in els else "") + ".", "",
+             + " (all on the compiled step loop: the scenes are plane stress, where an element's pressure "
+             "field carries no penalty).", "",
              "Energy guard: "
              + ("none on either side (Exudyn's run has none; ours runs with energy_limit = inf)"
                 if guards == {"none"} else "NOT the same on both sides in these records (ours: "
