@@ -9,8 +9,11 @@ export OPENBLAS_NUM_THREADS ?= 1
 setup:
 	@bash tools/setup.sh
 
+# two workers (pytest-xdist, Debian's python3-pytest-xdist), each test file on one worker
+# (a file's module-scoped fixtures, e.g. the tiny studies, run once); TEST_WORKERS=0: serial
+TEST_WORKERS ?= 2
 test: setup
-	$(PY) -m pytest -q -m "not slow" tests
+	$(PY) -m pytest -q -m "not slow" $(if $(filter 0,$(TEST_WORKERS)),,-n $(TEST_WORKERS) --dist loadfile) tests
 
 test-slow: setup
 	$(PY) -m pytest -q -m slow tests
