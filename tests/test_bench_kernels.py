@@ -41,4 +41,6 @@ def test_one_kernel_row():
     assert len(rows) == 1
     r = rows[0]
     assert r["elements"] == 4 and r["points_per_element"] == 6
-    assert 0 < r["force_us_per_element"] < r["tangent_us_per_element"]
+    # times are measured, never compared here (a loaded machine reorders them)
+    assert r["force_us_per_element"] > 0 and r["tangent_us_per_element"] > 0
+    assert r["force_spread"] >= 0 and r["tangent_spread"] >= 0 and r["what"] == "compiled"
