@@ -15,14 +15,16 @@ from contract.scene import scene_from_dict
 from .test_stability_inertia import scaled_dense
 
 
-@pytest.mark.parametrize("element", ["HB2n-12", "HB3n-12"])
-def test_stable_record_carries_its_margin(element):
-    d = paper.cantilever_scene("neo-hookean", "plane-stress", element, 6, name="margin")
+@pytest.mark.parametrize("element,count", [("HB2n-12", 6), ("HB3n-12", 6), ("HB2n-16", 24)])
+def test_stable_record_carries_its_margin(element, count):
+    """6 elements: the dense path of ancf.stability.lowest_eigenvalue; 24 x HB2n-16 (194
+    unknowns): its shift-invert Lanczos."""
+    d = paper.cantilever_scene("neo-hookean", "plane-stress", element, count, name="margin")
     rec, (model, res) = run_scene(scene_from_dict(d))
     assert rec["status"] == "converged" and rec["stable"] is True
     _, lam = scaled_dense(model, res.u)
     assert rec["lowest_eigenvalue"] > SINGULAR_TOL
-    # LAPACK's banded bisection against numpy's dense eigh: both ~ eps ||S|| (||S|| <= ~5)
+    # against numpy's dense eigh: both ~ eps ||S|| (||S|| <= ~5)
     assert rec["lowest_eigenvalue"] == pytest.approx(lam[0], rel=1e-6, abs=1e-12)
 
 
