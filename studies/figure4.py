@@ -85,7 +85,7 @@ def report(ctx) -> Section:
                 rows.append([f, el, d["elements"], d["ndof"], d["status"],
                              100 * e[t_end] if t_end in e else None, 100 * max(e.values()) if e else None,
                              1e3 * LENGTH * max(e.values()) if e else None,
-                             100 * max(s.values()) if s else None, d["steps"], d["newton"]])
+                             100 * max(s.values()) if s else None, d["steps"], d["newton"], d["verdict"]])
             good = [(d, e, s) for d, e, s in pts if e]
             if good:
                 ax.plot([d["elements"] for d, _, _ in good], [max(e[t_end], 1e-9) for _, e, _ in good],
@@ -125,7 +125,7 @@ def report(ctx) -> Section:
                "panel's title (continuum plane stress, or PROVISIONAL finest ANCF while the continuum gold is absent).")
     sec.table(ctx, Table("figure4_convergence",
                          ["formulation", "element", "n", "ndof", "status", f"error at {g['t_end']:g} s (% L)",
-                          "max error (% L)", "max error (mm)", "vs own finest, max (% L)", "steps", "Newton"],
+                          "max error (% L)", "max error (mm)", "vs own finest, max (% L)", "steps", "Newton", "verdict"],
                          rows, {5: ".3f", 6: ".3f", 7: ".3f", 8: ".3f"}),
               "Every run of the figure: tip error against the reference (see the list below the tables) at t_end and "
               "its maximum over t = 0.1 ... t_end, and the self-convergence against the same element's finest mesh.")
