@@ -16,7 +16,7 @@ from contract import paper
 
 from .pendulum_cases import (LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case,
                        tip_errors)
-from .engine.report import Section, Table, figure, marker
+from .engine.report import Section, Table, draw, figure, hollow_legend, marker
 
 CONVERGED_M = 1e-3   # "converged at n": within 1 mm of the element's finest mesh at every output time
 CONTINUUM_MODEL = {"plane-stress": "plane-stress", "paper": "plane-stress", "plane-strain": "plane-strain"}
@@ -85,14 +85,14 @@ def report(ctx) -> Section:
                 rows.append([f, el, d["elements"], d["ndof"], d["status"],
                              100 * e[t_end] if t_end in e else None, 100 * max(e.values()) if e else None,
                              1e3 * LENGTH * max(e.values()) if e else None,
-                             100 * max(s.values()) if s else None, d["steps"], d["newton"]])
+                             100 * max(s.values()) if s else None, d["steps"], d["newton"], d["verdict"]])
             good = [(d, e, s) for d, e, s in pts if e]
             if good:
-                ax.plot([d["elements"] for d, _, _ in good], [max(e[t_end], 1e-9) for _, e, _ in good],
-                        marker=marker(el, g["elements"]), ls="-", lw=1.2, label=f"{el} at {g['t_end']:g} s")
-                ax.plot([d["elements"] for d, _, _ in good], [max(max(e.values()), 1e-9) for _, e, _ in good],
-                        marker=marker(el, g["elements"]), ls="--", lw=0.8, ms=3, color=ax.lines[-1].get_color(),
-                        label=f"{el} max over t")
+                ns, vs = [d["elements"] for d, _, _ in good], [d["verdict"] for d, _, _ in good]
+                draw(ax, ns, [max(e[t_end], 1e-9) for _, e, _ in good], vs, f"{el} at {g['t_end']:g} s",
+                     marker=marker(el, g["elements"]), ls="-", lw=1.2)
+                draw(ax, ns, [max(max(e.values()), 1e-9) for _, e, _ in good], vs, f"{el} max over t",
+                     marker=marker(el, g["elements"]), ls="--", lw=0.8, ms=3, color=ax.lines[-1].get_color())
                 selfc = [(d, s) for d, _, s in pts if s]
                 if selfc:
                     ax.plot([d["elements"] for d, _ in selfc], [max(max(s.values()), 1e-9) for _, s in selfc],
@@ -118,14 +118,14 @@ def report(ctx) -> Section:
         if j == 0:
             ax.set_ylabel("|r - r_ref| / L")
         lines += [f"- `{f}` against {label}:"] + block
-    axes[0][-1].legend(fontsize=6, loc="best")
+    axes[0][-1].legend(*hollow_legend(axes[0][-1]), fontsize=6, loc="best")
     sec.figure(ctx, fig, "figure4_pendulum_convergence",
                "Tip error of the pendulum against the number of elements per element (solid: at t_end, dashed: maximum "
                "over the output times; dotted: against the element's own finest mesh); the reference is named in each "
                "panel's title (continuum plane stress, or PROVISIONAL finest ANCF while the continuum gold is absent).")
     sec.table(ctx, Table("figure4_convergence",
                          ["formulation", "element", "n", "ndof", "status", f"error at {g['t_end']:g} s (% L)",
-                          "max error (% L)", "max error (mm)", "vs own finest, max (% L)", "steps", "Newton"],
+                          "max error (% L)", "max error (mm)", "vs own finest, max (% L)", "steps", "Newton", "verdict"],
                          rows, {5: ".3f", 6: ".3f", 7: ".3f", 8: ".3f"}),
               "Every run of the figure: tip error against the reference (see the list below the tables) at t_end and "
               "its maximum over t = 0.1 ... t_end, and the self-convergence against the same element's finest mesh.")

@@ -54,7 +54,7 @@ def report(ctx) -> Section:
                     e = tip_errors(d["tips"], c.tips) if c else {}
                     rows.append([short(law), f, el, d["elements"], d["status"]]
                                 + [1e3 * LENGTH * e[t] if t in e else None for t in ts if t > 0]
-                                + [1e3 * LENGTH * max(e.values()) if e else None])
+                                + [1e3 * LENGTH * max(e.values()) if e else None, d["verdict"]])
             if c:
                 for t, (xs, ys) in c.configurations.items():
                     ax.plot([1e3 * x for x in xs], [1e3 * y for y in ys], color="k", lw=0.6, alpha=0.6)
@@ -78,7 +78,7 @@ def report(ctx) -> Section:
                        c.configurations for c in cont.values()) else " (the gold file has no configurations)."))
     ts = sorted({t for d in descs for t in d["tips"] if t > 0})
     sec.table(ctx, Table("figure5_tip_distance", ["law", "formulation", "element", "n", "status"]
-                         + [f"t = {t:g} s (mm)" for t in ts] + ["max (mm)"], rows,
+                         + [f"t = {t:g} s (mm)" for t in ts] + ["max (mm)", "verdict"], rows,
                          {5 + i: ".2f" for i in range(len(ts) + 1)}),
               "Distance of each ANCF tip from the converged continuum plane-stress tip at each output time, in mm "
               "('-' where the continuum gold has no case for the law or is absent).")

@@ -61,7 +61,7 @@ def pendulum_part(ctx, sec: Section) -> list[str]:
                     row += [1e3 * LENGTH * e[max(e)] if e else None, 1e3 * LENGTH * max(e.values()) if e else None]
                     if e:
                         dists[m].append(1e3 * LENGTH * max(e.values()))
-                rows.append(row)
+                rows.append(row + [d["verdict"]])
             if all(dists[m] for m in models):
                 near = min(models, key=lambda m: min(dists[m]))
                 lines.append(f"- pendulum, {law}, ANCF `{f}`: closest to the continuum **{near}** pendulum (max tip "
@@ -71,6 +71,7 @@ def pendulum_part(ctx, sec: Section) -> list[str]:
     hdr = ["law", "ANCF formulation", "element", "n", "status"]
     for m in models:
         hdr += [f"vs continuum {m}: at t_end (mm)", f"vs continuum {m}: max over t (mm)"]
+    hdr += ["verdict"]
     sec.table(ctx, Table("formulation_pendulum", hdr, rows, {i: ".2f" for i in range(5, 9)}),
               f"The pendulum ({p['t_end']:g} s, {p['count']} elements, dt {1e3 * p['dt']:g} ms, generalized-alpha "
               f"rho_inf {p['rho_inf']}): each ANCF formulation's tip against the converged continuum plane-stress and "

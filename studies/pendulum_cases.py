@@ -91,6 +91,8 @@ def describe_dynamic(rec: dict) -> dict:
          "steps": rec.get("steps"), "rejected": rec.get("rejected_steps"),
          "newton": rec.get("newton_iterations"), "ndof": rec.get("ndof"), "wall_s": rec.get("wall_s"),
          "timing": rec.get("timing")}
+    from .engine.report import verdict
+    d["verdict"] = verdict(rec)
     return d
 
 

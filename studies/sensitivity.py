@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from .grid import cantilever_case, count_for
 from .reference import short, describe, paper_tip, stability_mark
-from .engine.report import Section, Table, mm, pct, vec_error
+from .engine.report import Section, Table, mm, pct, vec_error, verdict
 
 
 def settings(grid: dict) -> list[tuple[str, tuple[int, int]]]:
@@ -54,14 +54,15 @@ def report(ctx) -> Section:
                 long.append([el, law, clamp, f"{q[0]}x{q[1]}", count_for(g, el), d["status"] + stability_mark(d),
                              mm(d["tip"]["ux"]) if ok else None, mm(d["tip"]["uy"]) if ok else None,
                              mm(ref[0]) if ref else None, mm(ref[1]) if ref else None, pct(err),
-                             r.get("reason") or r.get("stability") or ""])
+                             r.get("reason") or r.get("stability") or "", verdict(r)])
             rows.append(row)
     sec.table(ctx, Table("sensitivity", hdr, rows, {j: ".2f" for j in range(2, len(hdr))}),
               "Distance of each `paper` cell from the paper's own cell, |u - u_paper| / |u_paper| (%), per clamp "
               "and quadrature (points along x, across the thickness); a word where the run failed, (singular) / (unstable) "
               "where Newton converged to an equilibrium whose tangent is singular or indefinite.")
     t = Table("sensitivity_values", ["element", "law", "clamp", "quadrature", "n", "status", "ux (mm)", "uy (mm)",
-                                     "paper ux (mm)", "paper uy (mm)", "distance (%)", "reason or stability"], long,
+                                     "paper ux (mm)", "paper uy (mm)", "distance (%)", "reason or stability",
+                                     "verdict"], long,
               {6: ".2f", 7: ".2f", 8: ".2f", 9: ".2f", 10: ".2f"})
     t.write(ctx.out)
     sec.items.append(("link", t.name + ".md", "Every run's tip, status and failure reason."))

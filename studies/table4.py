@@ -64,12 +64,13 @@ def report(ctx) -> Section:
                      1e3 * r["dt"] if r else f"none >= {1e3 * s['smallest']:g}" if s["smallest"] else "no runs",
                      1e3 * s["diff"] if r else None, r["steps"] if r else None, r["newton"] if r else None,
                      med, (r["timing"] or {}).get("warmup_s") if r else None, p,
-                     p / med if (p and med) else None])
+                     p / med if (p and med) else None, r["verdict"] if r else "failed"])
         if med:
             plot.setdefault((s["formulation"], s["element"]), []).append((s["n"], med))
     sec.table(ctx, Table("table4", ["formulation", "element", "n", "ndof", "converged dt (ms)",
                                     "tip change at dt/2 (mm)", "steps", "Newton", "wall s (median)",
-                                    "first run s (compiled code from the cache)", "paper CPU s", "paper / ours"], rows,
+                                    "first run s (compiled code from the cache)", "paper CPU s", "paper / ours",
+                                    "verdict"], rows,
                          {4: "g", 5: ".4f", 8: ".3f", 9: ".2f", 10: ".2f", 11: ".0f"}),
               "Table 4 beside the paper's: our median serial warm wall time of the pendulum at each case's converged "
               "step, with the steps, Newton iterations and ndof of that run, and the ratio of the paper's CPU time to ours.")
@@ -78,9 +79,9 @@ def report(ctx) -> Section:
         for d in s["rungs"]:
             long.append([s["formulation"], s["element"], s["n"], 1e3 * d["dt"], d["status"], d["steps"],
                          d["rejected"], d["newton"], (d["timing"] or {}).get("median_s"),
-                         "yes" if s["rung"] is d else ""])
+                         "yes" if s["rung"] is d else "", d["verdict"]])
     t = Table("table4_ladder", ["formulation", "element", "n", "dt (ms)", "status", "steps", "rejected", "Newton",
-                                "wall s (median)", "converged step"], long, {3: "g", 8: ".4f"})
+                                "wall s (median)", "converged step", "verdict"], long, {3: "g", 8: ".4f"})
     t.write(ctx.out)
     sec.items.append(("link", t.name + ".md", "Every rung of the step ladder (status, steps, time)."))
     if plot:

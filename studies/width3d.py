@@ -25,7 +25,7 @@ from contract import paper
 
 from .engine.case import make_case
 from .reference import GOLD_3D, continuum_references, short
-from .engine.report import Section, Table, figure, mm, pct
+from .engine.report import Section, Table, figure, mm, pct, verdict
 
 ROOT = Path(__file__).resolve().parent.parent
 GOLD_2D = ROOT / "tests" / "gold" / "fem_cantilever.json"
@@ -127,11 +127,11 @@ def report(ctx) -> Section:
                          r.get("ndof"), mm(r["tip"]["ux"]) if _ok(r) else None, mm(r["tip"]["uy"]) if _ok(r) else None,
                          pct(_dev(r, ps, "uy")) if both else None, pct(_dev(r, pe, "uy")) if both else None,
                          _fraction(r, ps, pe) if both else None, _fraction(r, ps, pe, "ux") if both else None,
-                         r.get("status") if not _ok(r) else "converged"])
+                         r.get("status") if not _ok(r) else "converged", verdict(r)])
     sec.table(ctx, Table("width_3d",
                          ["law", "w (mm)", "w/h", "cells", "unknowns", "3D ux (mm)", "3D uy (mm)",
                           "uy vs plane stress (%)", "uy vs plane strain (%)", "fraction uy", "fraction ux",
-                          "status"], rows,
+                          "status", "verdict"], rows,
                          {1: "g", 2: "g", 5: ".3f", 6: ".3f", 7: "+.2f", 8: "+.2f", 9: ".3f", 10: ".3f"}),
               "Tip of the 3D beam (centre of the free end face) per width, against the converged 2D "
               "continuum: (3D - 2D) / |2D|. 'fraction' = (u_3D - u_stress) / (u_strain - u_stress): 0 is "

@@ -17,7 +17,7 @@ from contract import paper
 
 from .engine.case import make_case
 from .reference import short
-from .engine.report import Section, Table, mm, pct, rel_dev
+from .engine.report import Section, Table, mm, pct, rel_dev, verdict as run_verdict
 
 LAWS = ("neo-hookean", "mooney-rivlin", "yeoh")
 
@@ -82,9 +82,12 @@ def report(ctx) -> Section:
         else:
             verdict = "rejected"
         rows.append([h["name"], h["what"]] + [pct(d) for d in devs] + [pct(worst), f"{prints}/{len(devs)}",
-                                                                      pct(other), verdict])
+                                                                      pct(other), verdict,
+                                                                      " / ".join(run_verdict(by[(h["name"], "yeoh", el)])
+                                                                                 if (h["name"], "yeoh", el) in by else "not run"
+                                                                                 for el in els)])
     hdr = ["hypothesis", "what it changes"] + [f"{e} {c} (%)" for e in els for c in ("ux", "uy")] + \
-          ["max (%)", "=0.01", "NH/MR (%)", "verdict"]
+          ["max (%)", "=0.01", "NH/MR (%)", "verdict", "runs (" + " / ".join(els) + ")"]
     sec.table(ctx, Table("yeoh_hypotheses", hdr, rows, {**{j: "+.3f" for j in range(2, 2 + 2 * len(els))},
                                                          2 + 2 * len(els): ".3f", 4 + 2 * len(els): ".3f"}),
               "The paper's Yeoh cells of Table 3 under named hypotheses (`paper` setting).")
