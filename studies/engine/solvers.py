@@ -8,6 +8,8 @@ runs, so a change there invalidates its cases:
 - ``ancf``: every module of ``ancf/``, ``mechanics/`` and ``contract/`` (scenes, records);
 - ``ancf-effects``: the ANCF solver, then the cost of each effect's assembly (the study
   ``effects``); its sources and this file;
+- ``ancf-cold``: the ANCF solver in a fresh process with an empty numba cache (Table 4's
+  first-run cost, compiling included); its sources and this file;
 - ``fenicsx``: every module of ``reference_fem/`` (its backends included), ``mechanics/``
   and ``contract/``, and ``ancf/integrators.py`` (the integrators' coefficients, until
   they move to ``mechanics``).
@@ -128,6 +130,36 @@ class Solver:
     check: Callable[[dict], None]
 
 
+_COLD_RUN = ("import json, sys, time; t0 = time.perf_counter(); "
+             "from ancf.simulation import run_scene; from contract.scene import scene_from_dict; "
+             "rec, _ = run_scene(scene_from_dict(json.load(sys.stdin))); "
+             "rec['process_s'] = time.perf_counter() - t0; print(json.dumps(rec))")
+
+
+def _run_ancf_cold(scene: dict) -> dict:
+    """The ANCF solver in a fresh Python process with an empty numba cache (a new
+    NUMBA_CACHE_DIR): what a user's first run after installing pays, compiling included.
+    The record is the solver's own, with ``cold`` = {"process_s": wall time of the whole
+    process (interpreter start, imports, compile, build, solve), "import_build_solve_s":
+    the same from the first import on}."""
+    import json
+    import os
+    import subprocess
+    import sys
+    import tempfile
+    import time
+
+    with tempfile.TemporaryDirectory(prefix="numba-cold-") as cache:
+        env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+        t0 = time.perf_counter()
+        out = subprocess.run([sys.executable, "-c", _COLD_RUN], input=json.dumps(scene), env=env, cwd=ROOT,
+                             capture_output=True, text=True, check=True)
+        process_s = time.perf_counter() - t0
+    rec = json.loads(out.stdout.strip().splitlines()[-1])
+    rec["cold"] = {"process_s": process_s, "import_build_solve_s": rec.pop("process_s")}
+    return rec
+
+
 SOLVERS: dict[str, Solver] = {
     s.name: s for s in (
         Solver("ancf", ("ancf/*.py", "mechanics/**/*.py", "contract/*.py"), _run_ancf, _check_ancf),
@@ -135,6 +167,8 @@ SOLVERS: dict[str, Solver] = {
                _run_ancf_effects, _check_ancf),
         Solver("fenicsx", ("reference_fem/**/*.py", "mechanics/**/*.py", "contract/*.py"),
                _run_fenicsx, _check_fenicsx),
+        Solver("ancf-cold", ("ancf/*.py", "mechanics/**/*.py", "contract/*.py", "studies/engine/solvers.py"),
+               _run_ancf_cold, _check_ancf),
     )
 }
 
