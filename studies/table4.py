@@ -41,9 +41,13 @@ def cases(grid: dict, tiny: bool) -> list:
     return out
 
 
+def _cold(rec: dict) -> bool:
+    return (rec.get("case") or {}).get("solver") == COLD
+
+
 def ladder_records(records: list[dict]) -> list[dict]:
     """Table 4's step-ladder records (the timed warm runs), without its cold-start runs."""
-    return [r for r in records if (r.get("case") or {}).get("solver") != COLD]
+    return [r for r in records if not _cold(r)]
 
 
 def selected(ctx) -> list[dict]:
@@ -91,7 +95,7 @@ def report(ctx) -> Section:
                          {4: "g", 5: ".4f", 8: ".3f", 9: ".2f", 10: ".2f", 11: ".0f"}),
               "Table 4 beside the paper's: our median serial warm wall time of the pendulum at each case's converged "
               "step, with the steps, Newton iterations and ndof of that run, and the ratio of the paper's CPU time to ours.")
-    cold = [r for r in ctx.records() if (r.get("case") or {}).get("solver") == COLD]
+    cold = [r for r in ctx.records() if _cold(r)]
     if cold:
         crow = []
         for r in sorted(cold, key=lambda r: r["scene"]["ancf"]["element"]):
