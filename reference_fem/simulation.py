@@ -1,11 +1,11 @@
 """Run one scene with the continuum reference and produce its record.
 
 Two backends (``[fem] backend``): DOLFINx (default, :mod:`reference_fem.dolfinx_backend`)
-and FElupe (:mod:`reference_fem.felupe_backend`, static scenes); each offers a set-up of
-the scene's problem and a Newton system (residual, increment, state) that the shared
-load stepping (:func:`reference_fem.statics.solve_static`) drives, and the point
-displacement of the tip; the record is the same but for the version key (``dolfinx`` or
-``felupe``) and ``fem.backend`` (given for "felupe" only).
+and FElupe (:mod:`reference_fem.felupe_backend`, static scenes); each offers a static model
+of the scene (:func:`backend`: its Newton system, load parameter, unknowns, effects, point
+displacement, output) that one driver runs with the shared load stepping
+(:func:`reference_fem.statics.solve_static`); the record is the same but for the version
+key (``dolfinx`` or ``felupe``) and ``fem.backend`` (given for "felupe" only).
 
 The record is :func:`contract.record.new_record` ("fenicsx") with the same keys as an
 ANCF run, plus ``continuum_model`` ("plane-strain" | "plane-stress" | "3d"),
@@ -95,18 +95,21 @@ def check_static(scene: Scene) -> None:
                          "static only (dynamic scenes: `run`, `pendulum`); allowed: 'static'")
 
 
+def backend(name: str):
+    """The backend package of ``[fem] backend`` (:data:`reference_fem.settings.BACKENDS`):
+    ``version()`` and ``static_model(scene, settings)``, an object with the Newton system
+    (``system``, driven by :func:`reference_fem.statics.solve_static`), ``set_load(t)``,
+    ``n_free``, ``effects``, ``ranks``, ``displacement(point)`` and ``write(path, fmt)``."""
+    import importlib
+
+    return importlib.import_module(f"{__package__}.{name}_backend")
+
+
 def _record(scene: Scene, settings: FemSettings) -> dict:
     rec = new_record("fenicsx", scene.to_dict())
     rec.update(continuum_model=settings.model, incompressibility=settings.incompressibility,
                fem=settings.to_dict())
-    if settings.backend == "felupe":
-        from .felupe_backend import version
-
-        rec["felupe"] = version()
-    else:
-        from .dolfinx_backend import fem as backend
-
-        rec["dolfinx"] = backend.VERSION
+    rec[settings.backend] = backend(settings.backend).version()
     warnings = capacity(scene, settings)
     if warnings:
         rec["warnings"] = warnings
@@ -125,65 +128,30 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
             raise SceneError(f"fem.backend: {settings.backend!r} solves static scenes only "
                              "(analysis.kind = \"dynamic\"); allowed: 'dolfinx'")
         return run_dynamic(scene, settings, output=output, output_format=output_format, progress=progress)
-    if settings.backend == "felupe":
-        return run_static_felupe(scene, settings)
     from .statics import solve_static
-    from .dolfinx_backend.problem import set_up, static_problem
 
     rec = _record(scene, settings)
     t0 = time.perf_counter()
-    s = set_up(scene, settings)
-    problem = static_problem(s)
+    model = backend(settings.backend).static_model(scene, settings)
     rec["setup_s"] = time.perf_counter() - t0
     a = scene.analysis
-    res = solve_static(problem.system, problem.set_load, a.load_steps, a.newton_rtol,
+    res = solve_static(model.system, model.set_load, a.load_steps, a.newton_rtol,
                        a.max_iterations, a.wall_time)
-    if s.model.geometry.gdim == 3:
-        rec["mpi_ranks"] = s.disc.comm.size
-    _static_keys(rec, res, problem.n_free, s.effects)
+    if settings.geometry.gdim == 3:
+        rec["mpi_ranks"] = model.ranks
+    rec.update(status=res.status, reason=res.reason, ndof=model.n_free,
+               newton_iterations=res.newton_iterations, load_steps=res.load_steps,
+               rejected_steps=res.rejected_steps, cpu_s=res.cpu_s, wall_s=res.wall_s,
+               effects=sorted(model.effects), load_reached=res.t_reached)
+    if res.unloaded:
+        rec["note"] = "no load: an unloaded static scene is valid, its answer is the reference state"
     if res.status == "converged":
-        tip = s.model.geometry.tip_point(scene.beam)
-        u = s.disc.point_displacement([tip])[0]
+        u = model.displacement(settings.geometry.tip_point(scene.beam))
         rec["tip"] = {"ux": float(u[0]), "uy": float(u[1])}
         if len(u) == 3:
             rec["tip_uz"] = float(u[2])
         if output is not None:
-            rec["output"] = str(s.disc.write(Path(output) / safe_name(scene.name), output_format, scale=s.mu))
-    return rec
-
-
-def _static_keys(rec: dict, res, n_free: int, effects) -> None:
-    """The keys every backend's static record has (from a :class:`statics.StaticResult`)."""
-    rec.update(status=res.status, reason=res.reason, ndof=n_free,
-               newton_iterations=res.newton_iterations, load_steps=res.load_steps,
-               rejected_steps=res.rejected_steps, cpu_s=res.cpu_s, wall_s=res.wall_s,
-               effects=sorted(effects), load_reached=res.t_reached)
-    if res.unloaded:
-        rec["note"] = "no load: an unloaded static scene is valid, its answer is the reference state"
-
-
-def run_static_felupe(scene: Scene, settings: FemSettings) -> dict:
-    """A static scene on the FElupe backend: the same Newton and load stepping
-    (:func:`reference_fem.statics.solve_static`), the same record keys (``mpi_ranks`` is 1:
-    FElupe runs on one process)."""
-    from .felupe_backend.problem import System, set_up
-    from .statics import solve_static
-
-    rec = _record(scene, settings)
-    t0 = time.perf_counter()
-    s = set_up(scene, settings)
-    system = System(s)
-    rec["setup_s"] = time.perf_counter() - t0
-    a = scene.analysis
-    res = solve_static(system, system.set_load, a.load_steps, a.newton_rtol, a.max_iterations, a.wall_time)
-    if settings.geometry.gdim == 3:
-        rec["mpi_ranks"] = 1
-    _static_keys(rec, res, s.n_free, s.effects)
-    if res.status == "converged":
-        u = s.point_displacement(settings.geometry.tip_point(scene.beam))
-        rec["tip"] = {"ux": float(u[0]), "uy": float(u[1])}
-        if len(u) == 3:
-            rec["tip_uz"] = float(u[2])
+            rec["output"] = str(model.write(Path(output) / safe_name(scene.name), output_format))
     return rec
 
 

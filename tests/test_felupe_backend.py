@@ -119,3 +119,24 @@ def test_dynamic_scenes_are_refused_on_felupe():
     d["fem"] = {"backend": "felupe"}
     with pytest.raises(SceneError, match=r"fem\.backend"):
         run_scene(scene_from_dict(d))
+
+
+@pytest.mark.parametrize("model, inc", [("plane-strain", "mixed"), ("plane-stress", None)])
+def test_output_holds_the_solution(tmp_path, model, inc):
+    """--output on FElupe writes the corner mesh with the displacement (and the pressure
+    p = mu phat): the node at the tip carries the record's tip displacement."""
+    import meshio
+    import numpy as np
+
+    scene = cantilever("neo-hookean", model, incompressibility=inc)
+    settings = dataclasses.replace(_felupe(base_settings(model, inc)), cells_height=2)   # a corner at the tip
+    rec = run_scene(scene, settings, output=tmp_path)
+    assert rec["status"] == "converged", rec["reason"]
+    out = meshio.read(rec["output"])
+    assert Path(rec["output"]).suffix == ".vtu"
+    tip = np.array([scene.beam.length, 0.0])
+    k = int(np.argmin(np.linalg.norm(out.points[:, :2] - tip, axis=1)))
+    assert np.allclose(out.point_data["displacement"][k], [rec["tip"]["ux"], rec["tip"]["uy"]], rtol=0, atol=1e-15)
+    assert ("pressure" in out.point_data) == (model == "plane-strain")
+    if model == "plane-strain":      # the pressure scale: |p| of order rho g L^2 / h at the root
+        assert np.all(np.isfinite(out.point_data["pressure"])) and np.ptp(out.point_data["pressure"]) > 0

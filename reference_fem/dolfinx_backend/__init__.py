@@ -9,3 +9,16 @@ code that imports dolfinx, ufl, petsc4py or gmsh.
 - :mod:`.problem`: scene -> spaces, law, model, supports, loads; the static problem;
 - :mod:`.dynamic_problem`: the forms of one time step.
 """
+
+
+def version() -> str:
+    from .fem import VERSION
+
+    return VERSION
+
+
+def static_model(scene, settings):
+    """The static model of a scene (:func:`.problem.static_model`)."""
+    from .problem import static_model
+
+    return static_model(scene, settings)

@@ -136,6 +136,29 @@ class Problem:
     def set_load(self, t: float) -> None:
         self.load.value = t
 
+    # what the one static driver (reference_fem.simulation) reads of a backend's model
+    @property
+    def effects(self) -> list:
+        return self.setup.effects
+
+    @property
+    def ranks(self) -> int:
+        """MPI processes the solve runs on."""
+        return self.setup.disc.comm.size
+
+    def displacement(self, point) -> np.ndarray:
+        """u (m) at a point of the reference configuration."""
+        return self.setup.disc.point_displacement([point])[0]
+
+    def write(self, path, fmt: str):
+        """The mesh with its displacement (and pressure) as ``fmt`` ("vtk" | "xdmf")."""
+        return self.setup.disc.write(path, fmt, scale=self.setup.mu)
+
+
+def static_model(scene: Scene, settings: FemSettings) -> Problem:
+    """The backend's static model of the scene (:func:`reference_fem.simulation.run_scene`)."""
+    return static_problem(set_up(scene, settings))
+
 
 def static_problem(s: Setup) -> Problem:
     d = s.disc

@@ -17,3 +17,10 @@ def version() -> str:
     import felupe
 
     return felupe.__version__
+
+
+def static_model(scene, settings):
+    """The static model of a scene (:func:`.problem.static_model`)."""
+    from .problem import static_model
+
+    return static_model(scene, settings)

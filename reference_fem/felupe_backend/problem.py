@@ -285,3 +285,49 @@ class System:
 
     def reset(self) -> None:
         self.w[:] = 0.0
+
+
+class StaticModel:
+    """What the one static driver (:func:`reference_fem.simulation.run_scene`) reads of a
+    backend: the Newton system, the load parameter, the unknowns, the effects, the
+    processes (FElupe runs on one), the displacement at a point, the output files."""
+
+    ranks = 1
+
+    def __init__(self, setup: Setup):
+        self.setup = setup
+        self.system = System(setup)
+        self.n_free = setup.n_free
+        self.effects = setup.effects
+        self.set_load = self.system.set_load
+
+    def displacement(self, point) -> np.ndarray:
+        """u (m) at a mesh node of the reference configuration."""
+        return self.setup.point_displacement(point)
+
+    def write(self, path, fmt: str):
+        """The corner mesh (reference geometry) with the displacement and the pressure
+        p = mu phat at its points, as DOLFINx's output writes degree 1 ("vtk": .vtu,
+        "xdmf": .xdmf), by meshio."""
+        from pathlib import Path
+
+        import meshio
+
+        s = self.setup
+        corner = s.fields[-1].region.mesh if s.settings.has_pressure else None
+        quad = s.fields[0].region.mesh
+        n = corner.npoints if corner is not None else quad.npoints
+        cells = corner.cells if corner is not None else quad.cells
+        cell_type = corner.cell_type if corner is not None else quad.cell_type
+        data = {"displacement": s.fields[0].values[:n]}
+        if corner is not None:
+            data["pressure"] = s.mu * s.fields[1].values[:, 0]
+        path = Path(path).with_suffix(".vtu" if fmt == "vtk" else ".xdmf")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        meshio.write(path, meshio.Mesh(quad.points[:n], [(cell_type, cells)], point_data=data))
+        return path
+
+
+def static_model(scene: Scene, settings: FemSettings) -> StaticModel:
+    """The backend's static model of the scene."""
+    return StaticModel(set_up(scene, settings))
