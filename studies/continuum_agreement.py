@@ -1,25 +1,43 @@
-"""Two continuum codes on the same truths: the Richardson values of DOLFINx (the
-``continuum`` study's records: Q2 levels 16 x 1 ... 256 x 16) and of FElupe
-(``[fem] backend = "felupe"``, this study's cases: its own mesh sequence, 12 x 1 ...
-96 x 8 Q2 cells, so the two extrapolations share no mesh), for each law and 2D model of
-Table 3's continuum rows (plane strain exact, plane strain with the ANCF penalty, plane
-stress; the formulation table's continuum values are these same three).
+"""Two continuum codes on the same truths: every continuum value the reports judge by,
+computed by DOLFINx and by FElupe (``[fem] backend = "felupe"``, this study's cases).
 
-The check: the two Richardson values differ by no more than the sum of their error
+- Table 3's continuum rows (plane strain exact, plane strain with the ANCF penalty, plane
+  stress; the formulation table's continuum values are these same three): the Richardson
+  values of DOLFINx (the ``continuum`` study's records: Q2 levels 16 x 1 ... 256 x 16)
+  and of FElupe on its own mesh sequence (12 x 1 ... 96 x 8), so the two extrapolations
+  share no mesh;
+- the 3D beam at the paper's width (the formulation table's and width study's solid
+  reference): DOLFINx's committed Richardson value (tests/gold/fem_cantilever_3d.json,
+  graded 16 x 1 x 1 ... 64 x 4 x 4) against FElupe's on its own graded sequence
+  (``solid_levels``, 12 x 1 x 1 ...);
+- the hard loads (the ``hard-loads`` study's continuum runs, one mesh each, up to 1000 g
+  and 200 N): the same scene on the same mesh by both codes, so the two discretisations
+  are the same and the tips must agree to the Newton tolerance (:data:`SAME_MESH_RTOL`).
+
+The check: two Richardson values differ by no more than the sum of their error
 estimates (each the estimated error of its finest level, :mod:`reference_fem.convergence`,
-so the bar is conservative for the extrapolated values). A disagreement beyond the bars
-is printed as FAIL in the report and fails the tiny-mode gold values.
+so the bar is conservative for the extrapolated values); two same-mesh tips by no more
+than SAME_MESH_RTOL of the tip. A disagreement beyond the bars, or a run that one code
+finishes and the other does not, is printed as FAIL in the report and fails the
+tiny-mode gold values.
 """
 from __future__ import annotations
 
+import json
 import math
 
 from .continuum import scene as continuum_scene
 from .engine.case import make_case
 from .engine.report import Section, Table, mm
-from .reference import VARIANT_LABEL, continuum_references, short
+from .hard_loads import _scene as hard_scene
+from .hard_loads import loads as hard_loads
+from .reference import GOLD_3D, VARIANT_LABEL, ContinuumReference, continuum_references, short
 
 BACKEND = "felupe"
+# Same mesh, same elements, same quadrature: the two codes' discrete problems are the same,
+# so their tips differ by the Newton tolerance (||R|| <= 1e-8 ||R_ref||): measured 1e-12 to
+# 1e-8 relative on the committed gold meshes (tests/test_felupe_backend.py, the same bound).
+SAME_MESH_RTOL = 1e-6
 
 
 def scene(law: str, variant: str, cells: tuple[int, int]) -> dict:
@@ -30,67 +48,196 @@ def scene(law: str, variant: str, cells: tuple[int, int]) -> dict:
     return d
 
 
+def _on_felupe(d: dict) -> dict:
+    d["fem"]["backend"] = BACKEND
+    d["name"] += f"-{BACKEND}"
+    return d
+
+
+def solid_scene(law: str, cells) -> dict:
+    """The 3D beam of the committed DOLFINx gold (its scene: the paper's cantilever at the
+    paper's width, clamped face, own weight) on FElupe: ``cells`` (along x, across h,
+    across w) Q2/Q1 hexahedra, graded along x as the gold's meshes (the last cell 8 times
+    the first at every level; each level splits every cell into two: the progression's
+    square root)."""
+    g = json.loads(GOLD_3D.read_text())["cases"][f"{law}/3d"]
+    d = json.loads(json.dumps(g["scene"]))
+    nx, ny, nz = (int(c) for c in cells)
+    d["fem"] = {**g["base_mesh"], "cells_length": nx, "cells_height": ny, "cells_width": nz,
+                "progression": 8.0 ** (1.0 / (nx - 1)) if nx > 1 else 1.0}
+    d["name"] = f"solid-{law}-3d-{nx}x{ny}x{nz}"
+    return _on_felupe(d)
+
+
+def hard_load_scenes(hard: dict) -> list[tuple[str, str, dict, dict]]:
+    """[(law, load label, DOLFINx scene, FElupe scene)] of the hard-loads study's continuum runs."""
+    out = []
+    for law in hard["laws"]:
+        for label, _, load in hard_loads(hard):
+            d = hard_scene(hard, law, label, load, None)
+            out.append((law, label, d, _on_felupe(json.loads(json.dumps(d)))))
+    return out
+
+
 def cases(grid: dict, tiny: bool) -> list:
-    return [make_case("continuum-agreement", "fenicsx", scene(law, v, tuple(lv)))
-            for law in grid["laws"] for v in grid["variants"] for lv in grid["levels"]]
+    from .engine.catalog import load_catalog
+
+    out = [make_case("continuum-agreement", "fenicsx", scene(law, v, tuple(lv)))
+           for law in grid["laws"] for v in grid["variants"] for lv in grid["levels"]]
+    out += [make_case("continuum-agreement", "fenicsx", solid_scene(law, lv))
+            for law in grid["solid_laws"] for lv in grid["solid_levels"]]
+    hard = load_catalog(tiny=tiny)["hard-loads"].grid
+    out += [make_case("continuum-agreement", "fenicsx", f) for _, _, _, f in hard_load_scenes(hard)]
+    return out
 
 
 def _backend(rec: dict) -> str:
     return (rec["scene"].get("fem") or {}).get("backend", "dolfinx")
 
 
+def _row(law: str, variant: str, ra: ContinuumReference, rb: ContinuumReference) -> dict:
+    row = {"law": law, "variant": variant, "dolfinx": ra, "felupe": rb, "diff": None, "bar": None, "agree": None}
+    if ra.tip and rb.tip and ra.error_estimate is not None and rb.error_estimate is not None:
+        row["diff"] = math.hypot(ra.tip[0] - rb.tip[0], ra.tip[1] - rb.tip[1])
+        row["bar"] = ra.error_estimate + rb.error_estimate
+        row["agree"] = row["diff"] <= row["bar"]
+    return row
+
+
+def _is_solid(rec: dict) -> bool:
+    return (rec["scene"].get("fem") or {}).get("model") == "3d"
+
+
+def _is_hard(rec: dict) -> bool:
+    return rec["scene"]["name"].startswith("hard-")
+
+
 def agreement(dolfinx_records: list[dict], felupe_records: list[dict]) -> list[dict]:
-    """One row per (law, variant) that both codes have: their Richardson tips (m), error
+    """One row per (law, 2D variant) that both codes have: their Richardson tips (m), error
     estimates (m), the distance between the tips, the bar (sum of the estimates) and
     whether the tips agree within it (None without a Richardson value on either side)."""
     a = continuum_references([r for r in dolfinx_records if _backend(r) == "dolfinx"])
-    b = continuum_references([r for r in felupe_records if _backend(r) == BACKEND])
+    b = continuum_references([r for r in felupe_records if _backend(r) == BACKEND
+                              and not _is_solid(r) and not _is_hard(r)])
+    return [_row(key[0], key[1], a[key], b[key]) for key in b if key in a]
+
+
+def solid_agreement(felupe_records: list[dict], gold=GOLD_3D) -> list[dict]:
+    """Rows of the 3D beam: DOLFINx's committed Richardson value (the gold file: tip,
+    error estimate, its levels) against FElupe's."""
+    if not gold.exists():
+        return []
+    cases = json.loads(gold.read_text())["cases"]
+    b = continuum_references([r for r in felupe_records if _backend(r) == BACKEND and _is_solid(r)])
     rows = []
-    for key in [k for k in b if k in a]:
-        ra, rb = a[key], b[key]
-        row = {"law": key[0], "variant": key[1], "dolfinx": ra, "felupe": rb,
-               "diff": None, "bar": None, "agree": None}
-        if ra.tip and rb.tip and ra.error_estimate is not None and rb.error_estimate is not None:
-            row["diff"] = math.hypot(ra.tip[0] - rb.tip[0], ra.tip[1] - rb.tip[1])
-            row["bar"] = ra.error_estimate + rb.error_estimate
+    for (law, variant), rb in b.items():
+        c = cases.get(f"{law}/3d")
+        if c is None:
+            continue
+        ra = ContinuumReference(law, variant, (c["tip"]["ux"], c["tip"]["uy"]) if c.get("tip") else None,
+                                c.get("error_estimate_m"), c.get("order"),
+                                [{**lv, "cells": tuple(lv[k] for k in ("cells_length", "cells_height", "cells_width"))}
+                                 for lv in c["levels"]])
+        rows.append(_row(law, variant, ra, rb))
+    return rows
+
+
+def hard_agreement(hard_records: list[dict], felupe_records: list[dict], hard: dict) -> list[dict]:
+    """Rows of the hard loads, same scene and mesh on both codes: their tips, the distance,
+    the bar SAME_MESH_RTOL |tip| and whether both finished and agree (False when only one
+    converged: the two codes solve the same discrete problem)."""
+    by_name = {r["scene"]["name"]: r for r in hard_records + felupe_records}
+    rows = []
+    for law, label, d, f in hard_load_scenes(hard):
+        ra, rb = by_name.get(d["name"]), by_name.get(f["name"])
+        if ra is None or rb is None:
+            continue
+        row = {"law": law, "load": label, "dolfinx": ra, "felupe": rb, "diff": None, "bar": None,
+               "agree": None}
+        ok_a, ok_b = ra.get("status") == "converged", rb.get("status") == "converged"
+        if ok_a and ok_b:
+            ta, tb = ra["tip"], rb["tip"]
+            row["diff"] = math.hypot(ta["ux"] - tb["ux"], ta["uy"] - tb["uy"])
+            row["bar"] = SAME_MESH_RTOL * math.hypot(ta["ux"], ta["uy"])
             row["agree"] = row["diff"] <= row["bar"]
+        elif ok_a != ok_b:
+            row["agree"] = False
         rows.append(row)
     return rows
 
 
 def _finest(ref) -> str | None:
     lv = [x for x in ref.levels if x["status"] == "converged"]
-    return f"{lv[-1]['cells'][0]} x {lv[-1]['cells'][1]}" if lv else None
+    return " x ".join(str(c) for c in lv[-1]["cells"]) if lv else None
 
 
-def report(ctx) -> Section:
-    rows = agreement(ctx.records("continuum"), ctx.records())
-    sec = Section(ctx.study.title,
-                  "The continuum truths by two finite-element codes: DOLFINx (the `continuum` study) and "
-                  "FElupe (reference_fem's second backend) on different mesh sequences, each Richardson-"
-                  "extrapolated with its error estimate; they agree when their distance is within the sum "
-                  "of the estimates.")
+def _richardson_table(ctx, name: str, rows: list[dict], caption: str, sec: Section) -> None:
     table = []
     for r in rows:
         a, b = r["dolfinx"], r["felupe"]
         table.append([short(r["law"]), VARIANT_LABEL[r["variant"]],
                       mm(a.tip[0]) if a.tip else None, mm(a.tip[1]) if a.tip else None, mm(a.error_estimate),
                       _finest(a), mm(b.tip[0]) if b.tip else None, mm(b.tip[1]) if b.tip else None,
-                      mm(b.error_estimate), _finest(b), mm(r["diff"]), mm(r["bar"]),
-                      None if r["agree"] is None else ("yes" if r["agree"] else "NO")])
-    sec.table(ctx, Table("continuum_agreement",
+                      mm(b.error_estimate), _finest(b), mm(r["diff"]), mm(r["bar"]), _yes(r["agree"])])
+    sec.table(ctx, Table(name,
                          ["law", "model", "DOLFINx ux (mm)", "DOLFINx uy (mm)", "DOLFINx est. (mm)", "DOLFINx finest",
                           "FElupe ux (mm)", "FElupe uy (mm)", "FElupe est. (mm)", "FElupe finest",
                           "distance (mm)", "bar (mm)", "within bar"], table,
                          {2: ".4f", 3: ".4f", 4: ".1e", 6: ".4f", 7: ".4f", 8: ".1e", 10: ".1e", 11: ".1e"}),
-              "Richardson tips of the two codes and their distance against the combined error estimate "
-              "(bar = DOLFINx's + FElupe's estimate).")
-    bad = [f"{short(r['law'])} {r['variant']}" for r in rows if r["agree"] is False]
-    missing = [f"{short(r['law'])} {r['variant']}" for r in rows if r["agree"] is None]
-    verdict = "PASS" if rows and not bad and not missing else "FAIL"
-    sec.text = (f"Check: **{verdict}** ({len(rows) - len(bad) - len(missing)} of {len(rows)} within their bars"
+              caption)
+
+
+def _yes(agree) -> str | None:
+    return None if agree is None else ("yes" if agree else "NO")
+
+
+def _status(rec: dict) -> str:
+    return "converged" if rec.get("status") == "converged" else f"{rec.get('status')}: {rec.get('reason')}"
+
+
+def report(ctx) -> Section:
+    rows = agreement(ctx.records("continuum"), ctx.records())
+    solid = solid_agreement(ctx.records())
+    hard = hard_agreement(ctx.records("hard-loads"), ctx.records(), ctx.catalog["hard-loads"].grid)
+    sec = Section(ctx.study.title,
+                  "The continuum truths by two finite-element codes: DOLFINx (the `continuum` study, the "
+                  "committed 3D gold, the `hard-loads` study) and FElupe (reference_fem's second backend). "
+                  "Richardson values on different mesh sequences agree when their distance is within the sum "
+                  "of the two error estimates; the hard loads run the same scene on the same mesh in both "
+                  f"codes, so their tips must agree to the Newton tolerance ({SAME_MESH_RTOL:g} of the tip).")
+    _richardson_table(ctx, "continuum_agreement", rows,
+                      "Table 3's continuum values: Richardson tips of the two codes and their distance against the "
+                      "combined error estimate (bar = DOLFINx's + FElupe's estimate).", sec)
+    if solid:
+        _richardson_table(ctx, "continuum_agreement_3d", solid,
+                          "The 3D beam at the paper's width (7 mm; the formulation table's and the width study's "
+                          "solid reference): DOLFINx's committed gold (graded hexahedra) against FElupe's own graded "
+                          "sequence.", sec)
+    if hard:
+        table = []
+        for r in hard:
+            a, b = r["dolfinx"], r["felupe"]
+            ta, tb = a.get("tip") or {}, b.get("tip") or {}
+            table.append([short(r["law"]), r["load"], " x ".join(str(a["scene"]["fem"][k]) for k in
+                                                                  ("cells_length", "cells_height")),
+                          mm(ta.get("ux")), mm(ta.get("uy")), mm(tb.get("ux")), mm(tb.get("uy")),
+                          None if a.get("status") == b.get("status") == "converged" else
+                          f"DOLFINx {_status(a)}; FElupe {_status(b)}",
+                          mm(r["diff"]), mm(r["bar"]), _yes(r["agree"])])
+        sec.table(ctx, Table("continuum_agreement_hard_loads",
+                             ["law", "load", "mesh", "DOLFINx ux (mm)", "DOLFINx uy (mm)", "FElupe ux (mm)",
+                              "FElupe uy (mm)", "status", "distance (mm)", "bar (mm)", "within bar"], table,
+                             {3: ".4f", 4: ".4f", 5: ".4f", 6: ".4f", 8: ".1e", 9: ".1e"}),
+                  "The hard-load references (plane stress, one mesh): the same scene on the same mesh by both "
+                  "codes.")
+    every = rows + solid + hard
+    label = [f"{short(r['law'])} {r.get('variant') or r.get('load')}" for r in every]
+    bad = [n for n, r in zip(label, every) if r["agree"] is False]
+    missing = [n for n, r in zip(label, every) if r["agree"] is None]
+    verdict = "PASS" if every and not bad and not missing else "FAIL"
+    sec.text = (f"Check: **{verdict}** ({len(every) - len(bad) - len(missing)} of {len(every)} within their bars"
                 + (f"; beyond: {', '.join(bad)}" if bad else "")
-                + (f"; no Richardson value: {', '.join(missing)}" if missing else "") + ").")
+                + (f"; not comparable: {', '.join(missing)}" if missing else "") + ").")
     return sec
 
 

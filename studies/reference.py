@@ -10,6 +10,7 @@ judged by.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -23,7 +24,8 @@ MATCHING = {"plane-strain": "plane-strain-penalty", "plane-stress": "plane-stres
             "paper": "plane-strain-penalty"}
 VARIANT_LABEL = {"plane-strain": "plane strain, exact (mixed)",
                  "plane-strain-penalty": "plane strain, penalty 1000 MPa",
-                 "plane-stress": "plane stress (F33 = 1/J)"}
+                 "plane-stress": "plane stress (F33 = 1/J)",
+                 "3d": "3D beam, exact (mixed)"}
 LAW_SHORT = {"neo-hookean": "NH", "mooney-rivlin": "MR", "yeoh": "Yeoh"}
 
 
@@ -35,6 +37,8 @@ def short(law: str) -> str:
 def variant_of(scene: dict) -> str:
     """The continuum variant of a fenicsx scene (gold-file names)."""
     fem = scene.get("fem") or {}
+    if fem.get("model") == "3d":
+        return "3d"
     if scene["material"]["formulation"] == "plane-stress" or fem.get("model") == "plane-stress":
         return "plane-stress"
     return "plane-strain-penalty" if fem.get("incompressibility") == "penalty" else "plane-strain"
@@ -52,7 +56,8 @@ def describe(rec: dict) -> dict:
                  clamp=s["supports"].get("clamp"))
     else:
         fem = s.get("fem") or {}
-        d.update(variant=variant_of(s), cells=(fem.get("cells_length"), fem.get("cells_height")))
+        cells = (fem.get("cells_length"), fem.get("cells_height"))
+        d.update(variant=variant_of(s), cells=cells + ((fem.get("cells_width", 1),) if fem.get("model") == "3d" else ()))
     return d
 
 
@@ -78,7 +83,7 @@ def continuum_references(records: list[dict]) -> dict[tuple[str, str], Continuum
              "wall_s": r.get("wall_s"), "setup_s": r.get("setup_s")})
     out = {}
     for key, levels in groups.items():
-        levels.sort(key=lambda lv: lv["cells"][0] * lv["cells"][1])
+        levels.sort(key=lambda lv: math.prod(lv["cells"]))
         tips = [(lv["tip"]["ux"], lv["tip"]["uy"]) for lv in levels
                 if lv["status"] == "converged" and lv["tip"]]
         ref = richardson(*tips[-3:]) if len(tips) >= 3 else None

@@ -140,3 +140,37 @@ def test_output_holds_the_solution(tmp_path, model, inc):
     assert ("pressure" in out.point_data) == (model == "plane-strain")
     if model == "plane-strain":      # the pressure scale: |p| of order rho g L^2 / h at the root
         assert np.all(np.isfinite(out.point_data["pressure"])) and np.ptp(out.point_data["pressure"]) > 0
+
+
+def _committed(name: str) -> dict:
+    """The record of ``name`` in the committed continuum-agreement records (reports/data)."""
+    path = Path(__file__).parent.parent / "reports" / "data" / "continuum-agreement.jsonl"
+    recs = [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
+    return next(r for r in recs if r["scene"]["name"] == name)
+
+
+def test_felupe_sequence_reproduces_its_committed_levels_and_richardson():
+    """The CI-sized case of FElupe's own refinement (Yeoh, plane stress, 12 x 1 ... 96 x 8,
+    about 3 s): every level reproduces the committed record of the continuum-agreement
+    study (regression, the Newton tolerance); observed order >= 1 and the Richardson value
+    of the first three levels predicts the fourth within its estimate (DOLFINx's own check,
+    tests/test_reference_fem_cantilever.py); the Richardson value of the last three agrees
+    with DOLFINx's committed one (tests/gold) within the two estimates."""
+    from reference_fem.convergence import richardson
+    from studies.continuum_agreement import scene as felupe_scene
+
+    tips = []
+    for cells in ((12, 1), (24, 2), (48, 4), (96, 8)):
+        d = felupe_scene("yeoh", "plane-stress", cells)
+        rec = run_scene(scene_from_dict(d))
+        stored = _committed(d["name"])
+        assert rec["status"] == "converged", rec["reason"]
+        assert _close(rec["tip"], stored["tip"]), (cells, rec["tip"], stored["tip"])
+        tips.append((rec["tip"]["ux"], rec["tip"]["uy"]))
+    first = richardson(*tips[:3])
+    assert first.order >= 1.0
+    assert math.hypot(tips[3][0] - first.value[0], tips[3][1] - first.value[1]) <= first.error_estimate
+    own = richardson(*tips[1:])
+    gold = CASES["yeoh/plane-stress"]
+    dist = math.hypot(own.value[0] - gold["tip"]["ux"], own.value[1] - gold["tip"]["uy"])
+    assert dist <= own.error_estimate + gold["error_estimate_m"], (dist, own.error_estimate, gold["error_estimate_m"])
