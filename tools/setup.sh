@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 
 packages="python3-dolfinx python3-gmsh python3-numba python3-mpi4py python3-pandas
 python3-matplotlib python3-pytest python3-tqdm python3-venv python3-scipy openmpi-bin
-python3-threadpoolctl python3-hypothesis python3-meshio python3-pytest-xdist"
+python3-threadpoolctl python3-hypothesis python3-meshio python3-pytest-xdist python3-sympy"
 
 missing=""
 for p in $packages; do
