@@ -38,6 +38,8 @@ BACKEND = "felupe"
 # so their tips differ by the Newton tolerance (||R|| <= 1e-8 ||R_ref||): measured 1e-12 to
 # 1e-8 relative on the committed gold meshes (tests/test_felupe_backend.py, the same bound).
 SAME_MESH_RTOL = 1e-6
+# cells along x of the coarsest graded 3D mesh (its progression 8^(1/11): last cell 8 x the first)
+SOLID_BASE = 12
 
 
 def scene(law: str, variant: str, cells: tuple[int, int]) -> dict:
@@ -57,14 +59,14 @@ def _on_felupe(d: dict) -> dict:
 def solid_scene(law: str, cells) -> dict:
     """The 3D beam of the committed DOLFINx gold (its scene: the paper's cantilever at the
     paper's width, clamped face, own weight) on FElupe: ``cells`` (along x, across h,
-    across w) Q2/Q1 hexahedra, graded along x as the gold's meshes (the last cell 8 times
-    the first at every level; each level splits every cell into two: the progression's
-    square root)."""
+    across w) Q2/Q1 hexahedra, graded along x as the gold's meshes: at 12 cells the last
+    cell is 8 times the first, and a mesh of nx cells splits each of those into nx / 12
+    (the progression's (nx / 12)-th root, so that the levels nest)."""
     g = json.loads(GOLD_3D.read_text())["cases"][f"{law}/3d"]
     d = json.loads(json.dumps(g["scene"]))
     nx, ny, nz = (int(c) for c in cells)
     d["fem"] = {**g["base_mesh"], "cells_length": nx, "cells_height": ny, "cells_width": nz,
-                "progression": 8.0 ** (1.0 / (nx - 1)) if nx > 1 else 1.0}
+                "progression": (8.0 ** (1.0 / (SOLID_BASE - 1))) ** (SOLID_BASE / nx)}
     d["name"] = f"solid-{law}-3d-{nx}x{ny}x{nz}"
     return _on_felupe(d)
 

@@ -7,8 +7,8 @@ fields, and the observed orders between successive levels.
 The check: the observed order between the two finest levels is at least the element's
 a priori order less :data:`ORDER_TOLERANCE` (u: 3, p: 2 for Taylor-Hood Q2/Q1 and Q2), for
 the displacement and, where there is one, the pressure. One case per (code, model, law)
-runs all its levels (solver ``mms``, registered here: its sources are reference_fem's, the
-shared laws and this file; the case imports this module, so a worker process knows it).
+runs all its levels (solver ``mms`` of :data:`studies.engine.solvers.SOLVERS`: its sources
+are reference_fem's, the shared laws and this file).
 
 Measured beside the grid (2026-11-25): the 3D pressure is not yet asymptotic at n = 8
 (orders 3.18, 2.58 over n = 2, 4, 8); DOLFINx at n = 12 gives 2.10 between 8 and 12 (u: 3.00),
@@ -29,7 +29,6 @@ from contract.errors import SceneError
 
 from .engine.case import make_case
 from .engine.report import Section, Table
-from .engine.solvers import SOLVERS, Solver
 
 STUDY = {
     "name": "mms",
@@ -110,14 +109,8 @@ def run(sc: dict) -> dict:
     return rec
 
 
-SOLVERS.setdefault(SOLVER, Solver(SOLVER, ("reference_fem/**/*.py", "mechanics/**/*.py", "contract/*.py",
-                                           "studies/mms.py"), run, check))
-
-
 def cases(grid: dict, tiny: bool) -> list:
-    opts = {"imports": ["studies.mms"]}     # registers the solver in a worker process
-    return [make_case("mms", SOLVER, scene(code, model, law, grid["levels_3d" if model == "3d" else "levels_2d"]),
-                      opts)
+    return [make_case("mms", SOLVER, scene(code, model, law, grid["levels_3d" if model == "3d" else "levels_2d"]))
             for model, law in grid["cases"] for code in grid["codes"]]
 
 

@@ -160,6 +160,18 @@ def _run_ancf_cold(scene: dict) -> dict:
     return rec
 
 
+def _run_mms(scene: dict) -> dict:
+    from studies.mms import run
+
+    return run(scene)
+
+
+def _check_mms(scene: dict) -> None:
+    from studies.mms import check
+
+    check(scene)
+
+
 SOLVERS: dict[str, Solver] = {
     s.name: s for s in (
         Solver("ancf", ("ancf/*.py", "mechanics/**/*.py", "contract/*.py"), _run_ancf, _check_ancf),
@@ -169,6 +181,8 @@ SOLVERS: dict[str, Solver] = {
                _run_fenicsx, _check_fenicsx),
         Solver("ancf-cold", ("ancf/*.py", "mechanics/**/*.py", "contract/*.py", "studies/engine/solvers.py"),
                _run_ancf_cold, _check_ancf),
+        Solver("mms", ("reference_fem/**/*.py", "mechanics/**/*.py", "contract/*.py", "studies/mms.py"),
+               _run_mms, _check_mms),
     )
 }
 
