@@ -1,11 +1,14 @@
 """Run one scene with the continuum reference and produce its record.
 
 Two backends (``[fem] backend``): DOLFINx (default, :mod:`reference_fem.dolfinx_backend`)
-and FElupe (:mod:`reference_fem.felupe_backend`, static scenes); each offers a static model
-of the scene (:func:`backend`: its Newton system, load parameter, unknowns, effects, point
+and FElupe (:mod:`reference_fem.felupe_backend`); each offers a static model of the scene
+(:func:`backend`: its Newton system, load parameter, unknowns, effects, point
 displacement, output) that one driver runs with the shared load stepping
-(:func:`reference_fem.statics.solve_static`); the record is the same but for the version
-key (``dolfinx`` or ``felupe``) and ``fem.backend`` (given for "felupe" only).
+(:func:`reference_fem.statics.solve_static`), and a dynamic problem (one time step's
+equations, the start, energies, point positions, output) that one stepper
+(:class:`reference_fem.stepper.ContinuumStepper`) drives through the one time loop; the
+record is the same but for the version key (``dolfinx`` or ``felupe``) and ``fem.backend``
+(given for "felupe" only).
 
 The record is :func:`contract.record.new_record` ("fenicsx") with the same keys as an
 ANCF run, plus ``continuum_model`` ("plane-strain" | "plane-stress" | "3d"),
@@ -97,9 +100,12 @@ def check_static(scene: Scene) -> None:
 
 def backend(name: str):
     """The backend package of ``[fem] backend`` (:data:`reference_fem.settings.BACKENDS`):
-    ``version()`` and ``static_model(scene, settings)``, an object with the Newton system
+    ``version()``, ``static_model(scene, settings)``, an object with the Newton system
     (``system``, driven by :func:`reference_fem.statics.solve_static`), ``set_load(t)``,
-    ``n_free``, ``effects``, ``ranks``, ``displacement(point)`` and ``write(path, fmt)``."""
+    ``n_free``, ``effects``, ``ranks``, ``displacement(point)`` and ``write(path, fmt)``,
+    and ``dynamic_problem(scene, settings)``, an object with what
+    :class:`reference_fem.stepper.ContinuumStepper` steps (see there) and ``n_dof``,
+    ``n_free``, ``effects``, ``geometry`` and ``write(path, fmt, w, t)``."""
     import importlib
 
     return importlib.import_module(f"{__package__}.{name}_backend")
@@ -124,9 +130,6 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
     checked = check(scene)
     settings = settings or checked
     if scene.analysis.kind == "dynamic":
-        if settings.backend != "dolfinx":
-            raise SceneError(f"fem.backend: {settings.backend!r} solves static scenes only "
-                             "(analysis.kind = \"dynamic\"); allowed: 'dolfinx'")
         return run_dynamic(scene, settings, output=output, output_format=output_format, progress=progress)
     from .statics import solve_static
 
@@ -165,14 +168,13 @@ def run_dynamic(scene: Scene, settings: FemSettings, output: Path | None = None,
     from mechanics.time_loop import energy_limit as scene_energy_limit
     from mechanics.time_loop import integrate, record_keys
 
-    from .dolfinx_backend.dynamic_problem import build_dynamic_problem
     from .stepper import ContinuumStepper
 
     a = scene.analysis
     rec = _record(scene, settings)
     t0 = time.perf_counter()
-    problem = build_dynamic_problem(scene, settings)
-    rec["pin"] = (problem.setup.model.geometry.pin_note if scene.supports.left == "pin"
+    problem = backend(settings.backend).dynamic_problem(scene, settings)
+    rec["pin"] = (problem.geometry.pin_note if scene.supports.left == "pin"
                   else "clamp: the whole face x = 0 fixed")
     stepper = ContinuumStepper(problem, a.integrator, a.rho_inf, a.newton_rtol, a.max_iterations, scene.beam)
     rec["setup_s"] = time.perf_counter() - t0
@@ -181,12 +183,11 @@ def run_dynamic(scene: Scene, settings: FemSettings, output: Path | None = None,
                     a.tolerance, energy_limit=None if limit == float("inf") else limit,
                     energy_every_step=energy_every_step, max_steps=a.max_steps, wall_time=a.wall_time,
                     progress=progress)
-    rec.update(ndof=problem.n_free, effects=sorted(problem.setup.effects + ["inertia"]),
+    rec.update(ndof=problem.n_free, effects=sorted(problem.effects + ["inertia"]),
                **record_keys(res, stepper.describe(), limit, scene.beam.length))
     if energy_every_step:
         rec["energy_steps"] = [e.to_dict(t) for t, e in res.energy_steps]
     if output is not None and res.final is not None:
-        problem.disc.w.x.array[:] = res.final.u
-        rec["output"] = str(problem.disc.write(Path(output) / safe_name(scene.name), output_format,
-                                               scale=problem.setup.mu, t=res.final.t))
+        rec["output"] = str(problem.write(Path(output) / safe_name(scene.name), output_format,
+                                          res.final.u, res.final.t))
     return rec

@@ -1,10 +1,13 @@
-"""Implicit time stepping of the continuum (no dolfinx here): a stepper of the
-generalized-alpha family for the one time loop of :mod:`mechanics.time_loop`, on
-:class:`reference_fem.dolfinx_backend.dynamic_problem.DynamicProblem`.
+"""Implicit time stepping of the continuum (no finite-element code here): a stepper of the
+generalized-alpha family for the one time loop of :mod:`mechanics.time_loop`, on a
+backend's dynamic problem (``dynamic_problem(scene, settings)`` of
+:mod:`reference_fem.dolfinx_backend` or :mod:`reference_fem.felupe_backend`): ``geometry``,
+``height``, ``u_dofs``, ``p_mask``, ``initial_acceleration``, ``solve_step``, ``energies``,
+``positions``.
 
 - The methods, their coefficients, the predictor and the update are the shared ones of
   :mod:`mechanics.alpha_family` (generalized-alpha, Newmark), which ANCF steps too;
-- Newton with the consistent Jacobian (UFL's derivative of the step residual:
+- Newton with the consistent Jacobian (the backend's derivative of the step residual:
   (1 - alpha_m) / (beta dt^2) M + (1 - alpha_f) K, plus the pressure rows); predictor
   a_(n+1) = a_n; converged when ||R|| <= rtol (||Q|| + ||M a_n||) (ANCF's scale) or when
   the correction of the displacements is below UTOL of the state (ANCF's rule, with a
@@ -44,7 +47,7 @@ class ContinuumStepper:
         self.newton_rtol, self.max_iterations = newton_rtol, max_iterations
         self.coef = family.coefficients(method, rho_inf)
         self.beam = beam
-        geometry = problem.setup.model.geometry
+        geometry = problem.geometry
         self.tip_point = geometry.tip_point(beam)
         self.line = geometry.line_points(beam, LINE_POINTS)
 

@@ -107,6 +107,15 @@ class DynamicProblem:
         self.potentials = {k: backend.Functional(f) for k, f in s.potentials(ue).items()}
 
     @property
+    def geometry(self):
+        """Where the tip, the centre line and the pin are (:mod:`reference_fem.geometry`)."""
+        return self.setup.model.geometry
+
+    @property
+    def effects(self) -> list:
+        return self.setup.effects
+
+    @property
     def n_dof(self) -> int:
         return len(self.disc.w.x.array)
 
@@ -148,6 +157,11 @@ class DynamicProblem:
     def positions(self, u: np.ndarray, points) -> np.ndarray:
         """Deformed positions (n, gdim) in m of reference points (n, gdim) at the state u."""
         return self.disc.positions(u, points)
+
+    def write(self, path, fmt: str, w: np.ndarray, t: float = 0.0):
+        """The mesh with the displacement (and pressure) of the state w at time t."""
+        self.disc.w.x.array[:] = w
+        return self.disc.write(path, fmt, scale=self.setup.mu, t=t)
 
 
 def build_dynamic_problem(scene, settings) -> DynamicProblem:

@@ -24,3 +24,11 @@ def static_model(scene, settings):
     from .problem import static_model
 
     return static_model(scene, settings)
+
+
+def dynamic_problem(scene, settings):
+    """The equations of one time step of a dynamic scene (:mod:`.dynamic_problem`), for
+    :class:`reference_fem.stepper.ContinuumStepper`."""
+    from .dynamic_problem import build_dynamic_problem
+
+    return build_dynamic_problem(scene, settings)

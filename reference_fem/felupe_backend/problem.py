@@ -137,6 +137,8 @@ class Setup:
     f_ext: np.ndarray         # consistent nodal forces at full load (N per unit width in 2D)
     effects: list
     mu: float
+    loads: dict = None        # {"gravity" | "tip_force": its nodal forces}, f_ext their sum
+    width: float = 1.0        # factor from the problem's energies to the full beam's
 
     @property
     def ndof(self) -> int:
@@ -198,14 +200,17 @@ def set_up(scene: Scene, settings: FemSettings) -> Setup:
         fixed_u[g.sides(b)(pts.T), 2] = True
 
     # loads
-    f = np.zeros((quad.npoints, gdim))
+    forces = {}
     if loads.gravity is not None:
+        f = np.zeros((quad.npoints, gdim))
         body = m.density * g.vector(loads.gravity)
         h = region.h.reshape(region.h.shape[0], region.h.shape[1], -1)[:, :, 0]   # (node, point)
         per_node = np.einsum("aq,qc->ca", h, region.dV)                            # (cell, node)
         for i in range(gdim):
             np.add.at(f[:, i], quad.cells, per_node * body[i])
+        forces["gravity"] = f
     if loads.tip_force is not None:
+        f = np.zeros((quad.npoints, gdim))
         tbar = g.vector(loads.tip_force) / (b.height * b.width)
         end = np.flatnonzero(g.at_right(b)(pts.T))
         w = np.ones(len(end))
@@ -213,10 +218,11 @@ def set_up(scene: Scene, settings: FemSettings) -> Setup:
             c = np.unique(pts[end, axis])
             w *= _simpson(c)[np.searchsorted(c, pts[end, axis])]
         f[end] += w[:, None] * tbar
-    f_ext = np.concatenate([f.ravel(), np.zeros(fixed.size - nu)])
-    effects = ["elastic"] + (["penalty"] if alpha is not None else []) + \
-        [k for k in ("gravity", "tip_force") if getattr(loads, k) is not None]
-    return Setup(settings, quad, container, material, fixed, f_ext, effects, mu)
+        forces["tip_force"] = f
+    forces = {k: np.concatenate([f.ravel(), np.zeros(fixed.size - nu)]) for k, f in forces.items()}
+    f_ext = sum(forces.values(), np.zeros(fixed.size))
+    effects = ["elastic"] + (["penalty"] if alpha is not None else []) + list(forces)
+    return Setup(settings, quad, container, material, fixed, f_ext, effects, mu, forces, g.width_factor(b))
 
 
 class System:
