@@ -103,7 +103,7 @@ def backend(name: str):
     ``version()``, ``static_model(scene, settings)``, an object with the Newton system
     (``system``, driven by :func:`reference_fem.statics.solve_static`), ``set_load(t)``,
     ``n_free``, ``effects``, ``ranks``, ``displacement(point)`` and ``write(path, fmt)``,
-    and ``dynamic_problem(scene, settings)``, an object with what
+    and ``dynamic_model(scene, settings)``, an object with what
     :class:`reference_fem.stepper.ContinuumStepper` steps (see there) and ``n_dof``,
     ``n_free``, ``effects``, ``geometry`` and ``write(path, fmt, w, t)``."""
     import importlib
@@ -173,7 +173,7 @@ def run_dynamic(scene: Scene, settings: FemSettings, output: Path | None = None,
     a = scene.analysis
     rec = _record(scene, settings)
     t0 = time.perf_counter()
-    problem = backend(settings.backend).dynamic_problem(scene, settings)
+    problem = backend(settings.backend).dynamic_model(scene, settings)
     rec["pin"] = (problem.geometry.pin_note if scene.supports.left == "pin"
                   else "clamp: the whole face x = 0 fixed")
     stepper = ContinuumStepper(problem, a.integrator, a.rho_inf, a.newton_rtol, a.max_iterations, scene.beam)

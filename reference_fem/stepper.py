@@ -1,6 +1,6 @@
 """Implicit time stepping of the continuum (no finite-element code here): a stepper of the
 generalized-alpha family for the one time loop of :mod:`mechanics.time_loop`, on a
-backend's dynamic problem (``dynamic_problem(scene, settings)`` of
+backend's dynamic problem (``dynamic_model(scene, settings)`` of
 :mod:`reference_fem.dolfinx_backend` or :mod:`reference_fem.felupe_backend`): ``geometry``,
 ``height``, ``u_dofs``, ``p_mask``, ``initial_acceleration``, ``solve_step``, ``energies``,
 ``positions``.

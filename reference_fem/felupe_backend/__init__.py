@@ -26,9 +26,10 @@ def static_model(scene, settings):
     return static_model(scene, settings)
 
 
-def dynamic_problem(scene, settings):
+def dynamic_model(scene, settings):
     """The equations of one time step of a dynamic scene (:mod:`.dynamic_problem`), for
-    :class:`reference_fem.stepper.ContinuumStepper`."""
+    :class:`reference_fem.stepper.ContinuumStepper` (not named ``dynamic_problem``: importing
+    that submodule would replace a package attribute of the same name)."""
     from .dynamic_problem import build_dynamic_problem
 
     return build_dynamic_problem(scene, settings)
