@@ -2,14 +2,17 @@
 finite-element code behind the same scenes and records as :mod:`reference_fem.dolfinx_backend`.
 
 FElupe (pure Python, numpy/scipy) gives the meshes, the Lagrange elements, the quadrature
-and the assembly; tensortrax differentiates the energies. What is ours: the energy of each
-continuum model written once for any law of :mod:`mechanics.laws` (:mod:`.laws`), the
-pressure terms of the mixed forms, the supports and dead loads, and the Newton system the
-shared statics (:mod:`reference_fem.statics`) drives (:mod:`.problem`).
+and the assembly; tensortrax differentiates the laws' energies (in the invariants; the
+chain rule to F is closed-form, checked against tensortrax's derivatives in F). What is
+ours: the energy of each continuum model written once for any law of :mod:`mechanics.laws`
+(:mod:`.laws`), the pressure terms of the mixed forms, the supports and dead loads, the
+Newton system the shared statics (:mod:`reference_fem.statics`) drives (:mod:`.problem`),
+and the equations of one time step, with the consistent mass, for the shared continuum
+stepper (:mod:`.dynamic_problem`).
 
 Offered: quadrilateral (2D) and hexahedral (3D) cells of degree 2 (Q2, or Q2/Q1
-Taylor-Hood with a pressure field), static analyses; plane strain (mixed or penalty),
-incompressible plane stress (F33 = 1/det F), 3D (mixed or penalty).
+Taylor-Hood with a pressure field), static and dynamic analyses; plane strain (mixed or
+penalty), incompressible plane stress (F33 = 1/det F), 3D (mixed or penalty).
 """
 
 

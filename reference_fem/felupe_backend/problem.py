@@ -80,41 +80,30 @@ def beam_meshes(scene: Scene, settings: FemSettings):
 
 class MixedMaterial:
     """W(F, phat) = psi(F) + mu phat (J - 1) [- (mu phat)^2 / (2 alpha)]: FElupe's material
-    interface (``gradient``/``hessian`` of the extracted fields [F, phat]); psi and the
-    F-derivatives by tensortrax, the phat-derivatives in closed form. Without a pressure
-    field (plane stress): W = psi(F)."""
+    interface (``gradient``/``hessian`` of the extracted fields [F, phat]); the
+    F-derivatives by the chain rule through the invariants (:class:`.laws.InvariantEnergy`,
+    the law's part by tensortrax; equal to tensortrax's derivatives of W(F) to round-off),
+    the phat-derivatives in closed form. Without a pressure field (plane stress): W = psi(F)."""
 
     def __init__(self, psi, mu: float, alpha: float | None, has_pressure: bool):
         self.psi, self.mu, self.alpha, self.has_pressure = psi, mu, alpha, has_pressure
 
-    def _W(self, F, phat):
-        return self.psi(F) + self.mu * phat * (_det(F) - 1.0)
-
     def evaluate(self, x, hessian: bool):
-        import tensortrax as tr
-
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             F = np.ascontiguousarray(x[0])
             if not self.has_pressure:
-                if hessian:
-                    return [tr.hessian(self.psi, ntrax=2)(F)]
-                return [tr.gradient(self.psi, ntrax=2)(F)]
+                return [self.psi.hessian(F) if hessian else self.psi.gradient(F)]
             phat = np.ascontiguousarray(x[1][0])
-            J = np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))
             if hessian:
+                J = np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))
                 dJ = J * np.moveaxis(np.linalg.inv(np.moveaxis(F, (0, 1), (-2, -1))), (-1, -2), (0, 1))
                 App = np.zeros_like(phat) if self.alpha is None else -self.mu ** 2 / self.alpha * np.ones_like(phat)
-                return [tr.hessian(self._W, ntrax=2)(F, phat), self.mu * dJ, App]
+                return [self.psi.hessian(F, self.mu * phat), self.mu * dJ, App]
+            J = np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))
             dp = self.mu * (J - 1.0)
             if self.alpha is not None:
                 dp = dp - self.mu ** 2 * phat / self.alpha
-            return [tr.gradient(self._W, ntrax=2)(F, phat), dp]
-
-
-def _det(F):
-    import tensortrax.math as tm
-
-    return tm.linalg.det(F)
+            return [self.psi.gradient(F, self.mu * phat), dp]
 
 
 def _simpson(coords: np.ndarray) -> np.ndarray:
