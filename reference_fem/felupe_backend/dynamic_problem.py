@@ -17,7 +17,8 @@ the rectangular Q2 cells). The tangent dR/dw:
     [ c (1 - am) M + (1 - af) K_uu(u_f, lam)    K_up(u_f)           ]
     [ K_pu(u_(n+1))  or  (1 - af) K_pu(u_f)     K_pp                ],   c = 1 / (beta dt^2)
 
-unsymmetric for the mixed model (its constraint row at the new state), solved by SuperLU.
+unsymmetric for the mixed model (its constraint row at the new state), solved by SuperLU
+in reverse Cuthill-McKee order (:func:`_solve`).
 The Newton scale and test are the DOLFINx backend's (||R|| over the free rows against
 ||f_ext|| + ||M a_n||).
 
@@ -34,7 +35,7 @@ shape functions.
 from __future__ import annotations
 
 import numpy as np
-from scipy.sparse import bmat, csr_matrix, diags
+from scipy.sparse import bmat, csr_matrix
 from scipy.sparse.linalg import spsolve
 
 from mechanics.time_loop import Energies, StepFailure
@@ -62,6 +63,25 @@ def _det_and_cofactor(F):
     return J, np.moveaxis(dJ, (-2, -1), (0, 1))
 
 
+def _solve(K, b: np.ndarray, cache: dict) -> np.ndarray:
+    """K^-1 b by SuperLU with partial pivoting, the unknowns in reverse Cuthill-McKee order
+    (a band; computed once per sparsity pattern, kept in ``cache``). On the pendulum's
+    140 x 4 Q2/Q1 tangent (5761 unknowns) 11 ms against 47 ms in SuperLU's default column
+    order (COLAMD); its minimum-degree orders are faster only without pivoting, which the
+    saddle point's zero pressure block forbids (with pivoting: 2.3 s)."""
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    K = K.tocsr()
+    key = (K.shape, K.nnz)
+    if cache.get("key") != key:
+        cache.update(key=key, perm=reverse_cuthill_mckee(K, symmetric_mode=False))
+    perm = cache["perm"]
+    x = np.empty_like(b)
+    with np.errstate(all="ignore"):
+        x[perm] = spsolve(K[perm][:, perm].tocsc(), b[perm], permc_spec="NATURAL")
+    return x
+
+
 class StepSystem:
     """One Newton system for :func:`mechanics.newton.newton`: R(w) and its tangent at w,
     the fixed rows removed (their unknowns stay as restored)."""
@@ -81,8 +101,7 @@ class StepSystem:
     def newton_update(self) -> float:
         free = self.p.free
         K = self.tangent(self.w)[free][:, free]
-        with np.errstate(all="ignore"):
-            dw = spsolve(K.tocsc(), self._R[free])
+        dw = _solve(K, self._R[free], self.p._order)
         if not np.all(np.isfinite(dw)):
             raise ArithmeticError("singular or failed linear solve (SuperLU)")
         self._dw[:] = 0.0
@@ -134,6 +153,7 @@ class DynamicProblem:
                            grad_v=[False], grad_u=[False])
         self._fe = fe
         self._points: dict = {}
+        self._order: dict = {}
         self.system = None
 
     # -- fields and FElupe's forms of the material ----------------------------------------------
@@ -188,9 +208,7 @@ class DynamicProblem:
             else:
                 scale = 1.0
                 A = bmat([[self.M, Kup], [None, Kpp]])
-        A = csr_matrix(A)[free][:, free]
-        with np.errstate(all="ignore"):
-            x = spsolve(A.tocsc(), b[free])
+        x = _solve(csr_matrix(A)[free][:, free], b[free], {})
         if not np.all(np.isfinite(x)):
             raise StepFailure("initial acceleration: singular or failed linear solve (SuperLU)", 1)
         w0 = np.zeros(self.n_dof)
