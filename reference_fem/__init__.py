@@ -25,5 +25,11 @@ The DOLFINx backend, :mod:`.dolfinx_backend` (the only place dolfinx is imported
 ``dynamic_problem`` (the forms of one time step), ``fem`` (every DOLFINx call),
 ``krylov`` (the iterative solver's PETSc side).
 
+The FElupe backend, :mod:`.felupe_backend` (``[fem] backend = "felupe"``): ``laws`` (each
+model's energy on tensortrax, its derivatives), ``problem`` (mesh, fields, supports,
+loads; the static Newton system), ``dynamic_problem`` (one time step's residual, tangent
+and mass). Each backend offers ``static_model`` and ``dynamic_model`` of a scene, driven by
+the shared :mod:`.statics` and :mod:`.stepper`.
+
 Importing the package imports nothing heavy; dolfinx is loaded when a problem is built.
 """
