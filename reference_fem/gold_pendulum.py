@@ -123,10 +123,22 @@ def _summary(rec: dict) -> dict:
 def convergence_case(law: str, model: str, dt: float = GOLD_DT, cells_height: int = GOLD_CELLS_HEIGHT,
                      aspect: float = GOLD_ASPECT, workers: int = 2, **kw) -> dict:
     """Base run, dt / 2 and one mesh refinement; differences, estimate, tolerances."""
-    base = pendulum_dict(law, model, dt, cells_height, aspect, **kw)
-    half = pendulum_dict(law, model, dt / 2, cells_height, aspect, **kw)
-    fine = pendulum_dict(law, model, dt, 2 * cells_height, aspect, **kw)
-    r_base, r_half, r_fine = _pool_map([base, half, fine], workers)
+    base, half, fine = convergence_scenes(law, model, dt, cells_height, aspect, **kw)
+    return estimate_case(law, model, base, dt, *_pool_map([base, half, fine], workers))
+
+
+def convergence_scenes(law: str, model: str, dt: float = GOLD_DT, cells_height: int = GOLD_CELLS_HEIGHT,
+                       aspect: float = GOLD_ASPECT, **kw) -> tuple[dict, dict, dict]:
+    """The three runs of a case: the base, dt / 2, and twice the cells in each direction."""
+    return (pendulum_dict(law, model, dt, cells_height, aspect, **kw),
+            pendulum_dict(law, model, dt / 2, cells_height, aspect, **kw),
+            pendulum_dict(law, model, dt, 2 * cells_height, aspect, **kw))
+
+
+def estimate_case(law: str, model: str, base: dict, dt: float, r_base: dict, r_half: dict, r_fine: dict) -> dict:
+    """A case from the records of its three runs (:func:`convergence_scenes`): the base's
+    tip history, the changes under dt / 2 and under refinement, the error estimate
+    e(t) = 4/3 d_dt + 2 d_h, the tolerances and the convergence verdict."""
     d_dt, d_h = differences(r_base, r_half), differences(r_base, r_fine)
     case = {"law": law, "continuum_model": model, "incompressibility": r_base.get("incompressibility"),
             "scene": base, "dt": dt, "fem": r_base.get("fem"), "ndof": r_base.get("ndof"),
@@ -135,6 +147,20 @@ def convergence_case(law: str, model: str, dt: float = GOLD_DT, cells_height: in
     if d_dt is None or d_h is None:
         case.update(converged=False, tip_history=None, values=None)
         return case
+    ts = [h["t"] for h in r_base["tip_history"]]
+    est = [4.0 / 3.0 * a + 2.0 * b for a, b in zip(d_dt, d_h)]
+    values = [{"t": h["t"], "x": h["x"], "y": h["y"],
+               "tolerance_m": max(TOLERANCE_FACTOR * e, TOLERANCE_FLOOR_M)}
+              for h, e in zip(r_base["tip_history"], est)]
+    later = [i for i, t in enumerate(ts) if t > 0]
+    case.update(
+        tip_history=r_base["tip_history"], values=values,
+        configurations=r_base.get("configurations"),
+        change_half_dt_m=d_dt, change_refined_mesh_m=d_h, error_estimate_m=est,
+        max_change_m=max(max(d_dt[i], d_h[i]) for i in later),
+        converged=all(d_dt[i] < CRITERION_M and d_h[i] < CRITERION_M for i in later),
+        energy_bound_J=energy_bound(law))
+    return case
     ts = [h["t"] for h in r_base["tip_history"]]
     est = [4.0 / 3.0 * a + 2.0 * b for a, b in zip(d_dt, d_h)]
     values = [{"t": h["t"], "x": h["x"], "y": h["y"],

@@ -12,9 +12,14 @@ computed by DOLFINx and by FElupe (``[fem] backend = "felupe"``, this study's ca
   (``solid_levels``, 12 x 1 x 1 ...);
 - the hard loads (the ``hard-loads`` study's continuum runs, one mesh each, up to 1000 g
   and 200 N): the same scene on the same mesh by both codes, so the two discretisations
-  are the same and the tips must agree to the Newton tolerance (:data:`SAME_MESH_RTOL`).
+  are the same and the tips must agree to the Newton tolerance (:data:`SAME_MESH_RTOL`);
+- the pendulum (the continuum pendulums of tests/gold/fem_pendulum.json, every law in plane
+  stress and exactly incompressible plane strain, on 140 x 4 Q2 cells): FElupe's on its own
+  mesh (``pendulum_aspect``: 112 x 4 cells) with its own estimate by the gold's rule
+  (:func:`reference_fem.gold_pendulum.estimate_case`: runs at dt / 2 and on twice the cells,
+  e(t) = 4/3 d_dt + 2 d_h), compared at t = 0.1 ... 0.5 s.
 
-The check: two Richardson values differ by no more than the sum of their error
+The check: two converged values differ by no more than the sum of their error
 estimates (each the estimated error of its finest level, :mod:`reference_fem.convergence`,
 so the bar is conservative for the extrapolated values); two same-mesh tips by no more
 than SAME_MESH_RTOL of the tip. A disagreement beyond the bars, or a run that one code
@@ -31,7 +36,7 @@ from .engine.case import make_case
 from .engine.report import Section, Table, mm
 from .hard_loads import _scene as hard_scene
 from .hard_loads import loads as hard_loads
-from .reference import GOLD_3D, VARIANT_LABEL, ContinuumReference, continuum_references, short
+from .reference import GOLD_3D, GOLD_PENDULUM, VARIANT_LABEL, ContinuumReference, continuum_references, short
 
 BACKEND = "felupe"
 # Same mesh, same elements, same quadrature: the two codes' discrete problems are the same,
@@ -81,6 +86,17 @@ def hard_load_scenes(hard: dict) -> list[tuple[str, str, dict, dict]]:
     return out
 
 
+def pendulum_scenes(law: str, model: str, aspect: float) -> tuple[dict, dict, dict]:
+    """FElupe's three runs of a pendulum case (base, dt / 2, twice the cells), named apart."""
+    from reference_fem.gold_pendulum import convergence_scenes
+
+    out = []
+    for d in convergence_scenes(law, model, aspect=aspect):
+        d["name"] += f"-ch{d['fem']['cells_height']}-dt{d['analysis']['dt'] * 1e3:g}ms"
+        out.append(_on_felupe(d))
+    return tuple(out)
+
+
 def cases(grid: dict, tiny: bool) -> list:
     from .engine.catalog import load_catalog
 
@@ -90,6 +106,8 @@ def cases(grid: dict, tiny: bool) -> list:
             for law in grid["solid_laws"] for lv in grid["solid_levels"]]
     hard = load_catalog(tiny=tiny)["hard-loads"].grid
     out += [make_case("continuum-agreement", "fenicsx", f) for _, _, _, f in hard_load_scenes(hard)]
+    out += [make_case("continuum-agreement", "fenicsx", d) for law in grid["pendulum_laws"]
+            for model in grid["pendulum_models"] for d in pendulum_scenes(law, model, grid["pendulum_aspect"])]
     return out
 
 
@@ -168,6 +186,43 @@ def hard_agreement(hard_records: list[dict], felupe_records: list[dict], hard: d
     return rows
 
 
+def pendulum_agreement(felupe_records: list[dict], grid: dict, gold=GOLD_PENDULUM) -> list[dict]:
+    """Rows of the pendulum, one per (law, model): at every output time t > 0 the distance
+    between DOLFINx's gold tip and FElupe's base run, and the bar e_DOLFINx(t) +
+    e_FElupe(t); the row's worst time (largest distance / bar)."""
+    from reference_fem.gold_pendulum import estimate_case
+
+    if not gold.exists():
+        return []
+    cases = json.loads(gold.read_text())["cases"]
+    by_name = {r["scene"]["name"]: r for r in felupe_records}
+    rows = []
+    for law in grid["pendulum_laws"]:
+        for model in grid["pendulum_models"]:
+            scenes = pendulum_scenes(law, model, grid["pendulum_aspect"])
+            recs = [by_name.get(d["name"]) for d in scenes]
+            g = cases.get(f"{law}/{model}")
+            if g is None or any(r is None for r in recs):
+                continue
+            f = estimate_case(law, model, scenes[0], scenes[0]["analysis"]["dt"], *recs)
+            row = {"law": law, "variant": model, "dolfinx": g, "felupe": f, "t": None, "diff": None,
+                   "bar": None, "agree": None}
+            if f.get("values") and g.get("values"):
+                worst = None
+                for a, b, ea, eb in zip(g["values"], f["values"], g["error_estimate_m"], f["error_estimate_m"]):
+                    if a["t"] <= 0 or abs(a["t"] - b["t"]) > 1e-12:
+                        continue
+                    d, bar = math.hypot(a["x"] - b["x"], a["y"] - b["y"]), ea + eb
+                    if worst is None or d / bar > worst[1] / worst[2]:
+                        worst = (a["t"], d, bar)
+                if worst:
+                    row.update(t=worst[0], diff=worst[1], bar=worst[2], agree=worst[1] <= worst[2])
+            elif f["status"] != "converged":
+                row["agree"] = False
+            rows.append(row)
+    return rows
+
+
 def _finest(ref) -> str | None:
     lv = [x for x in ref.levels if x["status"] == "converged"]
     return " x ".join(str(c) for c in lv[-1]["cells"]) if lv else None
@@ -232,7 +287,24 @@ def report(ctx) -> Section:
                              {3: ".4f", 4: ".4f", 5: ".4f", 6: ".4f", 8: ".1e", 9: ".1e"}),
                   "The hard-load references (plane stress, one mesh): the same scene on the same mesh by both "
                   "codes.")
-    every = rows + solid + hard
+    pend = pendulum_agreement(ctx.records(), ctx.study.grid)
+    if pend:
+        table = []
+        for r in pend:
+            g, f = r["dolfinx"], r["felupe"]
+            table.append([short(r["law"]), VARIANT_LABEL[r["variant"]],
+                          " x ".join(str(g["fem"][k]) for k in ("cells_length", "cells_height")),
+                          " x ".join(str(f["fem"][k]) for k in ("cells_length", "cells_height")) if f.get("fem") else None,
+                          r["t"], mm(r["diff"]), mm(r["bar"]), _yes(r["agree"]),
+                          mm(max(r["felupe"]["error_estimate_m"])) if f.get("error_estimate_m") else None])
+        sec.table(ctx, Table("continuum_agreement_pendulum",
+                             ["law", "model", "DOLFINx mesh", "FElupe mesh", "worst t (s)", "distance (mm)",
+                              "bar (mm)", "within bar", "FElupe max est. (mm)"], table,
+                             {4: ".1f", 5: ".4f", 6: ".4f", 8: ".4f"}),
+                  "The pendulum (pinned, released from horizontal; dt 1 ms, generalized-alpha rho_inf 0.8): the "
+                  "tip at t = 0.1 ... 0.5 s by DOLFINx (the gold) and by FElupe on its own mesh, each with its "
+                  "estimate e(t) = 4/3 d_dt + 2 d_h (bar = the sum); the time of the largest distance / bar.")
+    every = rows + solid + hard + pend
     label = [f"{short(r['law'])} {r.get('variant') or r.get('load')}" for r in every]
     bad = [n for n, r in zip(label, every) if r["agree"] is False]
     missing = [n for n, r in zip(label, every) if r["agree"] is None]

@@ -102,6 +102,7 @@ def gold_references(path) -> dict[tuple[str, str], tuple[float, float]]:
 
 
 GOLD_3D = Path(__file__).resolve().parent.parent / "tests" / "gold" / "fem_cantilever_3d.json"
+GOLD_PENDULUM = Path(__file__).resolve().parent.parent / "tests" / "gold" / "fem_pendulum.json"
 SOLID_LABEL = "3D beam (w = 7 mm)"
 
 
