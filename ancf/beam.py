@@ -13,10 +13,10 @@ the mass matrix only for dynamics, gravity only when the scene has it, the penal
 only in the penalised formulations.
 
 An element with a pressure field (``ElementSpec.pressure``) in a penalised formulation
-takes the penalty on the element-wise projection of J - 1 (:mod:`ancf.pressure`) instead
-of at the points: the points then see the material without its penalty
-(:attr:`BeamModel.pointwise`), and the model runs on the Python solvers, not the
-compiled loops, which know only pointwise energies (:attr:`BeamModel.compiled`).
+takes the penalty on the element-wise projection of J - 1 (:mod:`ancf.pressure`, the
+numpy reference) instead of at the points: the points then see the material without its
+penalty (:attr:`BeamModel.pointwise`), and the compiled loops read the projection as data
+(:func:`ancf.kernels.pressure_arrays` in :attr:`BeamModel.fused`).
 """
 from __future__ import annotations
 
@@ -63,8 +63,9 @@ class BeamModel:
     @property
     def compiled(self) -> bool:
         """Can the compiled loops (:mod:`ancf.compiled_statics`, :mod:`ancf.compiled_steps`)
-        run this model? Not with a pressure field: they know only pointwise energies."""
-        return self.pressure is None
+        run this model? Every beam model: a pressure field is data to them
+        (:attr:`fused`). (The Python solvers remain the reference they are tested against.)"""
+        return True
 
     @property
     def elastic_effects(self) -> list[str]:
@@ -169,12 +170,14 @@ class BeamModel:
     def fused(self) -> tuple:
         """What the compiled loops (:mod:`ancf.compiled_steps`, :mod:`ancf.compiled_statics`) read of
         the model: shape-function gradients, weights, element dofs, the law's tape (ops,
-        consts) and the band envelope (:func:`ancf.kernels.envelope`), contiguous."""
-        from .kernels import envelope
+        consts), the element pressure field (:func:`ancf.kernels.pressure_arrays`: empty
+        without one) and the band envelope (:func:`ancf.kernels.envelope`), contiguous."""
+        from .kernels import envelope, pressure_arrays
         ops, consts = self._tape
         return (np.ascontiguousarray(self._dN), np.ascontiguousarray(self._w, dtype=float),
                 np.ascontiguousarray(self._dofs, dtype=np.int64), np.ascontiguousarray(ops),
-                np.ascontiguousarray(consts, dtype=float), envelope(self._dofs, self.mesh.n_dof))
+                np.ascontiguousarray(consts, dtype=float), pressure_arrays(self.pressure, self._dN.shape[0]),
+                envelope(self._dofs, self.mesh.n_dof))
 
     @cached_property
     def static_kernel(self):

@@ -16,7 +16,8 @@ iteration is not called singular here: the attempt returns ``UNPIVOTED`` and
 :func:`ancf.statics.newton` redoes it with the Python loop, whose pivoted LU decides.
 
 Laws and elements stay data, as in :mod:`ancf.compiled_steps`: the compiled code sees the
-tabulated shape-function gradients, weights, element dofs and the law's tape.
+tabulated shape-function gradients, weights, element dofs, the law's tape and the element
+pressure field's arrays (:func:`ancf.kernels.pressure_arrays`, empty without one).
 """
 from __future__ import annotations
 
@@ -26,7 +27,7 @@ import numpy as np
 from numba import njit
 
 from .kernels import INADMISSIBLE, OK, assemble_fused, live_tape, col_constrain, col_ldlt, col_ldlt_solve, \
-    point_gradients, step_scratch
+    element_pressures, point_gradients, step_scratch
 from .tape import tape_batch
 
 # Outcomes of :func:`newton` (a converged attempt is CONVERGED).
@@ -46,11 +47,11 @@ def _residual(f, target, is_free, r):
 
 
 @njit(cache=True)
-def _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, f, S, chunk, R, Fb, ab, Jb):
+def _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb):
     """g(s) = R(u + s du) . du, the potential's slope along du (inf where det F <= 0)."""
     for i in range(u.shape[0]):
         ut[i] = u[i] + s * du[i]
-    if assemble_fused(ut, ut, 0.0, dN, w, dofs, ops, consts, f, S, False, chunk, R, Fb, ab, Jb) != OK:
+    if assemble_fused(ut, ut, 0.0, dN, w, dofs, ops, consts, pr, f, S, False, chunk, R, Fb, ab, Jb) != OK:
         return math.inf
     g = 0.0
     for i in range(u.shape[0]):
@@ -60,14 +61,14 @@ def _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, f, S, chunk,
 
 
 @njit(cache=True)
-def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, f, S, chunk, R, Fb, ab, Jb, ut):
+def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb, ut):
     """The step factor of :func:`ancf.statics._line_search`, the same rule."""
     g0 = 0.0
     for i in range(u.shape[0]):
         g0 += r[i] * du[i]
     if g0 >= 0.0:                    # not a descent direction (indefinite K): full step
         return 1.0
-    g1 = _slope(1.0, u, du, ut, target, is_free, dN, w, dofs, ops, consts, f, S, chunk, R, Fb, ab, Jb)
+    g1 = _slope(1.0, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb)
     if abs(g1) <= 0.5 * abs(g0):
         return 1.0
     lo, glo, hi, ghi = 0.0, g0, 1.0, g1
@@ -79,7 +80,7 @@ def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, f, S, chun
         else:
             s = 0.5 * (lo + hi)
         s = min(max(s, lo + 0.1 * (hi - lo)), hi - 0.1 * (hi - lo))
-        gs = _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, f, S, chunk, R, Fb, ab, Jb)
+        gs = _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb)
         if abs(gs) <= 0.5 * abs(g0):
             return s
         if gs < 0.0:
@@ -90,7 +91,7 @@ def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, f, S, chun
 
 
 @njit(cache=True)
-def newton(dN, w, dofs, ops, consts, first, fixed, b, target, u, atol, utol, hbeam, max_it, line_search,
+def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, u, atol, utol, hbeam, max_it, line_search,
            residuals):
     """Solve f_int(u) = target on the free dofs from u (in place), with the line search
     of :func:`ancf.statics._line_search` if ``line_search``; b: the half-bandwidth.
@@ -106,7 +107,7 @@ def newton(dN, w, dofs, ops, consts, first, fixed, b, target, u, atol, utol, hbe
     chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
     nres = 0
     for it in range(max_it + 1):
-        if assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, f, S, True, chunk, R, Fb, ab, Jb) != OK:
+        if assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, S, True, chunk, R, Fb, ab, Jb) != OK:
             return NOT_ADMISSIBLE, nres, nres
         rn = _residual(f, target, is_free, r)
         residuals[nres] = rn
@@ -129,7 +130,7 @@ def newton(dN, w, dofs, ops, consts, first, fixed, b, target, u, atol, utol, hbe
             if not abs(du[i]) < math.inf:
                 return UNPIVOTED, it, nres
         if line_search:
-            step = _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, f, S, chunk, R, Fb, ab,
+            step = _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab,
                                 Jb, ut)
             for i in range(n):
                 du[i] *= step
@@ -139,7 +140,7 @@ def newton(dN, w, dofs, ops, consts, first, fixed, b, target, u, atol, utol, hbe
             umax = max(umax, abs(u[i]))
             dumax = max(dumax, abs(du[i]))
         if it >= 1 and dumax <= utol * max(umax, hbeam):
-            if assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, f, S, False, chunk, R, Fb, ab, Jb) != OK:
+            if assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, S, False, chunk, R, Fb, ab, Jb) != OK:
                 return NOT_ADMISSIBLE, nres, nres
             residuals[nres] = _residual(f, target, is_free, r)
             return CONVERGED, it + 1, nres + 1
@@ -147,14 +148,18 @@ def newton(dN, w, dofs, ops, consts, first, fixed, b, target, u, atol, utol, hbe
 
 
 @njit(cache=True)
-def force_magnitude(u, dN, w, dofs, ops, consts, out):
+def force_magnitude(u, dN, w, dofs, ops, consts, pr, out):
     """out (n,) <- the internal force assembled from the magnitudes of its terms,
-    sum |w dN_s,j| (|2 W_a F_ij| + |W_J (cof F)_ij|): what the force's round-off is
-    relative to. Returns OK, or INADMISSIBLE if det F <= 0 somewhere."""
+    sum |w dN_s,j| (|2 W_a F_ij| + (|W_J| + |p|) |(cof F)_ij|), p the element pressure
+    field's value at the point (pr, :func:`ancf.kernels.pressure_arrays`; 0 without one):
+    what the force's round-off is relative to. Returns OK, or INADMISSIBLE if det F <= 0
+    somewhere."""
     ne = dofs.shape[0]
     nq, ns = dN.shape[0], dN.shape[1]
     chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], nq)
     W = R[ops.shape[0] - 1]
+    nk = pr[2].shape[0]
+    g, pk, pp = np.empty(nk), np.empty(nk), np.zeros(nq)
     out[:] = 0.0
     for e0 in range(0, ne, chunk):
         e1 = min(ne, e0 + chunk)
@@ -164,8 +169,10 @@ def force_magnitude(u, dN, w, dofs, ops, consts, out):
         tape_batch(ops, consts, ab, Jb, R, m, 1)
         p = 0
         for e in range(e0, e1):
+            if nk > 0:
+                element_pressures(pr, Jb, p, nq, g, pk, pp)
             for q in range(nq):
-                a2, aj, wq = abs(2.0 * W[1, p]), abs(W[2, p]), w[q]
+                a2, aj, wq = abs(2.0 * W[1, p]), abs(W[2, p]) + abs(pp[q]), w[q]
                 M0 = wq * (a2 * abs(Fb[p, 0]) + aj * abs(Fb[p, 3]))
                 M1 = wq * (a2 * abs(Fb[p, 1]) + aj * abs(Fb[p, 2]))
                 M2 = wq * (a2 * abs(Fb[p, 2]) + aj * abs(Fb[p, 1]))
@@ -182,8 +189,9 @@ class StaticKernel:
     """The arrays :func:`newton` reads, for one model (built once per model)."""
 
     def __init__(self, model):
-        dN, w, dofs, ops, consts, first = model.fused
-        self.data = (dN, w, dofs, *live_tape(ops, consts), first, np.ascontiguousarray(model.fixed, dtype=np.int64))
+        dN, w, dofs, ops, consts, pr, first = model.fused
+        self.data = (dN, w, dofs, *live_tape(ops, consts), pr, first,
+                     np.ascontiguousarray(model.fixed, dtype=np.int64))
         self.hbeam = float(model.mesh.height)
         self.bandwidth = int(model.mesh.bandwidth)
 
@@ -200,9 +208,9 @@ class StaticKernel:
     def roundoff_floor(self, u: np.ndarray) -> float:
         """eps ||sum of |terms| of f_int(u)||_2 over the free dofs (N): the size of the
         force's round-off; nan if det F <= 0 at u."""
-        dN, w, dofs, ops, consts, _, fixed = self.data
+        dN, w, dofs, ops, consts, pr, _, fixed = self.data
         out = np.empty(len(u))
-        if force_magnitude(np.ascontiguousarray(u, dtype=float), dN, w, dofs, ops, consts, out) != OK:
+        if force_magnitude(np.ascontiguousarray(u, dtype=float), dN, w, dofs, ops, consts, pr, out) != OK:
             return float("nan")
         out[fixed] = 0.0
         return float(np.finfo(float).eps * np.linalg.norm(out))

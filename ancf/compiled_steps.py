@@ -16,8 +16,9 @@ checks ``dt_min``, ``max_steps`` and ``wall_time`` there.
 
 Laws and elements stay data: the compiled code sees the tabulated shape-function
 gradients ``dN`` (nq, ns, 2) and weights ``w`` of the model, the element dofs, the law x
-formulation energy traced into a tape (:mod:`ancf.tape`), the mass matrix, the load and
-the fixed dofs. A registered element or law runs with no new compiled code. The
+formulation energy traced into a tape (:mod:`ancf.tape`), the element pressure field's
+arrays (:func:`ancf.kernels.pressure_arrays`, empty without one), the mass matrix, the
+load and the fixed dofs. A registered element or law runs with no new compiled code. The
 integrator's coefficients (alpha_m, alpha_f, beta, gamma) come from the integrator class
 as data.
 
@@ -176,7 +177,7 @@ def _correct(S, first, r, du, u, counters):
 
 
 @njit(cache=True)
-def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
+def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
          u_n, v_n, a_n, h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, full):
     """One step u_n, v_n, a_n -> u, v, a of size h. S holds the current factorisation
     (modified Newton), fstate = [h of that factorisation, 1 if valid]; wk: work (7, n);
@@ -206,7 +207,7 @@ def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewt
     while True:
         # residual M((1 - am) a + am a_n) + f(ue) - f_ext, with M a = c' M (u - u_pred) + M a_n
         refactor = (not modified) or fstate[1] == 0.0
-        status = assemble_fused(u, u_n, af, dN, w, dofs, ops, consts, f, S, refactor, chunk, R, Fb, ab, Jb)
+        status = assemble_fused(u, u_n, af, dN, w, dofs, ops, consts, pr, f, S, refactor, chunk, R, Fb, ab, Jb)
         counters[C_RESIDUALS] += 1
         if refactor:
             counters[C_TANGENTS] += 1
@@ -222,7 +223,7 @@ def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewt
         rho = rn / r_prev if since > 0 else -1.0      # contraction of the last iteration (-1: none yet)
         if modified and not refactor and (since >= max_mod or rho > kappa):
             refactor = True                           # poor contraction: tangent at this iterate
-            status = assemble_fused(u, u_n, af, dN, w, dofs, ops, consts, f, S, True, chunk, R, Fb, ab, Jb)
+            status = assemble_fused(u, u_n, af, dN, w, dofs, ops, consts, pr, f, S, True, chunk, R, Fb, ab, Jb)
             counters[C_TANGENTS] += 1
             if status != OK:
                 return status, it
@@ -246,7 +247,7 @@ def step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewt
 
 
 @njit(cache=True)
-def step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton, fnewton, u_n, v_n, a_n, h,
+def step_dg(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, inewton, fnewton, u_n, v_n, a_n, h,
             u, v, a, S, counters, wk, scratch):
     """One discrete-gradient step (:class:`ancf.integrators.DiscreteGradient`, its Python
     step compiled, the same iterations): Newton on
@@ -270,7 +271,7 @@ def step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton,
         Mv[i] *= -2.0 / h                             # the residual's constant part, -2 M v_n / h
     it = 0
     while True:
-        status = assemble_dg(u_n, u, dN, w, dofs, ops, consts, f, S, *scratch)
+        status = assemble_dg(u_n, u, dN, w, dofs, ops, consts, pr, f, S, *scratch)
         counters[C_RESIDUALS] += 1
         counters[C_TANGENTS] += 1
         if status != OK:
@@ -295,16 +296,16 @@ def step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton,
 
 
 @njit(cache=True)
-def energy(u, v, dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, tmp, chunk, R, Fb, ab, Jb):
+def energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, tmp, chunk, R, Fb, ab, Jb):
     """Kinetic + strain + gravity potential (J); the gravity potential is
     -f_ext . (q_ref + u) as in ancf.integrators.Integrator.energies."""
     col_matvec(Mc, first, v, tmp)
     kin = 0.5 * np.dot(v, tmp)
-    return kin + strain_energy_fused(u, dN, w, dofs, ops, consts, chunk, R, Fb, ab, Jb) - np.dot(f_ext, q_ref + u)
+    return kin + strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb) - np.dot(f_ext, q_ref + u)
 
 
 @njit(cache=True)
-def advance(dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, fixed, coef, inewton, fnewton,
+def advance(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, fixed, coef, inewton, fnewton,
             u, v, a, tstate, t_out, dt, budget, offset, S, fstate, counters):
     """Integrate in place from tstate[0] with the next step tstate[1] towards t_out, by
     the rules of :mod:`mechanics.time_loop` (landing, growth back to dt). Returns
@@ -340,17 +341,17 @@ def advance(dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, fixed, coef, inew
         vn[:] = v
         an[:] = a
         if dg:
-            status, its = step_dg(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, inewton, fnewton,
+            status, its = step_dg(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, inewton, fnewton,
                                   un, vn, an, step_h, u, v, a, S, counters, wk, scratch)
         else:
-            status, its = step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
+            status, its = step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
                                un, vn, an, step_h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, False)
         counters[C_ITERATIONS] += its
         if status != OK and status != SINGULAR and inewton[I_MODIFIED] != 0 and not dg:
             # a reused factorisation failed (divergence, det F <= 0, no convergence):
             # redo the step from the predictor with full Newton before rejecting it
             counters[C_FALLBACKS] += 1
-            status, its = step(dN, w, dofs, ops, consts, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
+            status, its = step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
                                un, vn, an, step_h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, True)
             counters[C_ITERATIONS] += its
         if status != OK:
@@ -372,7 +373,7 @@ def advance(dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, fixed, coef, inew
         h = _after_acceptance(h, step_h, 0.0, 0.0, dt, land)
         if every > 0 and not land and (offset + done) % every == 0:
             counters[C_ENERGIES] += 1
-            E = energy(u, v, dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, wk[5], chunk, R, Fb, ab, Jb)
+            E = energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, wk[5], chunk, R, Fb, ab, Jb)
             if not E <= tstate[4]:
                 tstate[4] = E          # (a NaN energy is kept: it is the peak that fails the run)
             if not E <= fnewton[F_ELIMIT]:
@@ -384,9 +385,9 @@ def advance(dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, fixed, coef, inew
 
 
 @njit(cache=True)
-def total_energy(u, v, dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref):
+def total_energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref):
     chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
-    return energy(u, v, dN, w, dofs, ops, consts, Mc, first, f_ext, q_ref, np.empty(u.shape[0]), chunk, R, Fb,
+    return energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, np.empty(u.shape[0]), chunk, R, Fb,
                   ab, Jb)
 
 
@@ -421,16 +422,16 @@ class CompiledLoop:
             raise ValueError(f"newton: {newton!r} is not one of {', '.join(NEWTON)}")
         b = model.mesh.bandwidth
         self.n, self.b = model.mesh.n_dof, b
-        dN, w, dofs, ops, consts, first = model.fused
+        dN, w, dofs, ops, consts, pr, first = model.fused
         ops, consts = live_tape(ops, consts)
-        self.data = (dN, w, dofs, ops, consts, column_band(M.ab, b), first, np.ascontiguousarray(f_ext, dtype=float),
+        self.data = (dN, w, dofs, ops, consts, pr, column_band(M.ab, b), first, np.ascontiguousarray(f_ext, dtype=float),
                      np.ascontiguousarray(model.mesh.reference, dtype=float),
                      np.ascontiguousarray(model.fixed, dtype=np.int64))
         c = coefficients
         self.coef = np.array([c["alpha_m"], c["alpha_f"], c["beta"], c["gamma"]], dtype=float)
         self.newton = newton
         self.inewton = np.zeros(8, np.int64)
-        self.inewton[I_MASS_SPLIT] = int(same_component_only(self.data[5]))
+        self.inewton[I_MASS_SPLIT] = int(same_component_only(self.data[6]))
         self.inewton[I_SCHEME] = DISCRETE_GRADIENT if discrete_gradient else ALPHA_FAMILY
         self.inewton[I_MAX_IT] = max_iterations
         self.inewton[I_MODIFIED] = int(newton != "full")
@@ -455,7 +456,7 @@ class CompiledLoop:
     def energy(self, u: np.ndarray, v: np.ndarray) -> float:
         """Kinetic + strain + dead-load potential (J), as the integrator's energies total."""
         return float(total_energy(np.ascontiguousarray(u, dtype=float), np.ascontiguousarray(v, dtype=float),
-                                  *self.data[:9]))
+                                  *self.data[:10]))
 
     def advance(self, s: time_loop.State, h: float, t_out: float, dt: float, budget: int, offset: int = 0,
                 energy_every: int = 0, energy_max: float = math.inf) -> Advanced:

@@ -32,11 +32,13 @@ GAUSS3_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
 
 
 @njit(cache=True, fastmath=FASTMATH)
-def assemble_dg(u0, u1, dN, w, dofs, ops, consts, f, Kc, chunk, R, Fb, ab, Jb, F0, F1, aL, JL, RL, W):
+def assemble_dg(u0, u1, dN, w, dofs, ops, consts, pr, f, Kc, chunk, R, Fb, ab, Jb, F0, F1, aL, JL, RL, W):
     """The discrete-gradient force f_dg(u0, u1) into f and the tangent at the midpoint
     F_m = (F0 + F1) / 2 with the discrete-gradient W^_a, W^_J in its first-order terms
     (not yet halved) into Kc: :meth:`ancf.beam.BeamModel.discrete_gradient_force_and_tangent`
-    compiled. W^_a = [int_0^1 W_a(a0 + s da, J0) + W_a(a0 + s da, J1) ds] / 2 and W^_J
+    compiled. The element pressure field pr (:func:`ancf.kernels.pressure_arrays`) takes
+    its exact discrete gradient in :func:`ancf.kernels.element_terms`: the pressure of
+    the mean J (J0 + J1) / 2 in the force, that of det F_m in the tangent. W^_a = [int_0^1 W_a(a0 + s da, J0) + W_a(a0 + s da, J1) ds] / 2 and W^_J
     alike, by 3-point Gauss in s; the second derivatives at (a_m, J_m). Returns OK or
     INADMISSIBLE (det F <= 0 at u0 or u1). Scratch: :func:`dg_scratch`."""
     ne, nq = dofs.shape[0], dN.shape[0]
@@ -73,5 +75,5 @@ def assemble_dg(u0, u1, dN, w, dofs, ops, consts, f, Kc, chunk, R, Fb, ab, Jb, F
             W[1, p] = 0.5 * wa
             W[2, p] = 0.5 * wj
             W[3, p], W[4, p], W[5, p] = Wm[3, p], Wm[4, p], Wm[5, p]
-        element_terms(Fb, W, e0, e1, dN, w, dofs, f, Kc, True)
+        element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, True)
     return OK

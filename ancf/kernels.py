@@ -213,13 +213,14 @@ def point_gradients(u, u_n, alpha_f, dN, dofs, e0, e1, Fb, ab, Jb):
 
 
 @njit(cache=True, fastmath=FASTMATH)
-def assemble_fused(u, u_n, alpha_f, dN, w, dofs, ops, consts, f, Kc, with_tangent, chunk, R, Fb, ab, Jb):
+def assemble_fused(u, u_n, alpha_f, dN, w, dofs, ops, consts, pr, f, Kc, with_tangent, chunk, R, Fb, ab, Jb):
     """Internal force at ue = (1 - alpha_f) u + alpha_f u_n into f (n,), and, if
     with_tangent, the upper half of the tangent into Kc (column band, (n, b + 1)).
     Per chunk of elements: F at all points, the tape over all of them, then per
     element P (and A = dP/dF), the element force and the upper half of the element
-    tangent by 2 x 2 node blocks, and one scatter per element. Returns OK, or
-    INADMISSIBLE if det F <= 0 (or is not finite) at a point."""
+    tangent by 2 x 2 node blocks, and one scatter per element. pr: the element
+    pressure field's arrays (:func:`pressure_arrays`; empty without one). Returns OK,
+    or INADMISSIBLE if det F <= 0 (or is not finite) at a point."""
     ne = dofs.shape[0]
     f[:] = 0.0
     if with_tangent:
@@ -230,12 +231,53 @@ def assemble_fused(u, u_n, alpha_f, dN, w, dofs, ops, consts, f, Kc, with_tangen
         if m < 0:
             return INADMISSIBLE
         tape_batch(ops, consts, ab, Jb, R, m, 2 if with_tangent else 1)
-        element_terms(Fb, R[ops.shape[0] - 1], e0, e1, dN, w, dofs, f, Kc, with_tangent)
+        element_terms(Fb, R[ops.shape[0] - 1], Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent)
     return OK
 
 
+def pressure_arrays(penalty, nq: int) -> tuple:
+    """The element pressure field as the compiled kernels read it (``pr``): q (nq, nk)
+    the pressure basis at the points, wq (nq, nk) the basis times the weights and
+    pm (nk, nk) = alpha M^-1, from a :class:`ancf.pressure.ProjectedPenalty`; with
+    ``penalty`` None (no pressure field, or no penalty) nk = 0 and the kernels' pressure
+    loops run zero times: one code path for every element."""
+    if penalty is None:
+        q, wq, pm = np.zeros((nq, 0)), np.zeros((nq, 0)), np.zeros((0, 0))
+    else:
+        q, wq, pm = penalty.q, penalty.wq, penalty.alpha * penalty.minv
+    return tuple(np.ascontiguousarray(x, dtype=float) for x in (q, wq, pm))
+
+
 @njit(cache=True, fastmath=FASTMATH)
-def element_terms(Fb, W, e0, e1, dN, w, dofs, f, Kc, with_tangent):
+def element_pressures(pr, Jb, p0, nq, g, pk, out):
+    """The element pressure at the element's points p0 .. p0 + nq - 1 into out (nq,), from
+    the J there (Jb): g = wq^T (J - 1), its coefficients pk = alpha M^-1 g
+    (:class:`ancf.pressure.ProjectedPenalty`). Returns the element's U_vol = g . pk / 2."""
+    pq, pw, pm = pr
+    nk = pm.shape[0]
+    for k in range(nk):
+        g[k] = 0.0
+    for q in range(nq):
+        d = Jb[p0 + q] - 1.0
+        for k in range(nk):
+            g[k] += pw[q, k] * d
+    U = 0.0
+    for k in range(nk):
+        s = 0.0
+        for l in range(nk):
+            s += pm[k, l] * g[l]
+        pk[k] = s
+        U += 0.5 * s * g[k]
+    for q in range(nq):
+        s = 0.0
+        for k in range(nk):
+            s += pq[q, k] * pk[k]
+        out[q] = s
+    return U
+
+
+@njit(cache=True, fastmath=FASTMATH)
+def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
     """Add the force (and the upper half of the tangent) of elements e0 .. e1 - 1 to f
     (and Kc), from F at their points (Fb, in :func:`point_gradients`' order) and the
     energy's (a, J) derivatives there, W (6, m) = (W, W_a, W_J, W_aa, W_aJ, W_JJ).
@@ -244,7 +286,18 @@ def element_terms(Fb, W, e0, e1, dN, w, dofs, f, Kc, with_tangent):
     them read only scalars hoisted out of the arrays, so the compiler packs each block
     update into one vector operation; an element whose dofs are contiguous and
     ascending (the mesh's numbering) is scattered without index arrays or branches.
-    Together: the 32 x HB2n-16 tangent 65 -> 46 us (force 17 us)."""
+    Together: the 32 x HB2n-16 tangent 65 -> 46 us (force 17 us).
+
+    The element pressure field pr (:func:`pressure_arrays`, nk functions; nothing to do
+    if nk = 0), :class:`ancf.pressure.ProjectedPenalty` compiled: its force
+    G^T p = sum_q w_q p(x_q) cof F_q : dF/du is the pointwise W_J term with W_J + p(x_q),
+    so the pressure at the points is added to W_J in P, that from the J in Jb (the
+    discrete gradient passes the mean of the two states' J there: the pressure of the
+    mean g, exactly the projected penalty's discrete gradient); its tangent
+    G^T alpha M^-1 G + sum_q w_q p(x_q) B^T d2J/dF2 B adds the pressure of det F_q to
+    W_J in the d cof/dF term of A (and Jb = det Fb outside the discrete gradient: the
+    same pressure) and the element's rank-nk matrix G^T (alpha M^-1 G),
+    G_kj = sum_q wq_qk cof F_q : dF_q/du_j, once per element."""
     nd = dofs.shape[1]
     nq, ns = dN.shape[0], dN.shape[1]
     b = Kc.shape[1] - 1
@@ -255,14 +308,29 @@ def element_terms(Fb, W, e0, e1, dN, w, dofs, f, Kc, with_tangent):
     A = np.empty((4, 4))
     Fv = np.empty(4)
     cof = np.empty(4)
+    pw, pm = pr[1], pr[2]
+    nk = pm.shape[0]
+    gk, pk = np.empty(nk), np.empty(nk)
+    pf = np.zeros(nq)            # the pressure at the points: in P (from Jb) ...
+    pt = np.zeros(nq)            # ... and in the tangent (from det Fb)
+    Jt = np.empty(nq)
+    G = np.empty((nk, nd))       # dg/du_e
+    H = np.empty((nk, nd))       # alpha M^-1 G
     p = 0
     for e in range(e0, e1):
         fl[:] = 0.0
         if with_tangent:
             Kb[:, :, :] = 0.0
+        if nk > 0:
+            element_pressures(pr, Jb, p, nq, gk, pk, pf)
+            if with_tangent:
+                for q in range(nq):
+                    Jt[q] = Fb[p + q, 0] * Fb[p + q, 3] - Fb[p + q, 1] * Fb[p + q, 2]
+                element_pressures(pr, Jt, 0, nq, gk, pk, pt)
+                G[:, :] = 0.0
         for q in range(nq):
             F00, F01, F10, F11 = Fb[p, 0], Fb[p, 1], Fb[p, 2], Fb[p, 3]
-            Wa, WJ = W[1, p], W[2, p]
+            Wa, WJ = W[1, p], W[2, p] + pf[q]
             wq = w[q]
             # P = 2 W_a F + W_J cof F;  f_(s, i) += w dN_s,j P_ij
             P0 = wq * (2.0 * Wa * F00 + WJ * F11)
@@ -286,10 +354,20 @@ def element_terms(Fb, W, e0, e1, dN, w, dofs, f, Kc, with_tangent):
                         A[i, k] = v
                         A[k, i] = v
                     A[i, i] += wq * 2.0 * Wa
-                A[0, 3] += wq * WJ
-                A[3, 0] += wq * WJ
-                A[1, 2] -= wq * WJ
-                A[2, 1] -= wq * WJ
+                WJt = W[2, p] + pt[q]
+                A[0, 3] += wq * WJt
+                A[3, 0] += wq * WJt
+                A[1, 2] -= wq * WJt
+                A[2, 1] -= wq * WJt
+                # G_k(s, i) += wq_qk (cof F : dF/du_(s, i)) = wq_qk sum_j cof_ij dN_s,j
+                for s in range(ns):
+                    g0, g1 = dN[q, s, 0], dN[q, s, 1]
+                    dx = F11 * g0 - F10 * g1
+                    dy = F00 * g1 - F01 * g0
+                    for k in range(nk):
+                        wk = pw[q, k]
+                        G[k, 2 * s] += wk * dx
+                        G[k, 2 * s + 1] += wk * dy
                 for j in range(2):
                     for l in range(2):
                         Av[j, l, 0] = A[j, l]
@@ -315,6 +393,22 @@ def element_terms(Fb, W, e0, e1, dN, w, dofs, f, Kc, with_tangent):
                         Kb[s, s2, 2] += x2 * h0 + y2 * h1
                         Kb[s, s2, 3] += x3 * h0 + y3 * h1
             p += 1
+        if with_tangent and nk > 0:
+            # the pressure's rank-nk part G^T (alpha M^-1 G), upper node blocks
+            for k in range(nk):
+                for j in range(nd):
+                    acc = 0.0
+                    for l in range(nk):
+                        acc += pm[k, l] * G[l, j]
+                    H[k, j] = acc
+            for s in range(ns):
+                for s2 in range(s, ns):
+                    for i in range(2):
+                        for kk in range(2):
+                            v = 0.0
+                            for k in range(nk):
+                                v += G[k, 2 * s + i] * H[k, 2 * s2 + kk]
+                            Kb[s, s2, 2 * i + kk] += v
         for i in range(nd):
             f[dofs[e, i]] += fl[i]
         if with_tangent:
@@ -353,11 +447,15 @@ def element_terms(Fb, W, e0, e1, dN, w, dofs, f, Kc, with_tangent):
 
 
 @njit(cache=True)
-def strain_energy_fused(u, dN, w, dofs, ops, consts, chunk, R, Fb, ab, Jb):
-    """U = sum_e sum_q w_q W(F_eq) (J); nan if det F <= 0 somewhere."""
+def strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb):
+    """U = sum_e sum_q w_q W(F_eq) (J), plus the element pressure field's
+    alpha/2 g^T M^-1 g per element (pr, :func:`pressure_arrays`); nan if det F <= 0
+    somewhere."""
     ne = dofs.shape[0]
     nq = dN.shape[0]
     last = ops.shape[0] - 1
+    nk = pr[2].shape[0]
+    g, pk, pq = np.empty(nk), np.empty(nk), np.empty(nq)
     total = 0.0
     for e0 in range(0, ne, chunk):
         e1 = min(ne, e0 + chunk)
@@ -367,6 +465,9 @@ def strain_energy_fused(u, dN, w, dofs, ops, consts, chunk, R, Fb, ab, Jb):
         tape_batch(ops, consts, ab, Jb, R, m, 0)
         for p in range(m):
             total += w[p % nq] * R[last, 0, p]
+        if nk > 0:
+            for p0 in range(0, m, nq):
+                total += element_pressures(pr, Jb, p0, nq, g, pk, pq)
     return total
 
 

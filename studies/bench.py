@@ -185,13 +185,13 @@ def kernel_rows(calls: int = 100, repeats: int = 10, elements: int = KERNEL_ELEM
         u = 1e-4 * np.random.default_rng(0).standard_normal(n)
         times = {}
         if model.compiled:
-            dN, w, dofs, ops, consts, _ = model.fused
+            dN, w, dofs, ops, consts, pr, _ = model.fused
             ops, consts = live_tape(ops, consts)
             f, K = np.empty(n), np.empty((n, model.mesh.bandwidth + 1))
             scratch = step_scratch(ops.shape[0], dN.shape[0])
             for name, tangent in (("force", False), ("tangent", True)):
                 def call():
-                    return assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, f, K, tangent, *scratch)
+                    return assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, K, tangent, *scratch)
                 if call() != 0:
                     raise RuntimeError(f"{element} {law} {form}: det F <= 0 at the benchmark state")
                 times[name] = _per_call(call, calls, repeats)

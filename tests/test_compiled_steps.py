@@ -72,6 +72,23 @@ def test_full_newton_reproduces_the_python_loop_step_for_step(analysis):
         assert o2.energy.total == pytest.approx(o1.energy.total, rel=1e-9, abs=1e-12)
 
 
+@pytest.mark.parametrize("integrator", ["generalized-alpha", "discrete-gradient"])
+def test_a_pressure_element_steps_as_the_python_loop(integrator):
+    """HB2n-40p in penalised plane strain (its pressure field in the compiled kernels as
+    data): full Newton step for step as the Python loop, whose force, tangent and energy
+    come from ancf.pressure.ProjectedPenalty."""
+    sc = scene(n=4, t_end=0.05, element="HB2n-40p", material=paper.material_table("yeoh", "plane-strain"),
+               newton="full", integrator=integrator)
+    py, _ = run(sc, compiled=False)
+    cc, integ = run(sc)
+    assert integ.advance is not None and integ.model.pressure is not None
+    assert cc.status == py.status == "converged"
+    assert (cc.steps, cc.rejected_steps, cc.newton_iterations) == (py.steps, py.rejected_steps, py.newton_iterations)
+    assert tip_difference(py, cc) < 1e-3 * TIP
+    for o1, o2 in zip(py.outputs, cc.outputs):
+        assert o2.energy.total == pytest.approx(o1.energy.total, rel=1e-9, abs=1e-12)
+
+
 @pytest.mark.parametrize("newton", ["chord", "modified"])
 def test_reused_factorisations_agree_with_the_python_loop(newton):
     sc = scene(newton=newton, dt=3e-3)
@@ -154,8 +171,8 @@ def test_fused_tangent_of_every_element_in_either_dof_numbering(element):
     rev = n - 1 - np.arange(n)
     for dofs, perm in ((model._dofs.astype(np.int64), np.arange(n)), ((n - 1 - model._dofs).astype(np.int64), rev)):
         f, Kc = np.empty(n), np.empty((n, b + 1))
-        assert assemble_fused(u[perm], un[perm], 0.4, model._dN, model._w, dofs, ops, consts, f, Kc, True,
-                              *scratch) == OK
+        assert assemble_fused(u[perm], un[perm], 0.4, model._dN, model._w, dofs, ops, consts, model.fused[5], f,
+                              Kc, True, *scratch) == OK
         np.testing.assert_allclose(f, f_ref[perm], rtol=0, atol=1e-12 * np.abs(f_ref).max())
         dense = np.zeros((n, n))
         for j in range(n):
@@ -165,21 +182,24 @@ def test_fused_tangent_of_every_element_in_either_dof_numbering(element):
         np.testing.assert_allclose(dense, expect, rtol=0, atol=1e-12 * np.abs(expect).max())
 
 
+@pytest.mark.parametrize("element", ["HB2n-16", "HB2n-40p"])
 @pytest.mark.parametrize("law", ["neo-hookean", "mooney-rivlin", "yeoh"])
 @pytest.mark.parametrize("form", ["paper", "plane-strain", "plane-stress"])
-def test_discrete_gradient_kernel_equals_the_model(law, form):
+def test_discrete_gradient_kernel_equals_the_model(element, law, form):
     """The compiled discrete-gradient force and midpoint tangent (assemble_dg) equal
-    BeamModel.discrete_gradient_force_and_tangent (numpy jets); the force's energy
-    identity du . f_dg = U(u1) - U(u0) holds to round-off."""
-    model = build_model(scene(material=paper.material_table(law, form), element="HB2n-16", n=4))
+    BeamModel.discrete_gradient_force_and_tangent (numpy jets; with HB2n-40p's pressure
+    field in the penalised forms, ProjectedPenalty.discrete_gradient_terms); the force's
+    energy identity du . f_dg = U(u1) - U(u0) holds to round-off."""
+    model = build_model(scene(material=paper.material_table(law, form), element=element, n=4))
+    assert (model.pressure is not None) == (element == "HB2n-40p" and form != "plane-stress")
     n, b = model.mesh.n_dof, model.mesh.bandwidth
     rng = np.random.default_rng(1)
     u0 = 1e-4 * rng.standard_normal(n)
     u1 = u0 + 1e-5 * rng.standard_normal(n)
     f_ref, K_ref = model.discrete_gradient_force_and_tangent(u0, u1)
-    dN, w, dofs, ops, consts, _ = model.fused
+    dN, w, dofs, ops, consts, pr, _ = model.fused
     f, Kc = np.empty(n), np.empty((n, b + 1))
-    assert assemble_dg(u0, u1, dN, w, dofs, ops, consts, f, Kc, *dg_scratch(ops.shape[0], dN.shape[0])) == OK
+    assert assemble_dg(u0, u1, dN, w, dofs, ops, consts, pr, f, Kc, *dg_scratch(ops.shape[0], dN.shape[0])) == OK
     np.testing.assert_allclose(f, f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())
     np.testing.assert_allclose(0.5 * Kc, column_band(K_ref.ab, b), rtol=0, atol=1e-12 * np.abs(K_ref.ab).max())
     dU = model.strain_energy(u1) - model.strain_energy(u0)
@@ -196,13 +216,15 @@ def _dense(ab, b):
     return out
 
 
+@pytest.mark.parametrize("element", ["HB2n-16", "HB2n-40p"])
 @pytest.mark.parametrize("law", ["neo-hookean", "mooney-rivlin", "yeoh"])
 @pytest.mark.parametrize("form", ["paper", "plane-strain", "plane-stress"])
-def test_fused_kernel_and_ldlt_equal_the_reference(law, form):
+def test_fused_kernel_and_ldlt_equal_the_reference(element, law, form):
     """Force, tangent (upper band) and energy of the fused kernel equal the model's
-    kernel at ue = 0.7 u + 0.3 u_n; LDL^T on the column band solves like gbsv and counts
-    the negative pivots (the inertia)."""
-    sc = scene(material=paper.material_table(law, form), element="HB2n-16", n=4)
+    kernel at ue = 0.7 u + 0.3 u_n (with HB2n-40p's pressure field in the penalised
+    forms: the band kernel plus ProjectedPenalty); LDL^T on the column band (HB2n-16)
+    solves like gbsv and counts the negative pivots (the inertia)."""
+    sc = scene(material=paper.material_table(law, form), element=element, n=4)
     model = build_model(sc)
     n, b = model.mesh.n_dof, model.mesh.bandwidth
     rng = np.random.default_rng(3)
@@ -212,11 +234,13 @@ def test_fused_kernel_and_ldlt_equal_the_reference(law, form):
     ops, consts = model._tape
     f, Kc = np.empty(n), np.empty((n, b + 1))
     scratch = step_scratch(ops.shape[0], model._dN.shape[0])
-    args = (model._dN, model._w, model._dofs.astype(np.int64), ops, consts)
+    args = (model._dN, model._w, model._dofs.astype(np.int64), ops, consts, model.fused[5])
     assert assemble_fused(u, un, 0.3, *args, f, Kc, True, *scratch) == OK
     np.testing.assert_allclose(f, f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())
     np.testing.assert_allclose(Kc, column_band(K_ref.ab, b), rtol=0, atol=1e-12 * np.abs(K_ref.ab).max())
     assert strain_energy_fused(u, *args, *scratch) == pytest.approx(model.strain_energy(u), rel=1e-12)
+    if element != "HB2n-16":
+        return          # the LDL^T checks below are about the factorisation, on HB2n-16's S
     M = model.mass_matrix()
     first = envelope(model._dofs, n)
     S = column_band(0.6 * K_ref.ab + 4e6 * M.ab, b)

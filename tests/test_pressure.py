@@ -40,13 +40,79 @@ def test_a_pressure_value_per_point_is_the_pointwise_penalty(rng):
     np.testing.assert_allclose(K2.ab, K0.ab, rtol=0, atol=1e-11 * np.abs(K0.ab).max())
 
 
-def test_a_pressure_element_runs_on_the_python_solvers_only_where_penalised():
-    """The compiled loops know pointwise energies only: a model with a pressure field says
-    so (compiled False); in plane stress there is no penalty and no pressure term."""
-    assert not small_model("HB2n-40p", "yeoh", "plane-strain").compiled
-    assert not small_model("HB2n-40p", "yeoh", "paper").compiled
+def test_a_pressure_element_runs_on_the_compiled_loops_with_its_field_as_data():
+    """The compiled loops read the pressure field as arrays (ancf.kernels.pressure_arrays):
+    q and w q (nq, nk), alpha M^-1 (nk, nk); empty (nk = 0) where there is none (plane
+    stress: no penalty, no pressure term), so every model runs compiled."""
+    for form in ("plane-strain", "paper"):
+        model = small_model("HB2n-40p", "yeoh", form)
+        q, wq, pm = model.fused[5]
+        nq, nk = len(model.rule.weight), 6
+        assert model.compiled and q.shape == wq.shape == (nq, nk) and pm.shape == (nk, nk)
+        np.testing.assert_allclose(pm, model.pressure.alpha * model.pressure.minv, rtol=1e-15)
     ps = small_model("HB2n-40p", "yeoh", "plane-stress")
-    assert ps.pressure is None and ps.compiled
+    assert ps.pressure is None and ps.compiled and all(0 in x.shape for x in ps.fused[5])
+
+
+def test_compiled_pressure_terms_equal_the_projected_penalty(rng):
+    """HB2n-40p in penalised plane strain (Yeoh, penalty 1e4 C10): the fused kernel's force
+    and tangent, its energy, the compiled discrete-gradient force and the round-off
+    magnitudes equal those of the pointwise law (the same kernels with the field empty)
+    plus ancf.pressure.ProjectedPenalty's, to round-off. (tests/test_beam.py and
+    tests/test_compiled_steps.py hold the whole against the numpy reference.)"""
+    from ancf.compiled_statics import force_magnitude
+    from ancf.dgkernel import assemble_dg, dg_scratch
+    from ancf.kernels import OK, assemble_fused, pressure_arrays, step_scratch, strain_energy_fused
+
+    model = small_model("HB2n-40p", "yeoh", "plane-strain", 4, 1e4 * paper.materials()["yeoh"]["C10"])
+    pen = model.pressure
+    u = bent_state(model, rng)
+    u1 = u + 1e-5 * rng.standard_normal(u.size)
+    dN, w, dofs, ops, consts, pr, first = model.fused
+    none = pressure_arrays(None, dN.shape[0])
+    n, b = u.size, int(model.mesh.bandwidth)
+    scratch = step_scratch(ops.shape[0], dN.shape[0])
+
+    def scatter(fe):
+        return np.bincount(model._dofs.ravel(), fe.ravel(), minlength=n)
+
+    def fused(p):
+        f, Kc = np.empty(n), np.zeros((n, b + 1))
+        assert assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, p, f, Kc, True, *scratch) == OK
+        return f, Kc
+
+    def dense(Kc):
+        K = np.zeros((n, n))
+        for j in range(n):
+            for i in range(max(0, j - b), j + 1):
+                K[i, j] = K[j, i] = Kc[j, b + i - j]
+        return K
+
+    F, F1 = model.gradients(u), model.gradients(u1)
+    fe, Ke = pen.element_terms(F)
+    f_all, K_all = fused(pr)
+    f_pt, K_pt = fused(none)
+    fp = scatter(fe)
+    assert np.abs(fp).max() > 0.1 * np.abs(f_all).max()          # the term is not negligible here
+    np.testing.assert_allclose(f_all - f_pt, fp, rtol=0, atol=1e-12 * np.abs(f_all).max())
+    Kp = model.pattern.assemble(Ke).to_sparse().toarray()
+    np.testing.assert_allclose(dense(K_all) - dense(K_pt), Kp, rtol=0, atol=1e-12 * np.abs(dense(K_all)).max())
+    U = strain_energy_fused(u, dN, w, dofs, ops, consts, pr, *scratch)
+    U_pt = strain_energy_fused(u, dN, w, dofs, ops, consts, none, *scratch)
+    assert U - U_pt == pytest.approx(pen.energy(F), rel=1e-11)
+    dgs = dg_scratch(ops.shape[0], dN.shape[0])
+    fd, Kd, fd_pt, Kd_pt = np.empty(n), np.empty((n, b + 1)), np.empty(n), np.empty((n, b + 1))
+    assert assemble_dg(u, u1, dN, w, dofs, ops, consts, pr, fd, Kd, *dgs) == OK
+    assert assemble_dg(u, u1, dN, w, dofs, ops, consts, none, fd_pt, Kd_pt, *dgs) == OK
+    fe_dg, Ke_dg = pen.discrete_gradient_terms(F, F1)
+    np.testing.assert_allclose(fd - fd_pt, scatter(fe_dg), rtol=0, atol=1e-12 * np.abs(fd).max())
+    np.testing.assert_allclose(0.5 * (dense(Kd) - dense(Kd_pt)), model.pattern.assemble(Ke_dg).to_sparse().toarray(),
+                               rtol=0, atol=1e-12 * np.abs(dense(Kd)).max())
+    assert (u1 - u) @ (fd - fd_pt) == pytest.approx(pen.energy(F1) - pen.energy(F), rel=1e-9)
+    mag, mag_pt = np.empty(n), np.empty(n)
+    assert force_magnitude(u, dN, w, dofs, ops, consts, pr, mag) == OK
+    assert force_magnitude(u, dN, w, dofs, ops, consts, none, mag_pt) == OK
+    np.testing.assert_allclose(mag - mag_pt, scatter(pen.magnitudes(F)), rtol=0, atol=1e-12 * mag.max())
 
 
 def test_a_rule_that_cannot_resolve_the_pressure_is_refused():
