@@ -237,15 +237,18 @@ def assemble_fused(u, u_n, alpha_f, dN, w, dofs, ops, consts, pr, f, Kc, with_ta
 
 def pressure_arrays(penalty, nq: int) -> tuple:
     """The element pressure field as the compiled kernels read it (``pr``): q (nq, nk)
-    the pressure basis at the points, wq (nq, nk) the basis times the weights and
-    pm (nk, nk) = alpha M^-1, from a :class:`ancf.pressure.ProjectedPenalty`; with
-    ``penalty`` None (no pressure field, or no penalty) nk = 0 and the kernels' pressure
-    loops run zero times: one code path for every element."""
+    the pressure basis at the points, wq (nq, nk) the basis times the weights,
+    pm (nk, nk) = alpha M^-1 and wl = wq L (nq, nk), pm = L L^T (Cholesky: the tangent's
+    G^T pm G = (L^T G)^T (L^T G), L^T G = wl^T dJ/du), from a
+    :class:`ancf.pressure.ProjectedPenalty`; with ``penalty`` None (no pressure field, or
+    no penalty) nk = 0 and the kernels' pressure loops run zero times: one code path for
+    every element."""
     if penalty is None:
-        q, wq, pm = np.zeros((nq, 0)), np.zeros((nq, 0)), np.zeros((0, 0))
+        q, wq, pm, wl = np.zeros((nq, 0)), np.zeros((nq, 0)), np.zeros((0, 0)), np.zeros((nq, 0))
     else:
         q, wq, pm = penalty.q, penalty.wq, penalty.alpha * penalty.minv
-    return tuple(np.ascontiguousarray(x, dtype=float) for x in (q, wq, pm))
+        wl = wq @ np.linalg.cholesky(0.5 * (pm + pm.T))
+    return tuple(np.ascontiguousarray(x, dtype=float) for x in (q, wq, pm, wl))
 
 
 @njit(cache=True, fastmath=FASTMATH)
@@ -253,7 +256,7 @@ def element_pressures(pr, Jb, p0, nq, g, pk, out):
     """The element pressure at the element's points p0 .. p0 + nq - 1 into out (nq,), from
     the J there (Jb): g = wq^T (J - 1), its coefficients pk = alpha M^-1 g
     (:class:`ancf.pressure.ProjectedPenalty`). Returns the element's U_vol = g . pk / 2."""
-    pq, pw, pm = pr
+    pq, pw, pm = pr[0], pr[1], pr[2]
     nk = pm.shape[0]
     for k in range(nk):
         g[k] = 0.0
@@ -296,8 +299,11 @@ def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
     mean g, exactly the projected penalty's discrete gradient); its tangent
     G^T alpha M^-1 G + sum_q w_q p(x_q) B^T d2J/dF2 B adds the pressure of det F_q to
     W_J in the d cof/dF term of A (and Jb = det Fb outside the discrete gradient: the
-    same pressure) and the element's rank-nk matrix G^T (alpha M^-1 G),
-    G_kj = sum_q wq_qk cof F_q : dF_q/du_j, once per element."""
+    same pressure) and the element's rank-nk matrix G^T alpha M^-1 G = Gl^T Gl,
+    Gl = L^T G = sum_q wl_q^T cof F_q : dF_q/du (alpha M^-1 = L L^T), accumulated at the
+    points, four entries at a time (the tangent of 640 x HB2n-40p, 30 points, 6 pressure
+    functions: 6.7 ms without the field, 9.4 ms with it; with G and alpha M^-1 G by plain
+    loops, which the compiler did not vectorise, 12.3 ms)."""
     nd = dofs.shape[1]
     nq, ns = dN.shape[0], dN.shape[1]
     b = Kc.shape[1] - 1
@@ -308,14 +314,15 @@ def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
     A = np.empty((4, 4))
     Fv = np.empty(4)
     cof = np.empty(4)
-    pw, pm = pr[1], pr[2]
-    nk = pm.shape[0]
+    wl = pr[3]
+    nk = wl.shape[1]
     gk, pk = np.empty(nk), np.empty(nk)
     pf = np.zeros(nq)            # the pressure at the points: in P (from Jb) ...
     pt = np.zeros(nq)            # ... and in the tangent (from det Fb)
     Jt = np.empty(nq)
-    G = np.empty((nk, nd))       # dg/du_e
-    H = np.empty((nk, nd))       # alpha M^-1 G
+    dj = np.empty(nd)            # dJ/du_e at a point
+    Gl = np.empty((nk, nd))      # L^T dg/du_e
+    tail = nd - nd % 4
     p = 0
     for e in range(e0, e1):
         fl[:] = 0.0
@@ -327,7 +334,7 @@ def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
                 for q in range(nq):
                     Jt[q] = Fb[p + q, 0] * Fb[p + q, 3] - Fb[p + q, 1] * Fb[p + q, 2]
                 element_pressures(pr, Jt, 0, nq, gk, pk, pt)
-                G[:, :] = 0.0
+                Gl[:, :] = 0.0
         for q in range(nq):
             F00, F01, F10, F11 = Fb[p, 0], Fb[p, 1], Fb[p, 2], Fb[p, 3]
             Wa, WJ = W[1, p], W[2, p] + pf[q]
@@ -359,15 +366,24 @@ def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
                 A[3, 0] += wq * WJt
                 A[1, 2] -= wq * WJt
                 A[2, 1] -= wq * WJt
-                # G_k(s, i) += wq_qk (cof F : dF/du_(s, i)) = wq_qk sum_j cof_ij dN_s,j
-                for s in range(ns):
-                    g0, g1 = dN[q, s, 0], dN[q, s, 1]
-                    dx = F11 * g0 - F10 * g1
-                    dy = F00 * g1 - F01 * g0
+                if nk > 0:
+                    # dJ/du_(s, i) = cof F : dF/du_(s, i) = sum_j cof_ij dN_s,j at this point,
+                    # Gl += wl_q^T dJ/du (four entries at a time: one vector operation)
+                    for s in range(ns):
+                        g0, g1 = dN[q, s, 0], dN[q, s, 1]
+                        dj[2 * s] = F11 * g0 - F10 * g1
+                        dj[2 * s + 1] = F00 * g1 - F01 * g0
                     for k in range(nk):
-                        wk = pw[q, k]
-                        G[k, 2 * s] += wk * dx
-                        G[k, 2 * s + 1] += wk * dy
+                        c = wl[q, k]
+                        Gk = Gl[k]
+                        for j in range(0, tail, 4):
+                            d0, d1, d2, d3 = dj[j], dj[j + 1], dj[j + 2], dj[j + 3]
+                            Gk[j] += c * d0
+                            Gk[j + 1] += c * d1
+                            Gk[j + 2] += c * d2
+                            Gk[j + 3] += c * d3
+                        for j in range(tail, nd):
+                            Gk[j] += c * dj[j]
                 for j in range(2):
                     for l in range(2):
                         Av[j, l, 0] = A[j, l]
@@ -394,21 +410,16 @@ def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
                         Kb[s, s2, 3] += x3 * h0 + y3 * h1
             p += 1
         if with_tangent and nk > 0:
-            # the pressure's rank-nk part G^T (alpha M^-1 G), upper node blocks
-            for k in range(nk):
-                for j in range(nd):
-                    acc = 0.0
-                    for l in range(nk):
-                        acc += pm[k, l] * G[l, j]
-                    H[k, j] = acc
+            # the pressure's rank-nk part G^T pm G = Gl^T Gl, into the upper node blocks
             for s in range(ns):
-                for s2 in range(s, ns):
-                    for i in range(2):
-                        for kk in range(2):
-                            v = 0.0
-                            for k in range(nk):
-                                v += G[k, 2 * s + i] * H[k, 2 * s2 + kk]
-                            Kb[s, s2, 2 * i + kk] += v
+                for k in range(nk):
+                    x0, x1 = Gl[k, 2 * s], Gl[k, 2 * s + 1]
+                    for s2 in range(s, ns):
+                        h0, h1 = Gl[k, 2 * s2], Gl[k, 2 * s2 + 1]
+                        Kb[s, s2, 0] += x0 * h0
+                        Kb[s, s2, 1] += x0 * h1
+                        Kb[s, s2, 2] += x1 * h0
+                        Kb[s, s2, 3] += x1 * h1
         for i in range(nd):
             f[dofs[e, i]] += fl[i]
         if with_tangent:

@@ -42,14 +42,17 @@ def test_a_pressure_value_per_point_is_the_pointwise_penalty(rng):
 
 def test_a_pressure_element_runs_on_the_compiled_loops_with_its_field_as_data():
     """The compiled loops read the pressure field as arrays (ancf.kernels.pressure_arrays):
-    q and w q (nq, nk), alpha M^-1 (nk, nk); empty (nk = 0) where there is none (plane
-    stress: no penalty, no pressure term), so every model runs compiled."""
+    q and w q (nq, nk), alpha M^-1 = L L^T (nk, nk), w q L (nq, nk); empty (nk = 0) where
+    there is none (plane stress: no penalty, no pressure term), so every model runs
+    compiled."""
     for form in ("plane-strain", "paper"):
         model = small_model("HB2n-40p", "yeoh", form)
-        q, wq, pm = model.fused[5]
+        q, wq, pm, wl = model.fused[5]
         nq, nk = len(model.rule.weight), 6
-        assert model.compiled and q.shape == wq.shape == (nq, nk) and pm.shape == (nk, nk)
+        assert model.compiled and q.shape == wq.shape == wl.shape == (nq, nk) and pm.shape == (nk, nk)
         np.testing.assert_allclose(pm, model.pressure.alpha * model.pressure.minv, rtol=1e-15)
+        np.testing.assert_allclose(wl.T @ np.linalg.pinv(wq).T, np.linalg.cholesky(pm).T, rtol=0,
+                                   atol=1e-12 * np.abs(pm).max() ** 0.5)
     ps = small_model("HB2n-40p", "yeoh", "plane-stress")
     assert ps.pressure is None and ps.compiled and all(0 in x.shape for x in ps.fused[5])
 
