@@ -67,8 +67,8 @@ class ProjectedPenalty:
     def _G(self, f: np.ndarray) -> np.ndarray:
         """dg/du_e (ne, nk, nd) at gradients f (ne, nq, 4)."""
         cof = np.stack([f[..., 3], -f[..., 2], -f[..., 1], f[..., 0]], axis=-1)
-        dJ = np.einsum("eqa,qaj->eqj", cof, self.B)            # (ne, nq, nd)
-        return np.einsum("qk,eqj->ekj", self.wq, dJ)
+        dJ = (cof[:, :, None, :] @ self.B[None])[:, :, 0]     # (ne, nq, nd)
+        return self.wq.T @ dJ
 
     def element_terms(self, F: np.ndarray, tangent: bool = True):
         """Element forces (ne, nd) and, if asked, stiffness blocks (ne, nd, nd)."""
@@ -78,8 +78,9 @@ class ProjectedPenalty:
         if not tangent:
             return fe, None
         pw = (p @ self.q.T) * self.w                           # pressure at the points times weight
-        Ke = self.alpha * np.einsum("eki,kl,elj->eij", G, self.minv, G) \
-            + np.einsum("eq,qij->eij", pw, self.BEB)
+        nd = G.shape[-1]
+        Ke = self.alpha * np.swapaxes(G, 1, 2) @ (self.minv @ G) \
+            + (pw @ self.BEB.reshape(len(self.w), -1)).reshape(-1, nd, nd)
         return fe, Ke
 
     def discrete_gradient_terms(self, F0: np.ndarray, F1: np.ndarray):
