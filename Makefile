@@ -20,7 +20,7 @@ test-slow: setup
 
 study: setup
 	$(PY) -m studies run all
-	$(PY) -m studies card paper HB2n-40p HB2n-20 --import examples.transversely_cubic
+	$(PY) -m studies card paper HB2n-40p HB2n-60p HB2n-20 --import examples.transversely_cubic
 	$(PY) -m studies card HB2n-20xy --import examples.cubic_slope
 	$(PY) -m studies audit
 

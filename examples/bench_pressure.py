@@ -46,7 +46,7 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--element", default="HB2n-40p")
     ap.add_argument("--law", default="yeoh")
-    ap.add_argument("--import", dest="module", help="a module that registers the element (examples.quintic_pressure)")
+    ap.add_argument("--import", dest="module", help="a module that registers the element (e.g. examples.transversely_cubic)")
     a = ap.parse_args(argv)
     if a.module:
         __import__(a.module)

@@ -124,12 +124,14 @@ def _row(law: str, variant: str, ra: ContinuumReference, rb: ContinuumReference)
     return row
 
 
-def _is_solid(rec: dict) -> bool:
-    return (rec["scene"].get("fem") or {}).get("model") == "3d"
-
-
-def _is_hard(rec: dict) -> bool:
-    return rec["scene"]["name"].startswith("hard-")
+def _kind(rec: dict) -> str:
+    """Which truth a FElupe record belongs to: "pendulum", "solid" (3D), "hard" or "table3"."""
+    s = rec["scene"]
+    if s.get("analysis", {}).get("kind") == "dynamic":
+        return "pendulum"
+    if (s.get("fem") or {}).get("model") == "3d":
+        return "solid"
+    return "hard" if s["name"].startswith("hard-") else "table3"
 
 
 def agreement(dolfinx_records: list[dict], felupe_records: list[dict]) -> list[dict]:
@@ -137,8 +139,7 @@ def agreement(dolfinx_records: list[dict], felupe_records: list[dict]) -> list[d
     estimates (m), the distance between the tips, the bar (sum of the estimates) and
     whether the tips agree within it (None without a Richardson value on either side)."""
     a = continuum_references([r for r in dolfinx_records if _backend(r) == "dolfinx"])
-    b = continuum_references([r for r in felupe_records if _backend(r) == BACKEND
-                              and not _is_solid(r) and not _is_hard(r)])
+    b = continuum_references([r for r in felupe_records if _backend(r) == BACKEND and _kind(r) == "table3"])
     return [_row(key[0], key[1], a[key], b[key]) for key in b if key in a]
 
 
@@ -148,7 +149,7 @@ def solid_agreement(felupe_records: list[dict], gold=GOLD_3D) -> list[dict]:
     if not gold.exists():
         return []
     cases = json.loads(gold.read_text())["cases"]
-    b = continuum_references([r for r in felupe_records if _backend(r) == BACKEND and _is_solid(r)])
+    b = continuum_references([r for r in felupe_records if _backend(r) == BACKEND and _kind(r) == "solid"])
     rows = []
     for (law, variant), rb in b.items():
         c = cases.get(f"{law}/3d")
