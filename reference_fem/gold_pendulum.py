@@ -161,20 +161,6 @@ def estimate_case(law: str, model: str, base: dict, dt: float, r_base: dict, r_h
         converged=all(d_dt[i] < CRITERION_M and d_h[i] < CRITERION_M for i in later),
         energy_bound_J=energy_bound(law))
     return case
-    ts = [h["t"] for h in r_base["tip_history"]]
-    est = [4.0 / 3.0 * a + 2.0 * b for a, b in zip(d_dt, d_h)]
-    values = [{"t": h["t"], "x": h["x"], "y": h["y"],
-               "tolerance_m": max(TOLERANCE_FACTOR * e, TOLERANCE_FLOOR_M)}
-              for h, e in zip(r_base["tip_history"], est)]
-    later = [i for i, t in enumerate(ts) if t > 0]
-    case.update(
-        tip_history=r_base["tip_history"], values=values,
-        configurations=r_base.get("configurations"),
-        change_half_dt_m=d_dt, change_refined_mesh_m=d_h, error_estimate_m=est,
-        max_change_m=max(max(d_dt[i], d_h[i]) for i in later),
-        converged=all(d_dt[i] < CRITERION_M and d_h[i] < CRITERION_M for i in later),
-        energy_bound_J=energy_bound(law))
-    return case
 
 
 def write_pendulum_gold(out_dir: Path, models=("plane-stress", "plane-strain"), workers: int = 2,

@@ -238,3 +238,16 @@ def observed_orders(cells: list[int], errors: list[float | None]) -> list[float 
 def boundary(points: np.ndarray, tol: float = 1e-12) -> np.ndarray:
     """Mask of the points (n, dim) on the boundary of the unit square / cube."""
     return np.any((points < tol) | (points > 1.0 - tol), axis=1)
+
+
+def newton_solve(system, scale: float, tol: float, max_iterations: int) -> tuple[str, str | None, int]:
+    """(status, reason, iterations) of Newton on a backend's manufactured system
+    (:func:`mechanics.newton.newton`, the one loop of the continuum: to ||R|| <= tol scale)."""
+    from mechanics.newton import newton
+    from mechanics.time_loop import StepFailure
+
+    try:
+        its, _ = newton(system, scale, tol, max_iterations)
+    except StepFailure as e:
+        return "failed", str(e), e.iterations
+    return "converged", None, its

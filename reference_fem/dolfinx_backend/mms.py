@@ -29,7 +29,7 @@ import dolfinx.mesh
 
 from mechanics.laws import get_law
 
-from ..mms import Manufactured
+from ..mms import Manufactured, newton_solve
 from ..settings import default_quadrature_degree
 from .fem import COMM, Discretisation, Functional, NonlinearSystem, VectorNorm
 from .models import get_model
@@ -132,22 +132,7 @@ def solve(ms: Manufactured, n: int, tol: float = 1e-10, max_iterations: int = 25
             bcs.append(dolfinx.fem.dirichletbc(pD, dofs, disc.W.sub(1)))
     system = NonlinearSystem(disc, residual, bcs)
     scale = VectorNorm(sources, bcs)() or 1.0
-    status, reason, it = "failed", f"Newton did not converge in {max_iterations} iterations", 0
-    for it in range(max_iterations + 1):
-        r = system.residual_norm()
-        if not math.isfinite(r):
-            reason = "non-finite residual"
-            break
-        if r <= tol * scale:
-            status, reason = "converged", None
-            break
-        if it == max_iterations:
-            break
-        try:
-            system.newton_update()
-        except ArithmeticError as e:
-            reason = str(e)
-            break
+    status, reason, it = newton_solve(system, scale, tol, max_iterations)
     out = {"status": status, "reason": reason, "cells": n, "ndof": int(disc.ndof),
            "n_free": int(disc.ndof - sum(bc.dof_indices()[1] for bc in bcs)), "newton_iterations": it,
            "error_u": None, "error_p": None, "norm_u": None, "norm_p": None}

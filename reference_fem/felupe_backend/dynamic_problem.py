@@ -18,7 +18,7 @@ the rectangular Q2 cells). The tangent dR/dw:
     [ K_pu(u_(n+1))  or  (1 - af) K_pu(u_f)     K_pp                ],   c = 1 / (beta dt^2)
 
 unsymmetric for the mixed model (its constraint row at the new state), solved by SuperLU
-in reverse Cuthill-McKee order (:func:`_solve`).
+in reverse Cuthill-McKee order (:func:`.problem.solve_sparse`).
 The Newton scale and test are the DOLFINx backend's (||R|| over the free rows against
 ||f_ext|| + ||M a_n||).
 
@@ -36,12 +36,11 @@ from __future__ import annotations
 
 import numpy as np
 from scipy.sparse import bmat, csr_matrix
-from scipy.sparse.linalg import spsolve
 
 from mechanics.time_loop import Energies, StepFailure
 
 from ..geometry import geometry_for
-from .problem import Setup, StaticModel, set_up
+from .problem import NewtonSystem, Setup, StaticModel, set_up, solve_sparse
 
 
 def _assemble(fun, v, dV, u=None, grad_v=None, grad_u=None):
@@ -63,66 +62,14 @@ def _det_and_cofactor(F):
     return J, np.moveaxis(dJ, (-2, -1), (0, 1))
 
 
-def _solve(K, b: np.ndarray, cache: dict) -> np.ndarray:
-    """K^-1 b by SuperLU with partial pivoting, the unknowns in reverse Cuthill-McKee order
-    (a band; computed once per sparsity pattern, kept in ``cache``). On the pendulum's
-    140 x 4 Q2/Q1 tangent (5761 unknowns) 11 ms against 47 ms in SuperLU's default column
-    order (COLAMD); its minimum-degree orders are faster only without pivoting, which the
-    saddle point's zero pressure block forbids (with pivoting: 2.3 s)."""
-    from scipy.sparse.csgraph import reverse_cuthill_mckee
-
-    K = K.tocsr()
-    key = (K.shape, K.nnz)
-    if cache.get("key") != key:
-        cache.update(key=key, perm=reverse_cuthill_mckee(K, symmetric_mode=False))
-    perm = cache["perm"]
-    x = np.empty_like(b)
-    with np.errstate(all="ignore"):
-        x[perm] = spsolve(K[perm][:, perm].tocsc(), b[perm], permc_spec="NATURAL")
-    return x
-
-
-class StepSystem:
-    """One Newton system for :func:`mechanics.newton.newton`: R(w) and its tangent at w,
-    the fixed rows removed (their unknowns stay as restored)."""
+class StepSystem(NewtonSystem):
+    """One step's Newton system for :func:`mechanics.newton.newton`: R(w) and its tangent at
+    w, the fixed rows removed (their unknowns stay as restored); the problem's ordering of
+    the solve is shared by every step."""
 
     def __init__(self, problem: "DynamicProblem", residual, tangent):
-        self.p, self.residual, self.tangent = problem, residual, tangent
-        self.w = np.zeros(problem.n_dof)
-        self._dw = np.zeros(problem.n_dof)
-        self._R = None
-
-    def residual_norm(self) -> float:
-        r = self.residual(self.w)
-        r[self.p.fixed] = 0.0
-        self._R = r
-        return float(np.linalg.norm(r))
-
-    def newton_update(self) -> float:
-        free = self.p.free
-        K = self.tangent(self.w)[free][:, free]
-        dw = _solve(K, self._R[free], self.p._order)
-        if not np.all(np.isfinite(dw)):
-            raise ArithmeticError("singular or failed linear solve (SuperLU)")
-        self._dw[:] = 0.0
-        self._dw[free] = dw
-        self.w -= self._dw
-        return float(np.linalg.norm(dw))
-
-    def last_increment(self) -> np.ndarray:
-        return self._dw
-
-    def state_norm(self) -> float:
-        return float(np.linalg.norm(self.w))
-
-    def save(self) -> np.ndarray:
-        return self.w.copy()
-
-    def restore(self, saved: np.ndarray) -> None:
-        self.w[:] = saved
-
-    def reset(self) -> None:
-        self.w[:] = 0.0
+        super().__init__(problem.n_dof, problem.fixed, problem._order)
+        self.residual, self.tangent = residual, tangent
 
 
 class DynamicProblem:
@@ -208,7 +155,7 @@ class DynamicProblem:
             else:
                 scale = 1.0
                 A = bmat([[self.M, Kup], [None, Kpp]])
-        x = _solve(csr_matrix(A)[free][:, free], b[free], {})
+        x = solve_sparse(csr_matrix(A)[free][:, free], b[free], {})
         if not np.all(np.isfinite(x)):
             raise StepFailure("initial acceleration: singular or failed linear solve (SuperLU)", 1)
         w0 = np.zeros(self.n_dof)

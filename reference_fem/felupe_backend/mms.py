@@ -19,7 +19,7 @@ import time
 
 import numpy as np
 
-from ..mms import Manufactured, boundary
+from ..mms import Manufactured, boundary, newton_solve
 from ..settings import default_quadrature_degree
 from .laws import strain_energy
 from .problem import MixedMaterial, Setup, System
@@ -102,22 +102,7 @@ def solve(ms: Manufactured, n: int, tol: float = 1e-10, max_iterations: int = 25
     if model.has_pressure:
         system.w[nu:] = ms.phat(corner.points.T)[0]
     scale = float(np.linalg.norm(f_ext[~fixed])) or 1.0
-    status, reason, it = "failed", f"Newton did not converge in {max_iterations} iterations", 0
-    for it in range(max_iterations + 1):
-        r = system.residual_norm()
-        if not math.isfinite(r):
-            reason = "non-finite residual"
-            break
-        if r <= tol * scale:
-            status, reason = "converged", None
-            break
-        if it == max_iterations:
-            break
-        try:
-            system.newton_update()
-        except ArithmeticError as e:
-            reason = str(e)
-            break
+    status, reason, it = newton_solve(system, scale, tol, max_iterations)
     system._push()
     out = {"status": status, "reason": reason, "cells": n, "ndof": int(fixed.size),
            "n_free": int((~fixed).sum()), "newton_iterations": it, "error_u": None, "error_p": None,

@@ -214,18 +214,86 @@ def set_up(scene: Scene, settings: FemSettings) -> Setup:
     return Setup(settings, quad, container, material, fixed, f_ext, effects, mu, forces, g.width_factor(b))
 
 
-class System:
+def solve_sparse(K, b: np.ndarray, cache: dict) -> np.ndarray:
+    """K^-1 b by SuperLU with partial pivoting, the unknowns in reverse Cuthill-McKee order
+    (a band; computed once per sparsity pattern, kept in ``cache``). On the pendulum's
+    140 x 4 Q2/Q1 tangent (5761 unknowns) 11 ms against 47 ms in SuperLU's default column
+    order (COLAMD); its minimum-degree orders are faster only without pivoting, which the
+    saddle point's zero pressure block forbids (with pivoting: 2.3 s)."""
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+    from scipy.sparse.linalg import spsolve
+
+    K = K.tocsr()
+    key = (K.shape, K.nnz)
+    if cache.get("key") != key:
+        cache.update(key=key, perm=reverse_cuthill_mckee(K, symmetric_mode=False))
+    perm = cache["perm"]
+    x = np.empty_like(b)
+    with np.errstate(all="ignore"):
+        x[perm] = spsolve(K[perm][:, perm].tocsc(), b[perm], permc_spec="NATURAL")
+    return x
+
+
+class NewtonSystem:
+    """A Newton system for :func:`mechanics.newton.newton` (and the static load stepping):
+    the unknowns w (all of them, the fixed ones kept as set), ``residual(w)`` and
+    ``tangent(w)`` of a subclass; the fixed rows removed, the increment solved by
+    :func:`solve_sparse`; the state saved, restored and reset for the steppers."""
+
+    def __init__(self, n: int, fixed: np.ndarray, order: dict | None = None):
+        self.w = np.zeros(n)
+        self.fixed, self.free = fixed, ~fixed
+        self._R = None
+        self._dw = np.zeros(n)
+        self._order = {} if order is None else order     # the solve's ordering, kept across systems
+
+    def residual(self, w: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
+
+    def tangent(self, w: np.ndarray):
+        raise NotImplementedError
+
+    def residual_norm(self) -> float:
+        r = self.residual(self.w)
+        r[self.fixed] = 0.0
+        self._R = r
+        return float(np.linalg.norm(r))
+
+    def newton_update(self) -> float:
+        free = self.free
+        dw = solve_sparse(self.tangent(self.w)[free][:, free], self._R[free], self._order)
+        if not np.all(np.isfinite(dw)):
+            raise ArithmeticError("singular or failed linear solve (SuperLU)")
+        self._dw[:] = 0.0
+        self._dw[free] = dw
+        self.w -= self._dw
+        return float(np.linalg.norm(dw))
+
+    def last_increment(self) -> np.ndarray:
+        return self._dw
+
+    def state_norm(self) -> float:
+        return float(np.linalg.norm(self.w))
+
+    def save(self) -> np.ndarray:
+        return self.w.copy()
+
+    def restore(self, saved: np.ndarray) -> None:
+        self.w[:] = saved
+
+    def reset(self) -> None:
+        self.w[:] = 0.0
+
+
+class System(NewtonSystem):
     """The Newton system of the static problem for :func:`reference_fem.statics.solve_static`:
     R(w) = f_int(w) - t f_ext on the free dofs; K = dR/dw (FElupe's assembly of the
-    material's gradient and hessian), solved by SuperLU."""
+    material's gradient and hessian)."""
 
     def __init__(self, setup: Setup):
+        super().__init__(setup.ndof, setup.fixed)
         self.s = setup
-        self.w = np.zeros(setup.ndof)
-        self.free = ~setup.fixed
         self.t = 0.0
-        self._R = None
-        self._dw = np.zeros(setup.ndof)
         self._offsets = np.cumsum([0] + [f.values.size for f in setup.fields.fields])
 
     def set_load(self, t: float) -> None:
@@ -247,39 +315,11 @@ class System:
             return fe.IntegralForm(fun=fun, v=fields, u=fields, dV=dV).assemble().tocsr()
         return np.asarray(fe.IntegralForm(fun=fun, v=fields, dV=dV).assemble().todense()).ravel()
 
-    def residual_norm(self) -> float:
-        r = self._forms(False) - self.t * self.s.f_ext
-        r[self.s.fixed] = 0.0
-        self._R = r
-        return float(np.linalg.norm(r))
+    def residual(self, w: np.ndarray) -> np.ndarray:
+        return self._forms(False) - self.t * self.s.f_ext
 
-    def newton_update(self) -> float:
-        from scipy.sparse.linalg import spsolve
-
-        K = self._forms(True)[self.free][:, self.free]
-        with np.errstate(all="ignore"):
-            dw = spsolve(K.tocsc(), self._R[self.free])
-        if not np.all(np.isfinite(dw)):
-            raise ArithmeticError("singular or failed linear solve (SuperLU)")
-        self._dw[:] = 0.0
-        self._dw[self.free] = dw
-        self.w -= self._dw
-        return float(np.linalg.norm(dw))
-
-    def last_increment(self) -> np.ndarray:
-        return self._dw
-
-    def state_norm(self) -> float:
-        return float(np.linalg.norm(self.w))
-
-    def save(self) -> np.ndarray:
-        return self.w.copy()
-
-    def restore(self, saved: np.ndarray) -> None:
-        self.w[:] = saved
-
-    def reset(self) -> None:
-        self.w[:] = 0.0
+    def tangent(self, w: np.ndarray):
+        return self._forms(True)
 
 
 class StaticModel:
