@@ -184,25 +184,19 @@ def kernel_rows(calls: int = 100, repeats: int = 10, elements: int = KERNEL_ELEM
         n = model.mesh.n_dof
         u = 1e-4 * np.random.default_rng(0).standard_normal(n)
         times = {}
-        if model.compiled:
-            dN, w, dofs, ops, consts, pr, _ = model.fused
-            ops, consts = live_tape(ops, consts)
-            f, K = np.empty(n), np.empty((n, model.mesh.bandwidth + 1))
-            scratch = step_scratch(ops.shape[0], dN.shape[0])
-            for name, tangent in (("force", False), ("tangent", True)):
-                def call():
-                    return assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, K, tangent, *scratch)
-                if call() != 0:
-                    raise RuntimeError(f"{element} {law} {form}: det F <= 0 at the benchmark state")
-                times[name] = _per_call(call, calls, repeats)
-            what = "compiled"
-        else:         # a model the compiled loops do not run (a pressure field): its own kernel
-            times["force"] = _per_call(lambda: model.internal_force(u), calls, repeats)
-            times["tangent"] = _per_call(lambda: model.internal_force_and_tangent(u), calls, repeats)
-            what = "model"
+        dN, w, dofs, ops, consts, pr, _ = model.fused
+        ops, consts = live_tape(ops, consts)
+        f, K = np.empty(n), np.empty((n, model.mesh.bandwidth + 1))
+        scratch = step_scratch(ops.shape[0], dN.shape[0])
+        for name, tangent in (("force", False), ("tangent", True)):
+            def call():
+                return assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, K, tangent, *scratch)
+            if call() != 0:
+                raise RuntimeError(f"{element} {law} {form}: det F <= 0 at the benchmark state")
+            times[name] = _per_call(call, calls, repeats)
         ne = model.mesh.n_elements
         row = {"solver": "ours", "element": element, "law": law, "formulation": form, "elements": ne,
-               "points_per_element": len(model.rule.weight), "calls": calls, "repeats": repeats, "what": what}
+               "points_per_element": len(model.rule.weight), "calls": calls, "repeats": repeats, "what": "compiled"}
         for name, ts in times.items():
             med = statistics.median(ts)
             row[f"{name}_us_per_element"] = round(med * 1e6 / ne, 4)
@@ -243,8 +237,6 @@ def exudyn_kernel_row(elements: int = KERNEL_ELEMENTS) -> dict | None:
 KERNELS = {
     "compiled": "`ancf.kernels.assemble_fused`, the compiled step and static loops' kernel (force and "
                 "tangent in one pass)",
-    "model": "`BeamModel.internal_force` / `internal_force_and_tangent`, for an element the compiled "
-             "loops do not run (a pressure field: the Python solvers run it)",
     "exudyn": "`MainSolverImplicitSecondOrder.ComputeODE2RHS` / `ComputeJacobianODE2RHS` called from "
               "Python: the whole system (the gravity loads and the Python call included) per element; "
               "Exudyn exposes no single element's force",
