@@ -129,6 +129,22 @@ class BeamModel:
 
     # -- elastic terms -----------------------------------------------------------------
     def strain_energy(self, u: np.ndarray) -> float:
+        """Strain energy (J) at u, pressure field included, by the compiled kernel
+        (:func:`ancf.kernels.strain_energy_fused`, the energy the compiled loops check);
+        :meth:`strain_energy_numpy` is the reference. InadmissibleState if det F <= 0 at a
+        point."""
+        from .kernels import live_tape, step_scratch, strain_energy_fused
+        if "_energy_data" not in self.__dict__:
+            dN, w, dofs, ops, consts, pr, _ = self.fused
+            ops, consts = live_tape(ops, consts)
+            self._energy_data = (dN, w, dofs, ops, consts, pr, *step_scratch(ops.shape[0], dN.shape[0]))
+        U = strain_energy_fused(np.ascontiguousarray(u, dtype=float), *self._energy_data)
+        if not np.isfinite(U):
+            self._checked(self.gradients(u))            # names the point's det F
+            raise InadmissibleState(f"strain energy {U} at an admissible state")
+        return float(U)
+
+    def strain_energy_numpy(self, u: np.ndarray) -> float:
         F = self._checked(self.gradients(u))
         f = F.reshape(F.shape[0], F.shape[1], 4)
         a = np.einsum("eqi,eqi->eq", f, f)

@@ -91,8 +91,10 @@ class Integrator:
 
     def warm(self, u0: np.ndarray) -> None:
         """Load what the first step needs (compiled code from numba's disk cache), so that
-        it does not land in the solve time: the initial state, and one compiled step."""
+        it does not land in the solve time: the initial state, one output (its centre-line
+        shape functions are tabulated once per model), and one compiled step."""
         s = self.initial_state(u0)
+        self.output(s)
         if self.advance is not None:
             self.advance(s, 1e-6, 1e-6, 1e-6, 1)
             self._loop.reset()
