@@ -49,7 +49,9 @@ against the cable x 16, dt 2.5 ms, 0.0150 s: 0.51. Thick pendulum (h = 20 mm): f
 (the quadratic section); 1 %: HB2n-12 stays cheapest (0.52; HB2n-20xyp x 8: 0.98); 0.3 %:
 HB2n-20xyp x 8 at 0.0043 s, the cable never; 0.1 %: neither. With 4 elements in the grid the
 cable holds 1 % on the slender pendulum (0.61-0.94 %, 0.0034 s) and HB2n-20xyp does not
-(0.89-1.23 %); on the thick one HB2n-20xyp x 4 holds 0.3 % at 0.0025 s.
+(0.89-1.23 %); on the thick one the cable holds 1 % with 2 elements (0.43-0.80 %, 0.0013 s;
+HB2n-20xyp x 2: 0.16-0.36 %, 0.0017 s) and HB2n-20xyp x 4 holds 0.3 % at 0.0024 s. At 1 % the
+runs are 100 steps of a few elements, where the cost per step, not the element, decides.
 """
 import examples.cubic_slope  # noqa: F401  (registers HB2n-20xy, whose basis and rules this element takes)
 from ancf.elements import ELEMENTS, ElementSpec, register_element
