@@ -1,13 +1,14 @@
 """Who is cheaper at equal accuracy: our pendulum and Exudyn's ANCF cable pendulum on one
 work-precision diagram, timed side by side in one run (``make bench-peers``, issue 10).
 
-    .venv/bin/python -m studies.peers.work_precision [--scene pendulum|thick] [--counts 8 16 32 64]
+    .venv/bin/python -m studies.peers.work_precision [--scene pendulum|thick] [--counts 2 4 8 16 32 64]
         [--element HB2n-12 --element HB2n-16 --element HB2n-40p --element HB2n-60p] [--import MODULE] [--rho-inf 0.5] [--repeats 5]
         [--out reports]
 
-Grid: the element counts, and the step ladder dt = 0.1 s / k for k = 20, 40, 80, 160,
-320 (5 ms halving to 0.3125 ms: every step lands on the output times 0.1 ... 0.5 s, as
-Exudyn's fixed step must). Each (solver, element, count, step) is one run: the median of
+Grid: the element counts (2 to 64: at 1 % a run is a few elements, and the cable holds 1 % with
+2 or 4, so the grid starts there for both sides), and the step ladder dt = 0.1 s / k for
+k = 10, 20, 40, 80, 160, 320 (10 ms halving to 0.3125 ms: every step lands on the output
+times 0.1 ... 0.5 s, as Exudyn's fixed step must). Each (solver, element, count, step) is one run: the median of
 ``--repeats`` warm runs (ours: ``wall_s`` of :func:`ancf.simulation.run_scene`, the solve
 alone; Exudyn: ``SolveDynamic`` alone, see exudyn_pendulum.py), Exudyn's and ours in
 turn for each point; the runs' times are kept for their spread. Neither side has an
@@ -41,6 +42,7 @@ for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import argparse
 import importlib
+import itertools
 import json
 import statistics
 import sys
@@ -50,7 +52,8 @@ from pathlib import Path
 from .compare import PEER_PYTHON, peer
 
 ROOT = Path(__file__).resolve().parents[2]
-STEPS_PER_OUTPUT = (20, 40, 80, 160, 320)           # dt = 0.1 s / k
+STEPS_PER_OUTPUT = (10, 20, 40, 80, 160, 320)       # dt = 0.1 s / k
+COUNTS = (2, 4, 8, 16, 32, 64)
 ACCURACIES = (0.01, 0.003, 0.001)     # 0.3 % added after the thick scene's run: its floors lie between 1 % and 0.1 %
 NAME = "peers-work-precision"
 SCENE = "pendulum"          # the default scene
@@ -390,7 +393,7 @@ def make_figure(recs: list[dict], scene: str = SCENE):
 
     els = list(dict.fromkeys(r["element"] for r in recs if r["solver"] == "ancf"))
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
-    markers = {"ANCFCable2D": "s", **{e: m for e, m in zip(els, "o^vD")}}
+    markers = {"ANCFCable2D": "s", **{e: m for e, m in zip(els, itertools.cycle("o^vDpXh*P<>"))}}
     for solver, element in [("exudyn", "ANCFCable2D")] + [("ancf", e) for e in els]:
         for n in sorted({r["elements"] for r in recs if (r["solver"], r["element"]) == (solver, element)}):
             ser = sorted([r for r in recs if (r["solver"], r["element"], r["elements"]) == (solver, element, n)
@@ -408,7 +411,7 @@ def make_figure(recs: list[dict], scene: str = SCENE):
     ax.set_ylabel("max over t of |r - r_ref| / L")
     h = SCENES.get(scene, {}).get("height")
     ax.set_title(f"{scene}" + (f" (h = {h * 1e3:g} mm)" if h else "") + ", Yeoh: ours (plane stress) vs Exudyn "
-                 "ANCF cable; step 5 ms halving", fontsize=9)
+                 f"ANCF cable; step {1e3 * max(r['dt'] for r in recs):g} ms halving", fontsize=9)
     ax.legend(fontsize=5, ncol=3)
     fig.tight_layout()
     return fig
@@ -418,12 +421,12 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m studies.peers.work_precision", description=__doc__.splitlines()[0])
     ap.add_argument("--scene", choices=sorted(SCENES), default=SCENE, help="pendulum (h = 5 mm, default) or thick "
                     "(h = 20 mm)")
-    ap.add_argument("--counts", type=int, nargs="+", default=[8, 16, 32, 64])
+    ap.add_argument("--counts", type=int, nargs="+", default=list(COUNTS))
     ap.add_argument("--element", action="append", help="our element (repeatable; default: ELEMENTS)")
     ap.add_argument("--rho-inf", type=float, default=0.5, help="generalized-alpha spectral radius (default 0.5, "
                     "Table 4's)")
     ap.add_argument("--steps-per-output", type=int, nargs="+", default=list(STEPS_PER_OUTPUT),
-                    help="the step ladder: dt = 0.1 s / k for each k (default 20 40 80 160 320)")
+                    help="the step ladder: dt = 0.1 s / k for each k (default 10 20 40 80 160 320)")
     ap.add_argument("--repeats", type=int, default=MIN_REPEATS, help=f"timed warm runs per point (default {MIN_REPEATS})")
     ap.add_argument("--peer-python", type=Path, default=PEER_PYTHON)
     ap.add_argument("--out", type=Path, default=ROOT / "reports")
