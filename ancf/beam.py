@@ -211,7 +211,9 @@ class BeamModel:
         except InadmissibleState:
             return float("nan")
         _, P, _ = self.pointwise.evaluate(F, tangent=False)
-        fe = np.abs(P.reshape(P.shape[0], -1)) @ np.abs(self._Bw_flat) + self.pressure.magnitudes(F)
+        fe = np.abs(P.reshape(P.shape[0], -1)) @ np.abs(self._Bw_flat)
+        if self.pressure is not None:
+            fe = fe + self.pressure.magnitudes(F)
         out = np.bincount(self._dofs.ravel(), fe.ravel(), minlength=self.mesh.n_dof)
         out[self.fixed] = 0.0
         return float(np.finfo(float).eps * np.linalg.norm(out))

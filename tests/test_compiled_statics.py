@@ -136,6 +136,19 @@ def test_residual_tolerance_respects_the_roundoff_floor():
     assert res.status == "converged" and res.newton_iterations < 30
 
 
+@pytest.mark.parametrize("element,form", [("HB2n-12", "plane-stress"), ("HB2n-40p", "plane-strain")])
+def test_roundoff_floor_numpy_branch_equals_the_compiled_one(element, form, monkeypatch):
+    """BeamModel.roundoff_floor's numpy branch (a model the compiled loops cannot run) and
+    the compiled one agree, with and without an element pressure field."""
+    from ancf.beam import BeamModel
+    model, f, _ = problem(element, form)
+    u = 1e-3 * np.sin(np.arange(model.mesh.n_dof))
+    u[model.fixed] = 0.0
+    compiled = model.roundoff_floor(u)
+    monkeypatch.setattr(BeamModel, "compiled", property(lambda self: False))
+    assert model.roundoff_floor(u) == pytest.approx(compiled, rel=1e-10)
+
+
 def test_slender_path_converges_above_the_floor(monkeypatch):
     """HB2n-20 (examples/transversely_cubic.py) on the same probe: with the floor the
     path converges in a few iterations; without it (ROUNDOFF_FLOOR = 0) the compiled
