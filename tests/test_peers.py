@@ -1,5 +1,6 @@
 """studies.peers.compare without Exudyn: parsing the peer script's output and the table."""
 import json
+import statistics
 from pathlib import Path
 
 import pytest
@@ -169,11 +170,32 @@ def test_work_precision_floors_are_read_at_fine_steps_and_the_rules_are_stated()
 def test_peers_report_is_generated_from_the_record():
     o16 = {**fake_ours(0.07), "element": "HB2n-16"}
     md = compare.peers_markdown({"ours": [fake_ours(0.04), o16], "exudyn": fake_peer(),
-                                 "load": [(1.0, 1.0, 1.0), (2.0, 1.0, 1.0)]})
-    assert "| 0.0400-0.0400 | 0.0400 | 0.0400-0.0400 | 0.40, 0.40 | 0.5: met |" in md
-    assert "| 0.70, 0.70 | 0.8: met |" in md
+                                 "load": [(1.0, 1.0, 1.0), (2.0, 1.0, 1.0)], "rounds": 1})
+    assert "| 0.0400-0.0400 | 0.0400 | 0.0400-0.0400 | 0.40, 0.40 | 0.40 (0.40) | 0.5: met |" in md
+    assert "| 0.70, 0.70 | 0.70 (0.70) | 0.8: met |" in md
     assert "load average (1 min) 1.00 before, 2.00 after" in md
     assert "| HB2n-12 | 0.10 | 1.00 | -2.00 | 2.24 |" in md
+
+
+def test_the_verdict_takes_each_rounds_ratio_when_the_machine_changes_speed():
+    """Two rounds, the machine twice as fast in the second: our runs 0.05 s then 0.025 s,
+    Exudyn's 0.1 s then 0.05 s (ratio 0.5 in each round). Five of our ten samples in
+    the fast phase against two of Exudyn's (the phase switch fell inside its second round):
+    the pooled medians say 0.375, each round's pair 0.5."""
+    ours = [0.05] * 5 + [0.025] * 5
+    peer = [0.1] * 5 + [0.1, 0.1, 0.1, 0.05, 0.05]
+    assert statistics.median(ours) / statistics.median(peer) == pytest.approx(0.375)
+    assert compare.round_ratios(ours, peer, 2) == pytest.approx([0.5, 0.25])   # the second round mixes phases
+    even = [0.1] * 5 + [0.05] * 5
+    assert compare.round_ratios(ours, even, 2) == pytest.approx([0.5, 0.5])
+    o = {**fake_ours(), "cpu_s": ours, "wall_s": ours, "cpu_median_s": statistics.median(ours),
+         "wall_median_s": statistics.median(ours)}
+    p = {**fake_peer(), "solve_cpu_s": even, "solve_s": even, "solve_cpu_median_s": statistics.median(even),
+         "solve_median_s": statistics.median(even)}
+    md = compare.peers_markdown({"ours": [o], "exudyn": p, "load": [(1.0,) * 3] * 2, "rounds": 2})
+    assert "| 0.50 (0.50, 0.50) | 0.5: met |" in md
+    with pytest.raises(ValueError, match="rounds"):
+        compare.round_ratios(ours, peer[:9], 2)
 
 
 def test_the_peer_reports_are_audited_against_their_records(tmp_path):
