@@ -359,11 +359,14 @@ def _clamp_lines(probe) -> list[str]:
 def _pendulum(recs) -> list[str]:
     gold = continuum_pendulum(FEM_GOLD)
     lines = ["## 6. Pendulum against the continuum", ""]
-    rows = []
+    rows, failed = [], []
     for r in recs:
         if r["scene"]["analysis"]["kind"] != "dynamic":
             continue
         d = describe_dynamic(r)
+        if not d["ok"]:
+            failed.append(f"- n = {d['elements']}, dt = {d['dt'] * 1e3:g} ms: {d['status']}: "
+                          f"{d['reason'] or 'no reason recorded'}")
         ref = gold.get((d["law"], d["formulation"]))
         errs = tip_errors(d["tips"], ref.tips) if ref and d["ok"] else {}
         rows.append(f"| {d['elements']} | {d['dt'] * 1e3:g} | {d['status']} | "
@@ -371,9 +374,10 @@ def _pendulum(recs) -> list[str]:
                     f"{_f(100 * errs[max(errs)], '.3g') + ' %' if errs else '-'} | {_f(d['wall_s'], '.3g')} |")
     if not gold:
         return lines + ["No continuum pendulum gold (tests/gold/fem_pendulum.json).", ""]
-    return lines + ["Yeoh, plane stress, generalized-alpha rho_inf 0.5. Error: |r(t) - r_ref(t)| / L over the "
+    return (lines + ["Yeoh, plane stress, generalized-alpha rho_inf 0.5. Error: |r(t) - r_ref(t)| / L over the "
                     "output times, against the continuum gold.", "",
                     "| n | dt (ms) | status | max error | error at t_end | wall (s) |", "|---|---|---|---|---|---|"] + rows + [""]
+            + (["Runs without a result, with their records' reasons:", "", *failed, ""] if failed else []))
 
 
 def _cost(element: str, law: str, out: Path, cards: Path, name: str) -> list[str]:

@@ -127,3 +127,16 @@ def test_the_clamp_sets_hb2n16s_order():
     assert abs(o["face"] - 1.0) < 0.1 and abs(o["freed"] - 2.0) < 0.1
     assert any(line.startswith("**The clamp sets the order**") for line in _clamp_lines(probe))
     assert clamp_probe("HB2n-12", {"slender": {"slenderness": (140.0,), "counts": (8, 16)}}) is None
+
+
+def test_a_card_names_why_a_pendulum_run_has_no_result():
+    """A failed run is a row with '-' and a line with its record's reason."""
+    from studies.card_report import _pendulum
+    from studies.pendulum_cases import pendulum_dict
+
+    scene = pendulum_dict("HB2n-16", 8, "plane-stress", 5e-4)
+    rec = {"scene": scene, "status": "failed", "reason": "step below dt_min at t = 0 s: det F <= 0",
+           "tip_history": None, "wall_s": 0.01}
+    lines = _pendulum([rec])
+    assert "| 8 | 0.5 | failed | - | - | 0.01 |" in lines
+    assert "- n = 8, dt = 0.5 ms: failed: step below dt_min at t = 0 s: det F <= 0" in lines
