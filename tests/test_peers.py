@@ -47,8 +47,8 @@ def test_parse_takes_the_last_json_line_after_exudyn_chatter():
 
 def test_table_ratio_and_tip_differences():
     text = compare.format_table(fake_ours(0.04), fake_peer(), ((1.0, 1.0, 1.0), (1.5, 1.0, 1.0)))
-    assert ("ratio ours / Exudyn: 0.40 wall, 0.40 CPU (ours 0.0400 s, Exudyn 0.1000 s CPU; target: within 0.5x) "
-            "-> within target") in text
+    assert ("ratio ours / Exudyn: 0.40 wall, 0.40 CPU (ours 0.0400 s, Exudyn 0.1000 s CPU); by round (CPU) "
+            "0.40, median 0.40; target: within 0.5x -> within target") in text
     assert "spread (min-max): ours 0.0400-0.0400 s wall" in text and "Exudyn 0.1000-0.2000 s wall" in text
     rows = [ln.split() for ln in text.splitlines() if ln.startswith(" 0.") and len(ln.split()) == 8]
     assert [float(r[0]) for r in rows] == list(TIMES)
