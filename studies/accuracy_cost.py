@@ -232,7 +232,9 @@ def pendulum_part(ctx, sec: Section) -> None:
                          rows, {3: ".3f", 4: ".3f", 5: ".1f", 6: ".4f"}),
               "For 1 % and 0.1 % pendulum accuracy (max over t of |r - r_ref| / L), the cheapest ANCF run of the Table 4 "
               "ladder (median serial warm wall time) whose every finer run (more elements, smaller step, same element) "
-              "converged and stays within the accuracy, beside the wall time of the continuum gold's base run (DOLFINx, one run inside the generator's 2-process pool, not warm) and its own error estimate.")
+              "converged and stays within the accuracy, beside the wall time of the continuum gold's base run (DOLFINx, one run inside the generator's 2-process pool, not warm, "
+              "timed when the gold was generated, on that day's machine: a scale, not a ratio to this run's times) and its own "
+              "error estimate.")
 
 
 def audit(ctx) -> list[str]:
