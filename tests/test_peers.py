@@ -178,10 +178,11 @@ def test_peers_report_is_generated_from_the_record():
 
 
 def test_the_verdict_takes_each_rounds_ratio_when_the_machine_changes_speed():
-    """Two rounds, the machine twice as fast in the second: our runs 0.05 s then 0.025 s,
-    Exudyn's 0.1 s then 0.05 s (ratio 0.5 in each round). Five of our ten samples in
-    the fast phase against two of Exudyn's (the phase switch fell inside its second round):
-    the pooled medians say 0.375, each round's pair 0.5."""
+    """Two rounds, the machine twice as fast in the second: our runs 0.05 s then 0.025 s.
+    If Exudyn's switch falls inside its second round (0.1 s, then two of five at 0.05 s),
+    the pooled medians say 0.375 and the rounds 0.5 and 0.25 (the second round mixes
+    phases); with its runs 0.1 s then 0.05 s, the rounds say 0.5 and 0.5, the ratio in
+    each phase."""
     ours = [0.05] * 5 + [0.025] * 5
     peer = [0.1] * 5 + [0.1, 0.1, 0.1, 0.05, 0.05]
     assert statistics.median(ours) / statistics.median(peer) == pytest.approx(0.375)
