@@ -52,25 +52,40 @@ class Banded:
         return self
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        """K^-1 rhs by LAPACK's banded LU (gbsv); LinAlgError if K is singular."""
+        """K^-1 rhs = s (S^-1 (s rhs)) with S = D^-1/2 K D^-1/2, s = D^-1/2 (the scaling of
+        :meth:`scaled_upper`), by LAPACK's banded LU (gbsv) of S; LinAlgError if K is
+        singular. Why the scaling: partial pivoting picks pivots by size, so its backward
+        error is relative to the largest entries; a section of degree 6 has generalized
+        masses ~1e-50 of a position dof's, whose unknowns an unscaled LU loses entirely
+        (HB2n-84p: M a0 = r solved with a Jacobi-scaled residual 8e5 times r)."""
         b, n = self.b, self.n
+        s = self.jacobi_scale()
         lu = np.empty((3 * b + 1, n), order="F")
         lu[b:] = self.ab
-        _, _, x, info = _gbsv(b, b, lu, rhs, overwrite_ab=True, overwrite_b=False)
+        for k in range(2 * b + 1):           # row k holds entries (j + k - b, j)
+            off = k - b
+            lo, hi = max(0, -off), min(n, n - off)
+            lu[b + k, lo:hi] *= s[lo + off: hi + off] * s[lo:hi]
+        _, _, x, info = _gbsv(b, b, lu, s * rhs, overwrite_ab=True, overwrite_b=True)
         if info > 0:
             raise np.linalg.LinAlgError("singular matrix")
         if info < 0:
             raise ValueError(f"gbsv: illegal argument {-info}")
-        return x
+        return s * x
+
+    def jacobi_scale(self) -> np.ndarray:
+        """s = D^-1/2, D = |diag K| with a zero diagonal entry counted as the smallest
+        nonzero one."""
+        d = np.abs(self.ab[self.b])
+        floor = d[d > 0].min() if np.any(d > 0) else 1.0
+        return 1.0 / np.sqrt(np.maximum(d, floor))
 
     def scaled_upper(self) -> tuple[np.ndarray, np.ndarray]:
         """The upper band (b + 1, n) of S = D^-1/2 K D^-1/2 with D = |diag K| (a zero
         diagonal entry counts as the smallest nonzero one), and s = D^-1/2. A congruence
         with a positive diagonal: S has K's inertia, and the spread between position and
         gradient dofs, which would make a factorisation fail on round-off alone, is gone."""
-        d = np.abs(self.ab[self.b])
-        floor = d[d > 0].min() if np.any(d > 0) else 1.0
-        s = 1.0 / np.sqrt(np.maximum(d, floor))
+        s = self.jacobi_scale()
         upper = self.ab[: self.b + 1].copy()
         for k in range(self.b + 1):          # row k holds entries (j - (b - k), j)
             off = self.b - k
