@@ -1,13 +1,13 @@
-"""The example element HB2n-20xyp (examples/cubic_slope_pressure.py: HB2n-20xy with an
-element pressure {1, y}): the pressure cures HB2n-20xy's volumetric locking in penalised
-plane strain and leaves plane stress as it was (issue 20, item 3)."""
+"""The built-in HB2n-20xyp (ancf/elements.py: the example HB2n-20xy, examples/cubic_slope.py,
+with an element pressure {1, y}): the pressure cures HB2n-20xy's volumetric locking in
+penalised plane strain and leaves plane stress as it was (issue 20, item 3)."""
 import json
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-import examples.cubic_slope_pressure  # noqa: F401  (registers HB2n-20xyp and HB2n-20xy)
+import examples.cubic_slope  # noqa: F401  (registers HB2n-20xy, the element without the pressure)
 from ancf import checks
 from ancf.elements import get_element
 from ancf.simulation import run_scene
