@@ -235,9 +235,55 @@ def run_cards(elements: list[str], out: Path, tiny: bool = False, imports=(), wo
             f"{s.seconds:.1f} s")
         checks_record(el, out, tiny, force)
     paths = [render(el, out, tiny, imports) for el in elements]
+    # every other card's cost figure draws these elements' runs: rendered again with them
+    render_recorded(out, skip=elements)
     if (Path(out) / "README.md").exists():   # link the cards from the results page
         from .engine.pipeline import build_reports
         build_reports(Path(out), tiny, log)
+    return paths
+
+
+def recorded_cards(out: Path) -> list[tuple[str, bool, list[str]]]:
+    """(element, tiny, imports) of every card whose records are in ``out``/data: the
+    element and grid from its checks record; the modules that register it from its cases'
+    options (an example element's cases name them): of the module lists its records name,
+    the one whose cases the store holds most of (older records may name a module that has
+    gone, or none where one is needed now)."""
+    from contract.errors import SceneError
+
+    found = []
+    for path in sorted((Path(out) / "data").glob("card-*-checks.json")):
+        chk = json.loads(path.read_text())
+        element, tiny = chk["element"], bool(chk["tiny"])
+        have = store_for(out, f"card-{slug(element)}").read()
+        named = {tuple((r.get("case", {}).get("options") or {}).get("imports") or ()) for r in have.values()}
+        held = {}
+        for imports in sorted(named | {()}):
+            try:
+                import_modules(imports)
+                held[imports] = sum(c.id in have for c in cases(element, tiny, imports))
+            except (ImportError, SceneError):
+                continue
+        best = max(held, key=held.get, default=None)
+        if best is None or not held[best]:
+            raise LookupError(f"card {element}: no runs of it in {path.parent} match its cases with the modules "
+                              f"its records name ({', '.join(map(str, sorted(named))) or 'none'}; each must import "
+                              "and register the element)")
+        found.append((element, tiny, list(best)))
+    return found
+
+
+def render_recorded(out: Path, skip=()) -> list[Path]:
+    """Every card of ``out`` (but those in ``skip``) rendered again from its records alone
+    (no solver runs; the audit's route: ``studies audit`` compares these with the
+    committed cards)."""
+    from .card_report import render
+
+    paths = []
+    for element, tiny, imports in recorded_cards(out):
+        if element not in skip:
+            import_modules(imports)
+            paths.append(render(element, out, tiny, imports))
     return paths
 
 

@@ -11,7 +11,7 @@ import numpy as np
 from .card import beam_theory, cases, checks_path, grid_for, slug
 from .pendulum_cases import FEM_GOLD, continuum_pendulum, describe_dynamic, tip_errors
 from .reference import MATCHING, gold_references, short
-from .engine.report import figure, mm, vec_error
+from .engine.report import FIGURE_DATA, figure, mm, vec_error, write_figure_data
 from .engine.store import RecordStore, store_for
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -120,6 +120,7 @@ def _rank_section(chk: dict, out: Path, name: str) -> list[str]:
         ax[k].set_title(t, fontsize=9)
     ax[1].legend(fontsize=7)
     fig.savefig(out / f"{name}-rank.png", dpi=100, bbox_inches="tight")
+    write_figure_data(fig, out / f"{name}-rank{FIGURE_DATA}")
     _close(fig)
     return lines + ["", f"![rank]({name}-rank.png)", ""]
 
@@ -407,6 +408,7 @@ def _cost(element: str, law: str, out: Path, cards: Path, name: str) -> list[str
     axes.set_ylabel(f"|u - u_ref| / |u_ref| ({short(law)}, plane stress)")
     axes.legend(fontsize=7)
     fig.savefig(cards / f"{name}-cost.png", dpi=100, bbox_inches="tight")
+    write_figure_data(fig, cards / f"{name}-cost{FIGURE_DATA}")
     _close(fig)
     return ["## 7. Cost", "", f"{short(law)}, plane stress, the static refinement; the other elements with a card in this "
             f"directory ({', '.join(o for o in drawn if o != slug(element)) or 'none yet'}) dashed.", "",

@@ -34,10 +34,11 @@ def _tamper(path: Path, old: str, new: str) -> int:
 
 @pytest.mark.skipif(not (REPORTS / "data").is_dir(), reason="no committed records")
 def test_committed_reports_pass_and_a_tampered_copy_fails(tmp_path):
-    """One rebuild of the committed reports' copy with three changes: a number in a
-    table, a number in the README's prose and a hollow point of a figure made filled.
-    The audit names exactly those three file:line pairs; everything else (the committed
-    reports as they are) passes."""
+    """One rebuild of the committed reports' copy with four changes: a number in a
+    table, a number in the README's prose, a hollow point of a figure made filled and a
+    solver-run count on an element card (cards are rendered again from their records,
+    not copied). The audit names exactly those file:line pairs; everything else (the
+    committed reports as they are) passes."""
     copy = tmp_path / "reports"
     shutil.copytree(REPORTS, copy)
     table = copy / "table3.md"
@@ -52,13 +53,18 @@ def test_committed_reports_pass_and_a_tampered_copy_fails(tmp_path):
     l2 = _tamper(readme, stat, stat.replace(f"- {n} of", f"- {int(n) + 1} of", 1))
     fig = copy / "accuracy_cost.figure.csv"
     l3 = _tamper(fig, ",False,", ",True,") if ",False," in fig.read_text() else None
+    card = copy / "cards" / "HB2n-12.md"
+    runs = next(ln for ln in card.read_text().splitlines() if ln.endswith(" solver runs."))
+    n_runs = runs.split()[-3]
+    l4 = _tamper(card, f" {n_runs} solver runs.", f" {int(n_runs) + 1} solver runs.")
 
     res = audit(copy)
     where = sorted({p.split(": ")[0] for p in res.problems})
-    want = sorted([f"{table}:{l1}", f"{readme}:{l2}"] + ([f"{fig}:{l3}"] if l3 else []))
+    want = sorted([f"{table}:{l1}", f"{readme}:{l2}", f"{card}:{l4}"] + ([f"{fig}:{l3}"] if l3 else []))
     assert where == want, "\n".join(res.problems)
     assert any(bumped in p and cell in p for p in res.problems)
     assert "README.md" not in res.not_audited and "table3.md" in res.checked
+    assert "cards/HB2n-12.md" in res.checked and not any(f.startswith("cards/") for f in res.not_audited)
 
 
 def test_a_report_file_the_records_do_not_give_is_named(tmp_path):

@@ -2,10 +2,10 @@
 
 Every report file a study writes (tables as Markdown and CSV, the data of every figure,
 the prose of ``README.md`` and of the one-page reports) comes from a study's report
-function reading records only. The audit copies ``DIR/data`` (and ``DIR/cards``, which the
-README lists) into a temporary directory, rebuilds every report there with the same
-functions (no solver runs: the records are read as they are), and compares each text file
-line by line with the one in ``DIR``: a changed number, a missing row or a verdict typed by
+function reading records only. The audit copies ``DIR/data`` into a temporary directory, rebuilds every report there
+with the same functions (no solver runs: the records are read as they are; the element
+cards first, from their cases and checks records, since the README lists them), and
+compares each text file line by line with the one in ``DIR``: a changed number, a missing row or a verdict typed by
 hand is a mismatch named by file and line. Figures are compared by the data they draw
 (``<name>.figure.csv``: every point, its label and whether its marker is hollow), not by
 their pixels. Then each study's own audit rules (``audit(ctx) -> [problem]`` in its module,
@@ -31,7 +31,7 @@ from .catalog import CASES_TOML, load_catalog
 from .report import FIGURE_DATA, Context
 
 MAX_PER_FILE = 10      # mismatching lines named per file (then a count)
-COPIED = ("data", "cards")
+COPIED = ("data",)
 
 
 @dataclass
@@ -137,6 +137,8 @@ def audit(reports: Path, catalog_path: Path = CASES_TOML, tiny: bool = False, lo
         for d in COPIED:
             if (reports / d).is_dir():
                 shutil.copytree(reports / d, tmp / d)
+        from ..card import render_recorded
+        render_recorded(tmp)
         build_reports(tmp, tiny, log or (lambda *a, **k: None), catalog_path)
         made, have = _files(tmp), _files(reports)
         for name in sorted(made):
