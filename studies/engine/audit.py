@@ -2,11 +2,12 @@
 
 Every report file a study writes (tables as Markdown and CSV, the data of every figure,
 the prose of ``README.md`` and of the one-page reports) comes from a study's report
-function reading records only. The audit copies ``DIR/data`` into a temporary directory, rebuilds every report there
-with the same functions (no solver runs: the records are read as they are; the element
-cards first, from their cases and checks records, since the README lists them), and
-compares each text file line by line with the one in ``DIR``: a changed number, a missing row or a verdict typed by
-hand is a mismatch named by file and line. Figures are compared by the data they draw
+function reading records only. The audit copies ``DIR/data`` into a temporary directory,
+rebuilds every report there with the same functions (no solver runs: the records are read
+as they are; the element cards first, from their cases and checks records, since the
+README lists them), and compares each text file line by line with the one in ``DIR``: a
+changed number, a missing row or a verdict typed by hand is a mismatch named by file and
+line. Figures are compared by the data they draw
 (``<name>.figure.csv``: every point, its label and whether its marker is hollow), not by
 their pixels. Then each study's own audit rules (``audit(ctx) -> [problem]`` in its module,
 see :mod:`.catalog`) check what a referee would recompute: counts against lists, verdicts
