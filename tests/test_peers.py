@@ -134,6 +134,44 @@ def test_work_precision_report_has_a_section_per_scene_with_its_ratios():
     assert "Our elements: HB2n-16 (all on the compiled step loop" in thick and "h = 20 mm" in thick
 
 
+def test_work_precision_retimes_the_deciding_points_in_alternating_rounds(tmp_path, monkeypatch):
+    """After the grid, each accuracy's cheapest pair is timed again, the cable's runs then
+    ours in each round; the table shows the median of the rounds' ratios beside the grid's
+    ratio; a rerun keeps the rounds while the pair stays the cheapest, --force redoes them."""
+    from types import SimpleNamespace
+    from studies.peers import work_precision as wp
+
+    calls = []
+    times = iter([0.02, 0.01, 0.02, 0.004, 0.04, 0.01] * 10)     # cable, ours, cable, ours, ...
+
+    def fake(solver, *args):
+        calls.append(solver)
+        return {"time_s": next(times)}
+    monkeypatch.setattr(wp, "ours", lambda element, n, dt, rho, rep, scene: fake("ancf"))
+    monkeypatch.setattr(wp, "exudyn", lambda n, dt, rho, rep, py, scene: fake("exudyn"))
+
+    def rec(solver, element, n, t, e):
+        return {"scene": "pendulum", "solver": solver, "element": element, "elements": n, "dt": 1e-3,
+                "rho_inf": 0.5, "status": "converged", "time_s": t, "time_runs_s": [t], "error": e}
+    recs = [rec("ancf", "HB2n-16", 8, 0.01, 0.0005), rec("exudyn", "ANCFCable2D", 8, 0.03, 0.0005)]
+    path = tmp_path / "data" / "peers" / f"{wp.NAME}.jsonl"
+    path.parent.mkdir(parents=True)
+    a = SimpleNamespace(scene="pendulum", rounds=3, repeats=5, rho_inf=0.5, peer_python=None, force=False)
+    rounds = wp.retime(recs, a, path)
+    assert calls == ["exudyn", "ancf"] * 9                    # 3 accuracies x 3 rounds, alternating
+    assert [len(r["rounds"]) for r in rounds] == [3, 3, 3]
+    text = wp.report_markdown(recs, wp.read(wp.rounds_path(path)))
+    assert "| 0.1 % | HB2n-16 x 8, dt 1 ms | 0.0100 | 0.050 | 8 elements, dt 1 ms | 0.0300 | 0.050 | 0.33 | " \
+           "0.33-0.33 | 0.25 (0.50, 0.20, 0.25) |" in text
+    assert wp.retime(recs, a, path) == rounds and len(calls) == 18      # kept: the same cheapest pair
+    a.force = True
+    wp.retime(recs, a, path)
+    assert len(calls) == 36
+    cheaper = recs + [rec("ancf", "HB2n-12", 8, 0.005, 0.0005)]       # another pair: its rounds are missing
+    assert "| 0.1 % | HB2n-12 x 8" in wp.report_markdown(cheaper, rounds) and "| 0.33-0.33 | - |" not in text
+    assert wp.report_markdown(cheaper, rounds).count("| - |") >= 3
+
+
 def test_work_precision_does_not_count_accuracy_by_cancellation():
     from studies.peers import work_precision as wp
 
@@ -212,6 +250,8 @@ def test_the_peer_reports_are_audited_against_their_records(tmp_path):
     for name, (record, _) in PEER_REPORTS.items():
         shutil.copy(reports / name, copy / name)
         shutil.copy(reports / "data" / "peers" / record, copy / "data" / "peers" / record)
+    rounds = reports / "data" / "peers" / "peers-work-precision-rounds.jsonl"    # the rounds column's records
+    shutil.copy(rounds, copy / "data" / "peers" / rounds.name)
     figures = sorted(p.name for p in reports.glob("peers_work_precision*.figure.csv"))
     for name in figures:
         shutil.copy(reports / name, copy / name)

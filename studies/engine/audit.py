@@ -80,8 +80,8 @@ def _peer_markdown(kind: str, path: Path) -> str:
     if kind == "compare":
         from ..peers.compare import peers_markdown
         return peers_markdown(json.loads(path.read_text()))
-    from ..peers.work_precision import read, report_markdown
-    return report_markdown(read(path))
+    from ..peers.work_precision import read, report_markdown, rounds_path
+    return report_markdown(read(path), read(rounds_path(path)))
 
 
 # peer report -> (its record under DIR/data/peers/, the function that draws it)
