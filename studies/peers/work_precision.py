@@ -183,8 +183,21 @@ def rounds_path(path: Path) -> Path:
     return path.with_name(f"{NAME}-rounds.jsonl")
 
 
-def _point(r: dict) -> dict:
-    return {"element": r["element"], "elements": r["elements"], "dt": r["dt"]}
+def _pair(o: dict, p: dict) -> dict:
+    """The (ours, cable's) points a rounds record re-times, as it stores them."""
+    return {k: {"element": r["element"], "elements": r["elements"], "dt": r["dt"]} for k, r in (("ours", o), ("exudyn", p))}
+
+
+def rounds_of(rounds: list[dict], scene: str, accuracy: float, o: dict, p: dict) -> dict | None:
+    """The rounds record of ``scene`` and ``accuracy`` that re-timed exactly these two points."""
+    pts = _pair(o, p)
+    return next((r for r in rounds if r["scene"] == scene and r["accuracy"] == accuracy
+                 and {k: r[k] for k in pts} == pts), None)
+
+
+def _ratios(r: dict | None) -> list[float | None]:
+    """Each round's ours / cable's (None where a side has no time)."""
+    return [x["ours_s"] / x["exudyn_s"] if x["ours_s"] and x["exudyn_s"] else None for x in (r or {}).get("rounds", [])]
 
 
 def retime(recs: list[dict], a, path: Path) -> list[dict]:
@@ -202,20 +215,17 @@ def retime(recs: list[dict], a, path: Path) -> list[dict]:
         o, p = cheapest(mine, "ancf", None, acc), cheapest(mine, "exudyn", None, acc)
         if not (o and p):
             continue
-        pts = {"ours": _point(o), "exudyn": _point(p)}
-        have = next((r for r in old if r["scene"] == a.scene and r["accuracy"] == acc
-                     and {k: r[k] for k in pts} == pts), None)
+        have = rounds_of(old, a.scene, acc, o, p)
         if have is None or a.force:
             rounds = []
             for _ in range(a.rounds):
                 pe = exudyn(p["elements"], p["dt"], a.rho_inf, a.repeats, a.peer_python, a.scene)
                 ou = ours(o["element"], o["elements"], o["dt"], a.rho_inf, a.repeats, a.scene)
                 rounds.append({"exudyn_s": pe["time_s"], "ours_s": ou["time_s"]})
-            have = {"scene": a.scene, "accuracy": acc, **pts, "repeats": a.repeats, "rounds": rounds,
+            have = {"scene": a.scene, "accuracy": acc, **_pair(o, p), "repeats": a.repeats, "rounds": rounds,
                     "host_load": os.getloadavg()[0]}
-            print(f"rounds {a.scene} {100 * acc:g} %: " + ", ".join(
-                f"{x['ours_s'] / x['exudyn_s']:.2f}" if x["ours_s"] and x["exudyn_s"] else "-" for x in rounds),
-                flush=True)
+            print(f"rounds {a.scene} {100 * acc:g} %: "
+                  + ", ".join(f"{x:.2f}" if x is not None else "-" for x in _ratios(have)), flush=True)
         out.append(have)
     rp.write_text("".join(json.dumps(r) + "\n" for r in out))
     return out
@@ -223,7 +233,7 @@ def retime(recs: list[dict], a, path: Path) -> list[dict]:
 
 def rounds_text(r: dict | None) -> str:
     """'median (each round's ratio)' of a rounds record, or '-'."""
-    rr = [x["ours_s"] / x["exudyn_s"] for x in (r or {}).get("rounds", []) if x["ours_s"] and x["exudyn_s"]]
+    rr = [x for x in _ratios(r) if x is not None]
     return f"{statistics.median(rr):.2f} ({', '.join(f'{x:.2f}' for x in rr)})" if rr else "-"
 
 
@@ -357,8 +367,7 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = ()) -> lis
               f"{100 * p['error']:.3f}") if p else "none | - | -"
         ratio = (f"{o['time_s'] / p['time_s']:.2f} | {ratio_range(o, p)}" if o and p
                  else "- (ours reaches it, the cable does not) | -" if o else "- | -")
-        pts = {"ours": _point(o), "exudyn": _point(p)} if o and p else None
-        rr = next((r for r in rounds if pts and r["accuracy"] == a and {k: r[k] for k in pts} == pts), None)
+        rr = rounds_of(rounds, scene, a, o, p) if o and p else None
         lines.append(f"| {100 * a:g} % | {fo} | {fp} | {ratio} | {rounds_text(rr)} |")
     if any(r.get("rounds") for r in rounds):
         n = sorted({len(r["rounds"]) for r in rounds})
