@@ -12,7 +12,7 @@ from functools import lru_cache
 
 import numpy as np
 from scipy.linalg import cho_solve_banded, cholesky_banded
-from scipy.linalg.lapack import dgbsv as _gbsv
+from scipy.linalg.lapack import dgbtrf as _gbtrf, dgbtrs as _gbtrs
 from scipy.sparse import dia_matrix
 
 
@@ -58,20 +58,21 @@ class Banded:
         error is relative to the largest entries; a section of degree 6 has generalized
         masses ~1e-50 of a position dof's, whose unknowns an unscaled LU loses entirely
         (HB2n-84p: M a0 = r solved with a Jacobi-scaled residual 8e5 times r)."""
+        return self.factorised().solve(rhs)
+
+    def factorised(self) -> "BandedLU":
+        """The banded LU (gbtrf) of S = D^-1/2 K D^-1/2 (:meth:`solve`), for solves with
+        several right-hand sides; LinAlgError if K is singular."""
         b, n = self.b, self.n
         s = self.jacobi_scale()
         lu = np.empty((3 * b + 1, n), order="F")
-        lu[b:] = self.ab
-        for k in range(2 * b + 1):           # row k holds entries (j + k - b, j)
-            off = k - b
-            lo, hi = max(0, -off), min(n, n - off)
-            lu[b + k, lo:hi] *= s[lo + off: hi + off] * s[lo:hi]
-        _, _, x, info = _gbsv(b, b, lu, s * rhs, overwrite_ab=True, overwrite_b=True)
+        np.multiply(self.ab, _scaling(s, b), out=lu[b:])
+        lu, piv, info = _gbtrf(lu, b, b, overwrite_ab=True)
         if info > 0:
             raise np.linalg.LinAlgError("singular matrix")
         if info < 0:
-            raise ValueError(f"gbsv: illegal argument {-info}")
-        return s * x
+            raise ValueError(f"gbtrf: illegal argument {-info}")
+        return BandedLU(lu, piv, s, b)
 
     def jacobi_scale(self) -> np.ndarray:
         """s = D^-1/2, D = |diag K| with a zero diagonal entry counted as the smallest
@@ -86,11 +87,7 @@ class Banded:
         with a positive diagonal: S has K's inertia, and the spread between position and
         gradient dofs, which would make a factorisation fail on round-off alone, is gone."""
         s = self.jacobi_scale()
-        upper = self.ab[: self.b + 1].copy()
-        for k in range(self.b + 1):          # row k holds entries (j - (b - k), j)
-            off = self.b - k
-            upper[k, off:] *= s[: self.n - off] * s[off:]
-        return upper, s
+        return self.ab[: self.b + 1] * _scaling(s, self.b)[: self.b + 1], s
 
     def scaled_norm(self) -> float:
         """||S||_inf, a bound of |lambda| of S: S + sigma I is positive definite for
@@ -144,6 +141,32 @@ class Banded:
     def matvec(self, x: np.ndarray) -> np.ndarray:
         from .kernels import band_matvec
         return band_matvec(self.ab, self.b, np.ascontiguousarray(x, dtype=float))
+
+
+@dataclass(frozen=True)
+class BandedLU:
+    """K = D^1/2 S D^1/2 with S's banded LU factors (LAPACK gbtrf: lu, piv) and
+    s = D^-1/2 (:meth:`Banded.factorised`)."""
+    lu: np.ndarray
+    piv: np.ndarray
+    s: np.ndarray
+    b: int
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        """K^-1 rhs = s (S^-1 (s rhs))."""
+        x, info = _gbtrs(self.lu, self.b, self.b, self.s * rhs, self.piv)
+        if info != 0:
+            raise ValueError(f"gbtrs: illegal argument {-info}")
+        return self.s * x
+
+
+def _scaling(s: np.ndarray, b: int) -> np.ndarray:
+    """(2 b + 1, n): s_i s_j at entry (i, j)'s place in the band storage, row k holding
+    (j + k - b, j); rows outside the matrix take a neighbour's s (their entries are not
+    read)."""
+    n = s.shape[0]
+    rows = np.clip(np.arange(n) + np.arange(-b, b + 1)[:, None], 0, n - 1)
+    return s[rows] * s
 
 
 @lru_cache(maxsize=64)

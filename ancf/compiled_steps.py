@@ -385,6 +385,13 @@ def advance(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, fixed, coef, 
 
 
 @njit(cache=True)
+def internal_force(u, dN, w, dofs, ops, consts, pr, f):
+    """f = f_int(u) by the fused assembly (force only); returns its status."""
+    chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
+    return assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, np.empty((0, 0)), False, chunk, R, Fb, ab, Jb)
+
+
+@njit(cache=True)
 def total_energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref):
     chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
     return energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, np.empty(u.shape[0]), chunk, R, Fb,
@@ -422,6 +429,7 @@ class CompiledLoop:
             raise ValueError(f"newton: {newton!r} is not one of {', '.join(NEWTON)}")
         b = model.mesh.bandwidth
         self.n, self.b = model.mesh.n_dof, b
+        self.model_force = model.internal_force
         dN, w, dofs, ops, consts, pr, first = model.fused
         ops, consts = live_tape(ops, consts)
         self.data = (dN, w, dofs, ops, consts, pr, column_band(M.ab, b), first, np.ascontiguousarray(f_ext, dtype=float),
@@ -452,6 +460,14 @@ class CompiledLoop:
     @property
     def stats(self) -> dict:
         return dict(zip(COUNTER_NAMES, (int(x) for x in self.counters)))
+
+    def internal_force(self, u: np.ndarray) -> np.ndarray:
+        """f_int(u) (N) by the loop's assembly; the model's (which names the point) if
+        det F <= 0 somewhere."""
+        f = np.empty(self.n)
+        if internal_force(np.ascontiguousarray(u, dtype=float), *self.data[:6], f) != OK:
+            return self.model_force(u)
+        return f
 
     def energy(self, u: np.ndarray, v: np.ndarray) -> float:
         """Kinetic + strain + dead-load potential (J), as the integrator's energies total."""

@@ -112,11 +112,16 @@ class Integrator:
         """At rest at u0; a0 from M a0 = Q_K - f_int(u0) on the free dofs."""
         if self.advance is not None:
             self._loop.reset()               # a new run: no factorisation kept
-        r = np.where(self.free, self.f_ext - self.model.internal_force(u0), 0.0)
-        a0 = self.M_constrained().solve(r)
+            f = self._loop.internal_force(u0)
+        else:
+            f = self.model.internal_force(u0)
+        a0 = self.M_constrained().solve(np.where(self.free, self.f_ext - f, 0.0))
         return State(0.0, u0.copy(), np.zeros_like(u0), a0)
 
     def M_constrained(self) -> Banded:
+        """M with the fixed dofs' rows and columns those of the identity (factorised at
+        every run's start, in its timed solve, as a peer computing initial accelerations
+        does)."""
         return Banded(self.M.ab.copy(), self.M.b).constrain(self.model.fixed)
 
     def energies(self, s: State) -> Energies:

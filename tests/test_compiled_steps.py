@@ -298,3 +298,23 @@ def test_live_tape_replays_the_same_numbers(law, form):
     np.testing.assert_array_equal(evaluate(lops, lconsts, a, J), evaluate(ops, consts, a, J))
     if law == "yeoh" and form == "plane-stress":
         assert len(lops) == len(ops) - 3
+
+
+@pytest.mark.parametrize("element", ["HB2n-12", "HB2n-20xyp", "HB2n-40p"])
+@pytest.mark.parametrize("form", ["plane-strain", "plane-stress"])
+def test_the_initial_force_of_the_loop_equals_the_model(element, form):
+    """The initial acceleration's internal force comes from the loop's fused assembly
+    (:meth:`CompiledLoop.internal_force`, no numpy kernel in the timed solve): the model's
+    force at a deformed state, pressure field included, to round-off; at det F <= 0 it
+    defers to the model, which names the point."""
+    from ancf.beam import InadmissibleState
+    sc = scene(material=paper.material_table("yeoh", form), element=element, n=4)
+    _, integ = run(sc, max_steps=1)
+    model = integ.model
+    rng = np.random.default_rng(5)
+    u = 1e-4 * rng.standard_normal(model.mesh.n_dof)
+    f_ref = model.internal_force(u)
+    np.testing.assert_allclose(integ._loop.internal_force(u), f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())
+    mirrored = np.where(np.arange(u.size) % 2 == 0, -2.0 * model.mesh.reference, 0.0)    # x -> -x: det F = -1
+    with pytest.raises(InadmissibleState):
+        integ._loop.internal_force(mirrored)
