@@ -308,13 +308,17 @@ def test_the_initial_force_of_the_loop_equals_the_model(element, form):
     force at a deformed state, pressure field included, to round-off; at det F <= 0 it
     defers to the model, which names the point."""
     from ancf.beam import InadmissibleState
+    from ancf.compiled_steps import internal_force as fused_force
     sc = scene(material=paper.material_table("yeoh", form), element=element, n=4)
     _, integ = run(sc, max_steps=1)
     model = integ.model
     rng = np.random.default_rng(5)
     u = 1e-4 * rng.standard_normal(model.mesh.n_dof)
     f_ref = model.internal_force(u)
-    np.testing.assert_allclose(integ._loop.internal_force(u), f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())
+    f = np.empty(u.size)
+    assert fused_force(u, *integ._loop.data[:6], f) == OK           # the fused path, not the fallback
+    np.testing.assert_allclose(f, f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())
+    np.testing.assert_allclose(integ._loop.internal_force(u), f, rtol=0, atol=0)
     mirrored = np.where(np.arange(u.size) % 2 == 0, -2.0 * model.mesh.reference, 0.0)    # x -> -x: det F = -1
     with pytest.raises(InadmissibleState):
         integ._loop.internal_force(mirrored)
