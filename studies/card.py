@@ -236,19 +236,26 @@ def run_cards(elements: list[str], out: Path, tiny: bool = False, imports=(), wo
         checks_record(el, out, tiny, force)
     paths = [render(el, out, tiny, imports) for el in elements]
     # every other card's cost figure draws these elements' runs: rendered again with them
-    render_recorded(out, skip=elements)
+    # (but a card whose cases have changed since its runs: its own `studies card` redoes it)
+    stale: list[str] = []
+    render_recorded(out, skip=elements, stale=stale)
+    for el in stale:
+        log(f"card {el}: no runs match its cases (they changed since its runs); not rendered again here, "
+            f"`studies card {el}` runs and renders it")
     if (Path(out) / "README.md").exists():   # link the cards from the results page
         from .engine.pipeline import build_reports
         build_reports(Path(out), tiny, log)
     return paths
 
 
-def recorded_cards(out: Path) -> list[tuple[str, bool, list[str]]]:
+def recorded_cards(out: Path, stale: list | None = None) -> list[tuple[str, bool, list[str]]]:
     """(element, tiny, imports) of every card whose records are in ``out``/data: the
     element and grid from its checks record; the modules that register it from its cases'
     options (an example element's cases name them): of the module lists its records name,
     the one whose cases the store holds most of (older records may name a module that has
-    gone, or none where one is needed now)."""
+    gone, or none where one is needed now). A card none of whose cases has a run
+    (stale: its cases changed) raises LookupError, or, given a ``stale`` list, is appended
+    to it and left out."""
     from contract.errors import SceneError
 
     found = []
@@ -265,6 +272,9 @@ def recorded_cards(out: Path) -> list[tuple[str, bool, list[str]]]:
             except (ImportError, SceneError):
                 continue
         best = max(held, key=held.get, default=None)
+        if (best is None or not held[best]) and stale is not None:
+            stale.append(element)
+            continue
         if best is None or not held[best]:
             raise LookupError(f"card {element}: no runs of it in {path.parent} match its cases with the modules "
                               f"its records name ({', '.join(map(str, sorted(named))) or 'none'}; each must import "
@@ -273,14 +283,14 @@ def recorded_cards(out: Path) -> list[tuple[str, bool, list[str]]]:
     return found
 
 
-def render_recorded(out: Path, skip=()) -> list[Path]:
+def render_recorded(out: Path, skip=(), stale: list | None = None) -> list[Path]:
     """Every card of ``out`` (but those in ``skip``) rendered again from its records alone
     (no solver runs; the audit's route: ``studies audit`` compares these with the
-    committed cards)."""
+    committed cards); ``stale``: see :func:`recorded_cards`."""
     from .card_report import render
 
     paths = []
-    for element, tiny, imports in recorded_cards(out):
+    for element, tiny, imports in recorded_cards(out, stale):
         if element not in skip:
             import_modules(imports)
             paths.append(render(element, out, tiny, imports))

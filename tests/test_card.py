@@ -6,6 +6,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parent.parent
 SECTIONS = ["## 1. Contract checks", "## 2. Rank tests", "## 3. Conformity", "## 4. Static convergence",
             "## 5. Locking", "## 6. Pendulum", "## 7. Cost", "## 8. Stability"]
@@ -33,6 +35,15 @@ def test_a_user_elements_card_regenerates_from_its_records(tmp_path):
     assert again.returncode == 0 and f"{len(recs)} reused, 0 computed" in again.stdout
     assert (tmp_path / "cards" / "HB2n-20.md").read_text() == card
     assert "### Shear locking" in card and "No shear locking" in card
+    # records whose cases have changed since (another solver version: other case ids): the
+    # audit's route refuses the card, the re-rendering after another card's runs passes it by
+    from studies.card import recorded_cards
+    data = tmp_path / "data" / "card-HB2n-20.jsonl"
+    data.write_text("".join(json.dumps({**r, "case_id": "old-" + r["case_id"]}) + "\n" for r in recs))
+    with pytest.raises(LookupError, match="card HB2n-20: no runs of it"):
+        recorded_cards(tmp_path)
+    stale = []
+    assert recorded_cards(tmp_path, stale) == [] and stale == ["HB2n-20"]
 
 
 def test_an_unknown_element_is_refused_with_the_list(tmp_path):
