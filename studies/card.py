@@ -272,10 +272,10 @@ def recorded_cards(out: Path, stale: list | None = None) -> list[tuple[str, bool
             except (ImportError, SceneError):
                 continue
         best = max(held, key=held.get, default=None)
-        if (best is None or not held[best]) and stale is not None:
-            stale.append(element)
-            continue
         if best is None or not held[best]:
+            if stale is not None:
+                stale.append(element)
+                continue
             raise LookupError(f"card {element}: no runs of it in {path.parent} match its cases with the modules "
                               f"its records name ({', '.join(map(str, sorted(named))) or 'none'}; each must import "
                               "and register the element)")
