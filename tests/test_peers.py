@@ -273,3 +273,36 @@ def test_the_peer_reports_are_audited_against_their_records(tmp_path):
     res = AuditResult()
     audit_peers(copy, res)
     assert [p.split(": ")[0] for p in res.problems] == [f"{copy / 'peers.md'}:1", f"{wp}:{i + 1}", f"{fig}:2"]
+
+
+def test_work_precision_anatomy_splits_the_time_and_judges_the_target_by_the_deciding_ratio():
+    """time = steps x iterations per step x time per iteration for each row's two runs; the
+    target (ours <= 0.5 of the cable's time, at 1 % and 0.1 % only) is judged by the rounds'
+    median where the pair was re-timed, else by the grid's medians; the coarsest step's error
+    is read on each side's finest mesh with a result there."""
+    from studies.peers import anatomy
+    from studies.peers import work_precision as wp
+
+    def rec(solver, n, dt, e, t, its):
+        return {"scene": "pendulum", "solver": solver, "element": "ANCFCable2D" if solver == "exudyn" else "HB2n-16",
+                "elements": n, "dt": dt, "rho_inf": 0.5, "status": "converged" if t else "failed", "time_s": t,
+                "time_runs_s": [t] if t else None, "error": e, "newton_iterations": its}
+    ours, cable = rec("ancf", 8, 5e-3, 0.0005, 0.012, 300), rec("exudyn", 4, 1e-2, 0.0005, 0.02, 450)
+    f = anatomy.factors(ours)
+    assert (f["steps"], f["iterations"], f["per_step"]) == (100, 300, 3.0)
+    assert f["per_iteration_s"] == pytest.approx(4e-5) and f["per_step_s"] == pytest.approx(1.2e-4)
+    recs = [ours, cable, rec("exudyn", 8, 1e-2, None, None, None), rec("ancf", 8, 1e-2, 0.014, 0.006, 200)]
+    text = wp.report_markdown(recs)
+    assert "| 1 % | ours: HB2n-16 x 8, dt 5 ms | 100 | 300 | 3.00 | 40.0 | 120 | not met (0.60 > 0.5), by the grid's " \
+           "medians |" in text
+    assert "| | cable: cable x 4, dt 10 ms | 50 | 450 | 9.00 | 44.4 | 400 | |" in text
+    assert "| 0.3 % | ours: HB2n-16 x 8, dt 5 ms | 100 | 300 | 3.00 | 40.0 | 120 | - |" in text    # no target there
+    assert "ours 1.40 % (8 elements); the cable's 0.05 % (4 elements)." in text     # the failed 8 x 10 ms is passed by
+    rounds = [{"scene": "pendulum", "accuracy": 0.001, **wp._pair(ours, cable), "repeats": 5,
+               "rounds": [{"exudyn_s": 0.02, "ours_s": 0.008}, {"exudyn_s": 0.02, "ours_s": 0.012},
+                          {"exudyn_s": 0.02, "ours_s": 0.009}]}]
+    assert "| 0.1 % | ours: HB2n-16 x 8, dt 5 ms | 100 | 300 | 3.00 | 40.0 | 120 | met (0.45 <= 0.5), by the rounds' " \
+           "median |" in wp.report_markdown(recs, rounds)
+    assert anatomy.verdict(0.001, None, None, cable) == "not met: no run of ours reaches it"
+    assert anatomy.verdict(0.001, None, None, None) == "not met: no run of ours reaches it, nor of the cable"
+    assert anatomy.verdict(0.01, None, ours, None) == "no run of the cable reaches it"

@@ -52,6 +52,7 @@ import sys
 import time
 from pathlib import Path
 
+from .anatomy import anatomy_lines, step_error_lines
 from .compare import PEER_PYTHON, peer
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -231,6 +232,17 @@ def retime(recs: list[dict], a, path: Path) -> list[dict]:
     return out
 
 
+def deciding_ratio(recs: list[dict], rounds: list[dict], scene: str, accuracy: float) -> tuple:
+    """(ours, cable, ratio, source) of an accuracy: the two cheapest runs (or None), and
+    ours / cable's by the median of their rounds ('rounds') where they were re-timed, else
+    by the grid's medians ('grid'); ratio None without both runs."""
+    o, p = cheapest(recs, "ancf", None, accuracy), cheapest(recs, "exudyn", None, accuracy)
+    if not (o and p):
+        return o, p, None, None
+    rr = [x for x in _ratios(rounds_of(rounds, scene, accuracy, o, p)) if x is not None]
+    return (o, p, statistics.median(rr), "rounds") if rr else (o, p, o["time_s"] / p["time_s"], "grid")
+
+
 def rounds_text(r: dict | None) -> str:
     """'median (each round's ratio)' of a rounds record, or '-'."""
     rr = [x for x in _ratios(r) if x is not None]
@@ -375,6 +387,8 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = ()) -> lis
                   f"rounds of {'/'.join(map(str, sorted({r['repeats'] for r in rounds})))} runs, the cable's first), "
                   "each round's ratio of its two medians; the machine's speed drifts within a run, and a round's "
                   "two medians share its phase (data/peers/" + f"{NAME}-rounds.jsonl)."]
+    lines += [""] + anatomy_lines([(a, *deciding_ratio(recs, rounds, scene, a)) for a in ACCURACIES])
+    lines += [""] + step_error_lines(recs)
     fl = floors(recs)
     if fl:
         lines += ["", "Accuracy floors, read at the finest step of the finest mesh (the cable's: its physics, "

@@ -1,0 +1,85 @@
+"""Where the time of a work-precision row goes, from its two runs' records (ours and the
+cable's): time = steps x Newton iterations per step x time per iteration.
+
+An element that reaches the accuracy on fewer or cheaper elements changes only the last
+factor; the step the accuracy allows sets the first, the Newton scheme the second. The
+table says which factor separates the two codes, and judges issue 20's target (ours at
+most :data:`TARGET` of the cable's time) by the row's ratio: the rounds' median where
+the row was re-timed in rounds, else the grid's.
+
+The coarsest step's error on the finest meshes (:func:`step_error_lines`) is the step's
+own error, the same for every element: no element reaches an accuracy below it at that
+step, except where a coarse mesh's error happens to cancel it.
+"""
+from __future__ import annotations
+
+from contract import paper
+
+TARGET = 0.5                    # issue 20: our cheapest run at most half of Exudyn's time ...
+TARGET_ACCURACIES = (0.01, 0.001)   # ... at 1 % and at 0.1 %
+
+
+def factors(r: dict) -> dict:
+    """steps (t_end / dt, the fixed step), Newton iterations (as the run's code counts them),
+    their ratio, and the time per iteration and per step (s)."""
+    steps = round(paper.PENDULUM_T_END / r["dt"])
+    its = r.get("newton_iterations")
+    return {"steps": steps, "iterations": its, "per_step": its / steps if its else None,
+            "per_iteration_s": r["time_s"] / its if its else None, "per_step_s": r["time_s"] / steps}
+
+
+def verdict(accuracy: float, ratio: float | None, ours: dict | None, cable: dict | None) -> str:
+    """Issue 20's target at this accuracy ('-' where it sets none)."""
+    if accuracy not in TARGET_ACCURACIES:
+        return "-"
+    if ours is None:
+        return "not met: no run of ours reaches it" + ("" if cable else ", nor of the cable")
+    if cable is None:
+        return "no run of the cable reaches it"
+    return f"{'met' if ratio <= TARGET else 'not met'} ({ratio:.2f} {'<=' if ratio <= TARGET else '>'} {TARGET:g})"
+
+
+def _run(r: dict | None) -> list[str]:
+    if r is None:
+        return ["none"] + ["-"] * 5
+    f = factors(r)
+    name = f"{r['element']} x {r['elements']}" if r["solver"] == "ancf" else f"cable x {r['elements']}"
+    it = f["iterations"]
+    return [f"{name}, dt {r['dt'] * 1e3:g} ms", str(f["steps"]), str(it) if it else "-",
+            f"{f['per_step']:.2f}" if it else "-", f"{1e6 * f['per_iteration_s']:.1f}" if it else "-",
+            f"{1e6 * f['per_step_s']:.0f}"]
+
+
+def anatomy_lines(rows: list[tuple]) -> list[str]:
+    """The table of ``rows`` = [(accuracy, ours, cable, ratio, source)]: the cheapest runs
+    (records or None), the row's ratio (None without both) and where it comes from
+    ('rounds' or 'grid')."""
+    out = ["Where the time goes (time = steps x iterations per step x time per iteration; iterations as each "
+           f"code counts them) and issue 20's target, ours at most {TARGET:g} of the cable's time:", "",
+           "| accuracy | run | steps | Newton iterations | per step | time / iteration (us) | time / step (us) | "
+           "target |", "|---|---|---|---|---|---|---|---|"]
+    for acc, o, p, ratio, source in rows:
+        how = {"rounds": ", by the rounds' median", "grid": ", by the grid's medians"}.get(source, "")
+        v = verdict(acc, ratio, o, p) + (how if acc in TARGET_ACCURACIES else "")
+        out.append(f"| {100 * acc:g} % | ours: " + " | ".join(_run(o)) + f" | {v} |")
+        out.append(f"| | cable: " + " | ".join(_run(p)) + " | |")
+    return out
+
+
+def step_error_lines(recs: list[dict]) -> list[str]:
+    """One sentence: the errors at the coarsest step on each side's finest mesh that has
+    a result there."""
+    if not recs:
+        return []
+    dt = max(r["dt"] for r in recs)
+    parts = []
+    for solver, name in (("ancf", "ours"), ("exudyn", "the cable's")):
+        mine = [r for r in recs if r["solver"] == solver and r["dt"] == dt and r["error"] is not None]
+        if not mine:
+            continue
+        n = max(r["elements"] for r in mine)
+        e = [r["error"] for r in mine if r["elements"] == n]
+        lo, hi = f"{100 * min(e):.2f}", f"{100 * max(e):.2f}"
+        parts.append(f"{name} {lo}{'' if lo == hi else ' to ' + hi} % ({n} elements)")
+    return [f"At the coarsest step, {dt * 1e3:g} ms, the runs on the finest mesh with a result there (the "
+            "step's error plus the model's floor, tabled below) are off by: " + "; ".join(parts) + "."] if parts else []
