@@ -12,7 +12,7 @@ from functools import lru_cache
 
 import numpy as np
 from scipy.linalg import cho_solve_banded, cholesky_banded
-from scipy.linalg.lapack import dgbtrf as _gbtrf, dgbtrs as _gbtrs
+from scipy.linalg.lapack import dgbsv as _gbsv
 from scipy.sparse import dia_matrix
 
 
@@ -58,21 +58,16 @@ class Banded:
         error is relative to the largest entries; a section of degree 6 has generalized
         masses ~1e-50 of a position dof's, whose unknowns an unscaled LU loses entirely
         (HB2n-84p: M a0 = r solved with a Jacobi-scaled residual 8e5 times r)."""
-        return self.factorised().solve(rhs)
-
-    def factorised(self) -> "BandedLU":
-        """The banded LU (gbtrf) of S = D^-1/2 K D^-1/2 (:meth:`solve`), for solves with
-        several right-hand sides; LinAlgError if K is singular."""
         b, n = self.b, self.n
         s = self.jacobi_scale()
         lu = np.empty((3 * b + 1, n), order="F")
         np.multiply(self.ab, _scaling(s, b), out=lu[b:])
-        lu, piv, info = _gbtrf(lu, b, b, overwrite_ab=True)
+        _, _, x, info = _gbsv(b, b, lu, s * rhs, overwrite_ab=True, overwrite_b=True)
         if info > 0:
             raise np.linalg.LinAlgError("singular matrix")
         if info < 0:
-            raise ValueError(f"gbtrf: illegal argument {-info}")
-        return BandedLU(lu, piv, s, b)
+            raise ValueError(f"gbsv: illegal argument {-info}")
+        return s * x
 
     def jacobi_scale(self) -> np.ndarray:
         """s = D^-1/2, D = |diag K| with a zero diagonal entry counted as the smallest
@@ -141,23 +136,6 @@ class Banded:
     def matvec(self, x: np.ndarray) -> np.ndarray:
         from .kernels import band_matvec
         return band_matvec(self.ab, self.b, np.ascontiguousarray(x, dtype=float))
-
-
-@dataclass(frozen=True)
-class BandedLU:
-    """K = D^1/2 S D^1/2 with S's banded LU factors (LAPACK gbtrf: lu, piv) and
-    s = D^-1/2 (:meth:`Banded.factorised`)."""
-    lu: np.ndarray
-    piv: np.ndarray
-    s: np.ndarray
-    b: int
-
-    def solve(self, rhs: np.ndarray) -> np.ndarray:
-        """K^-1 rhs = s (S^-1 (s rhs))."""
-        x, info = _gbtrs(self.lu, self.b, self.b, self.s * rhs, self.piv)
-        if info != 0:
-            raise ValueError(f"gbtrs: illegal argument {-info}")
-        return self.s * x
 
 
 def _scaling(s: np.ndarray, b: int) -> np.ndarray:

@@ -137,7 +137,7 @@ class BeamModel:
         if "_energy_data" not in self.__dict__:
             dN, w, dofs, ops, consts, pr, _ = self.fused
             ops, consts = live_tape(ops, consts)
-            self._energy_data = (dN, w, dofs, ops, consts, pr, *step_scratch(ops.shape[0], dN.shape[0]))
+            self._energy_data = (dN, w, dofs, ops, consts, pr, *step_scratch(ops.shape[0], dN, pr))
         U = strain_energy_fused(np.ascontiguousarray(u, dtype=float), *self._energy_data)
         if not np.isfinite(U):
             self._checked(self.gradients(u))            # names the point's det F
@@ -356,5 +356,5 @@ class BeamModel:
         m = self.mesh
         N = self._centre_shapes(per_element)
         q = m.reference + u
-        pts = np.einsum("pa,eai->epi", N, q[m.element_dofs])
+        pts = np.matmul(N, q[m.element_dofs])           # (elements, points, 2)
         return np.concatenate([pts[:, :-1].reshape(-1, 2), pts[-1, -1:]])

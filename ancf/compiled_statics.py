@@ -47,11 +47,11 @@ def _residual(f, target, is_free, r):
 
 
 @njit(cache=True)
-def _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb):
+def _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb, ew):
     """g(s) = R(u + s du) . du, the potential's slope along du (inf where det F <= 0)."""
     for i in range(u.shape[0]):
         ut[i] = u[i] + s * du[i]
-    if assemble_fused(ut, ut, 0.0, dN, w, dofs, ops, consts, pr, f, S, False, chunk, R, Fb, ab, Jb) != OK:
+    if assemble_fused(ut, ut, 0.0, dN, w, dofs, ops, consts, pr, f, S, False, chunk, R, Fb, ab, Jb, ew) != OK:
         return math.inf
     g = 0.0
     for i in range(u.shape[0]):
@@ -61,14 +61,14 @@ def _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, ch
 
 
 @njit(cache=True)
-def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb, ut):
+def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb, ew, ut):
     """The step factor of :func:`ancf.statics._line_search`, the same rule."""
     g0 = 0.0
     for i in range(u.shape[0]):
         g0 += r[i] * du[i]
     if g0 >= 0.0:                    # not a descent direction (indefinite K): full step
         return 1.0
-    g1 = _slope(1.0, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb)
+    g1 = _slope(1.0, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb, ew)
     if abs(g1) <= 0.5 * abs(g0):
         return 1.0
     lo, glo, hi, ghi = 0.0, g0, 1.0, g1
@@ -80,7 +80,7 @@ def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, pr, f, S, 
         else:
             s = 0.5 * (lo + hi)
         s = min(max(s, lo + 0.1 * (hi - lo)), hi - 0.1 * (hi - lo))
-        gs = _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb)
+        gs = _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb, ew)
         if abs(gs) <= 0.5 * abs(g0):
             return s
         if gs < 0.0:
@@ -104,10 +104,10 @@ def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, u, atol, utol,
     S = np.empty((n, b + 1))
     f, r, du, ut = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     wk = np.empty((2, n))
-    chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
+    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
     nres = 0
     for it in range(max_it + 1):
-        if assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, S, True, chunk, R, Fb, ab, Jb) != OK:
+        if assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, S, True, chunk, R, Fb, ab, Jb, ew) != OK:
             return NOT_ADMISSIBLE, nres, nres
         rn = _residual(f, target, is_free, r)
         residuals[nres] = rn
@@ -131,7 +131,7 @@ def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, u, atol, utol,
                 return UNPIVOTED, it, nres
         if line_search:
             step = _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab,
-                                Jb, ut)
+                                Jb, ew, ut)
             for i in range(n):
                 du[i] *= step
         umax, dumax = 0.0, 0.0
@@ -140,7 +140,7 @@ def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, u, atol, utol,
             umax = max(umax, abs(u[i]))
             dumax = max(dumax, abs(du[i]))
         if it >= 1 and dumax <= utol * max(umax, hbeam):
-            if assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, S, False, chunk, R, Fb, ab, Jb) != OK:
+            if assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, S, False, chunk, R, Fb, ab, Jb, ew) != OK:
                 return NOT_ADMISSIBLE, nres, nres
             residuals[nres] = _residual(f, target, is_free, r)
             return CONVERGED, it + 1, nres + 1
@@ -156,7 +156,7 @@ def force_magnitude(u, dN, w, dofs, ops, consts, pr, out):
     somewhere."""
     ne = dofs.shape[0]
     nq, ns = dN.shape[0], dN.shape[1]
-    chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], nq)
+    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
     W = R[ops.shape[0] - 1]
     nk = pr[2].shape[0]
     g, pk, pp = np.empty(nk), np.empty(nk), np.zeros(nq)

@@ -178,10 +178,10 @@ def _correct(S, first, r, du, u, counters):
 
 @njit(cache=True)
 def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
-         u_n, v_n, a_n, h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, full):
+         u_n, v_n, a_n, h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, ew, full):
     """One step u_n, v_n, a_n -> u, v, a of size h. S holds the current factorisation
     (modified Newton), fstate = [h of that factorisation, 1 if valid]; wk: work (7, n);
-    chunk, R, Fb, ab, Jb: :func:`step_scratch`; full: full Newton whatever inewton says.
+    chunk, R, Fb, ab, Jb, ew: :func:`step_scratch`; full: full Newton whatever inewton says.
     Returns (status, iterations)."""
     am, af, beta, gamma = coef[0], coef[1], coef[2], coef[3]
     max_it, modified = inewton[I_MAX_IT], inewton[I_MODIFIED] != 0 and not full
@@ -207,7 +207,7 @@ def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, i
     while True:
         # residual M((1 - am) a + am a_n) + f(ue) - f_ext, with M a = c' M (u - u_pred) + M a_n
         refactor = (not modified) or fstate[1] == 0.0
-        status = assemble_fused(u, u_n, af, dN, w, dofs, ops, consts, pr, f, S, refactor, chunk, R, Fb, ab, Jb)
+        status = assemble_fused(u, u_n, af, dN, w, dofs, ops, consts, pr, f, S, refactor, chunk, R, Fb, ab, Jb, ew)
         counters[C_RESIDUALS] += 1
         if refactor:
             counters[C_TANGENTS] += 1
@@ -223,7 +223,7 @@ def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, i
         rho = rn / r_prev if since > 0 else -1.0      # contraction of the last iteration (-1: none yet)
         if modified and not refactor and (since >= max_mod or rho > kappa):
             refactor = True                           # poor contraction: tangent at this iterate
-            status = assemble_fused(u, u_n, af, dN, w, dofs, ops, consts, pr, f, S, True, chunk, R, Fb, ab, Jb)
+            status = assemble_fused(u, u_n, af, dN, w, dofs, ops, consts, pr, f, S, True, chunk, R, Fb, ab, Jb, ew)
             counters[C_TANGENTS] += 1
             if status != OK:
                 return status, it
@@ -296,12 +296,12 @@ def step_dg(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, inew
 
 
 @njit(cache=True)
-def energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, tmp, chunk, R, Fb, ab, Jb):
+def energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, tmp, chunk, R, Fb, ab, Jb, ew):
     """Kinetic + strain + gravity potential (J); the gravity potential is
     -f_ext . (q_ref + u) as in ancf.integrators.Integrator.energies."""
     col_matvec(Mc, first, v, tmp)
     kin = 0.5 * np.dot(v, tmp)
-    return kin + strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb) - np.dot(f_ext, q_ref + u)
+    return kin + strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, ew) - np.dot(f_ext, q_ref + u)
 
 
 @njit(cache=True)
@@ -325,9 +325,9 @@ def advance(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, fixed, coef, 
     for k in fixed:
         is_free[k] = False
     wk = np.empty((7, n))
-    chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
+    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
     dg = inewton[I_SCHEME] == DISCRETE_GRADIENT
-    scratch = dg_scratch(ops.shape[0], dN.shape[0]) if dg else dg_scratch(1, 192)   # (unused: tiny)
+    scratch = dg_scratch(ops.shape[0] if dg else 1, dN, pr)   # (unused without dg: one op)
     un, vn, an = np.empty(n), np.empty(n), np.empty(n)
     every = inewton[I_ENERGY_EVERY]
     t, h = tstate[0], tstate[1]
@@ -345,14 +345,14 @@ def advance(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, fixed, coef, 
                                   un, vn, an, step_h, u, v, a, S, counters, wk, scratch)
         else:
             status, its = step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
-                               un, vn, an, step_h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, False)
+                               un, vn, an, step_h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, ew, False)
         counters[C_ITERATIONS] += its
         if status != OK and status != SINGULAR and inewton[I_MODIFIED] != 0 and not dg:
             # a reused factorisation failed (divergence, det F <= 0, no convergence):
             # redo the step from the predictor with full Newton before rejecting it
             counters[C_FALLBACKS] += 1
             status, its = step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
-                               un, vn, an, step_h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, True)
+                               un, vn, an, step_h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, ew, True)
             counters[C_ITERATIONS] += its
         if status != OK:
             u[:] = un
@@ -373,7 +373,7 @@ def advance(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, fixed, coef, 
         h = _after_acceptance(h, step_h, 0.0, 0.0, dt, land)
         if every > 0 and not land and (offset + done) % every == 0:
             counters[C_ENERGIES] += 1
-            E = energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, wk[5], chunk, R, Fb, ab, Jb)
+            E = energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, wk[5], chunk, R, Fb, ab, Jb, ew)
             if not E <= tstate[4]:
                 tstate[4] = E          # (a NaN energy is kept: it is the peak that fails the run)
             if not E <= fnewton[F_ELIMIT]:
@@ -387,13 +387,13 @@ def advance(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, fixed, coef, 
 @njit(cache=True)
 def internal_force(u, dN, w, dofs, ops, consts, pr, f):
     """f = f_int(u) by the fused assembly (force only); returns its status."""
-    chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
-    return assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, np.empty((0, 0)), False, chunk, R, Fb, ab, Jb)
+    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
+    return assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, np.empty((0, 0)), False, chunk, R, Fb, ab, Jb, ew)
 
 
 @njit(cache=True)
 def total_energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref):
-    chunk, R, Fb, ab, Jb = step_scratch(ops.shape[0], dN.shape[0])
+    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
     return energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, np.empty(u.shape[0]), chunk, R, Fb,
                   ab, Jb)
 

@@ -16,13 +16,14 @@ from .tape import FASTMATH, tape_batch
 
 
 @njit(cache=True)
-def dg_scratch(n_ops, nq):
+def dg_scratch(n_ops, dN, pr):
     """Work arrays of :func:`assemble_dg`: (chunk, R (n_ops, 6, m) midpoint jets, Fb
-    (m, 4) midpoint F, ab, Jb (m,), F0 and F1 (m, 4), a and J at the 12 line points
-    (12 m,), their jets RL (n_ops, 3, 12 m), W (6, m)), m = chunk * nq."""
-    chunk, R, Fb, ab, Jb = step_scratch(n_ops, nq)
-    m = chunk * nq
-    return (chunk, R, Fb, ab, Jb, np.empty((m, 4)), np.empty((m, 4)), np.empty(12 * m), np.empty(12 * m),
+    (m, 4) midpoint F, ab, Jb (m,), ew (:func:`ancf.kernels.element_scratch`), F0 and F1
+    (m, 4), a and J at the 12 line points (12 m,), their jets RL (n_ops, 3, 12 m), W (6, m)),
+    m = chunk * nq."""
+    chunk, R, Fb, ab, Jb, ew = step_scratch(n_ops, dN, pr)
+    m = chunk * dN.shape[0]
+    return (chunk, R, Fb, ab, Jb, ew, np.empty((m, 4)), np.empty((m, 4)), np.empty(12 * m), np.empty(12 * m),
             np.empty((n_ops, 3, 12 * m)), np.empty((6, m)))
 
 
@@ -32,7 +33,7 @@ GAUSS3_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
 
 
 @njit(cache=True, fastmath=FASTMATH)
-def assemble_dg(u0, u1, dN, w, dofs, ops, consts, pr, f, Kc, chunk, R, Fb, ab, Jb, F0, F1, aL, JL, RL, W):
+def assemble_dg(u0, u1, dN, w, dofs, ops, consts, pr, f, Kc, chunk, R, Fb, ab, Jb, ew, F0, F1, aL, JL, RL, W):
     """The discrete-gradient force f_dg(u0, u1) into f and the tangent at the midpoint
     F_m = (F0 + F1) / 2 with the discrete-gradient W^_a, W^_J in its first-order terms
     (not yet halved) into Kc: :meth:`ancf.beam.BeamModel.discrete_gradient_force_and_tangent`

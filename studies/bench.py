@@ -187,7 +187,7 @@ def kernel_rows(calls: int = 100, repeats: int = 10, elements: int = KERNEL_ELEM
         dN, w, dofs, ops, consts, pr, _ = model.fused
         ops, consts = live_tape(ops, consts)
         f, K = np.empty(n), np.empty((n, model.mesh.bandwidth + 1))
-        scratch = step_scratch(ops.shape[0], dN.shape[0])
+        scratch = step_scratch(ops.shape[0], dN, pr)
         for name, tangent in (("force", False), ("tangent", True)):
             def call():
                 return assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, K, tangent, *scratch)

@@ -170,7 +170,7 @@ def test_fused_kernel_matches_the_numpy_reference(element, law, form, rng):
     n, b = u.size, int(model.mesh.bandwidth)
     f, Kc = np.empty(n), np.zeros((n, b + 1))
     assert assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, Kc, True,
-                          *step_scratch(ops.shape[0], dN.shape[0])) == OK
+                          *step_scratch(ops.shape[0], dN, pr)) == OK
     f_ref, K_ref = model.internal_force_and_tangent_numpy(u)
     K_ref = K_ref.to_sparse()
     np.testing.assert_allclose(f, f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())

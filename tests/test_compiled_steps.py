@@ -167,13 +167,17 @@ def test_fused_tangent_of_every_element_in_either_dof_numbering(element):
     u, un = (1e-4 * np.random.default_rng(5).standard_normal(n) for _ in range(2))
     f_ref, K_ref = model.internal_force_and_tangent(0.6 * u + 0.4 * un)
     ops, consts = model._tape
-    scratch = step_scratch(ops.shape[0], model._dN.shape[0])
+    scratch = step_scratch(ops.shape[0], model._dN, model.fused[5])
     rev = n - 1 - np.arange(n)
     for dofs, perm in ((model._dofs.astype(np.int64), np.arange(n)), ((n - 1 - model._dofs).astype(np.int64), rev)):
         f, Kc = np.empty(n), np.empty((n, b + 1))
         assert assemble_fused(u[perm], un[perm], 0.4, model._dN, model._w, dofs, ops, consts, model.fused[5], f,
                               Kc, True, *scratch) == OK
         np.testing.assert_allclose(f, f_ref[perm], rtol=0, atol=1e-12 * np.abs(f_ref).max())
+        f_only = np.empty(n)                        # the force alone: element_forces, its own work arrays
+        assert assemble_fused(u[perm], un[perm], 0.4, model._dN, model._w, dofs, ops, consts, model.fused[5], f_only,
+                              np.empty((0, 0)), False, *scratch) == OK
+        np.testing.assert_allclose(f_only, f_ref[perm], rtol=0, atol=1e-12 * np.abs(f_ref).max())
         dense = np.zeros((n, n))
         for j in range(n):
             for r in range(max(0, j - b), j + 1):
@@ -199,7 +203,7 @@ def test_discrete_gradient_kernel_equals_the_model(element, law, form):
     f_ref, K_ref = model.discrete_gradient_force_and_tangent(u0, u1)
     dN, w, dofs, ops, consts, pr, _ = model.fused
     f, Kc = np.empty(n), np.empty((n, b + 1))
-    assert assemble_dg(u0, u1, dN, w, dofs, ops, consts, pr, f, Kc, *dg_scratch(ops.shape[0], dN.shape[0])) == OK
+    assert assemble_dg(u0, u1, dN, w, dofs, ops, consts, pr, f, Kc, *dg_scratch(ops.shape[0], dN, pr)) == OK
     np.testing.assert_allclose(f, f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())
     np.testing.assert_allclose(0.5 * Kc, column_band(K_ref.ab, b), rtol=0, atol=1e-12 * np.abs(K_ref.ab).max())
     dU = model.strain_energy(u1) - model.strain_energy(u0)
@@ -233,7 +237,7 @@ def test_fused_kernel_and_ldlt_equal_the_reference(element, law, form):
     f_ref, K_ref = model.internal_force_and_tangent(0.7 * u + 0.3 * un)
     ops, consts = model._tape
     f, Kc = np.empty(n), np.empty((n, b + 1))
-    scratch = step_scratch(ops.shape[0], model._dN.shape[0])
+    scratch = step_scratch(ops.shape[0], model._dN, model.fused[5])
     args = (model._dN, model._w, model._dofs.astype(np.int64), ops, consts, model.fused[5])
     assert assemble_fused(u, un, 0.3, *args, f, Kc, True, *scratch) == OK
     np.testing.assert_allclose(f, f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())

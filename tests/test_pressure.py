@@ -75,14 +75,17 @@ def test_compiled_pressure_terms_equal_the_projected_penalty(rng):
     dN, w, dofs, ops, consts, pr, first = model.fused
     none = pressure_arrays(None, dN.shape[0])
     n, b = u.size, int(model.mesh.bandwidth)
-    scratch = step_scratch(ops.shape[0], dN.shape[0])
+    scratch = {id(p): step_scratch(ops.shape[0], dN, p) for p in (pr, none)}     # work arrays per field
 
     def scatter(fe):
         return np.bincount(model._dofs.ravel(), fe.ravel(), minlength=n)
 
     def fused(p):
-        f, Kc = np.empty(n), np.zeros((n, b + 1))
-        assert assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, p, f, Kc, True, *scratch) == OK
+        f, Kc, f_only = np.empty(n), np.zeros((n, b + 1)), np.empty(n)
+        assert assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, p, f, Kc, True, *scratch[id(p)]) == OK
+        # the force alone (element_forces) is the same force, to round-off
+        assert assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, p, f_only, Kc, False, *scratch[id(p)]) == OK
+        np.testing.assert_allclose(f_only, f, rtol=0, atol=1e-13 * np.abs(f).max())
         return f, Kc
 
     def dense(Kc):
@@ -101,13 +104,12 @@ def test_compiled_pressure_terms_equal_the_projected_penalty(rng):
     np.testing.assert_allclose(f_all - f_pt, fp, rtol=0, atol=1e-12 * np.abs(f_all).max())
     Kp = model.pattern.assemble(Ke).to_sparse().toarray()
     np.testing.assert_allclose(dense(K_all) - dense(K_pt), Kp, rtol=0, atol=1e-12 * np.abs(dense(K_all)).max())
-    U = strain_energy_fused(u, dN, w, dofs, ops, consts, pr, *scratch)
-    U_pt = strain_energy_fused(u, dN, w, dofs, ops, consts, none, *scratch)
+    U = strain_energy_fused(u, dN, w, dofs, ops, consts, pr, *scratch[id(pr)])
+    U_pt = strain_energy_fused(u, dN, w, dofs, ops, consts, none, *scratch[id(none)])
     assert U - U_pt == pytest.approx(pen.energy(F), rel=1e-11)
-    dgs = dg_scratch(ops.shape[0], dN.shape[0])
     fd, Kd, fd_pt, Kd_pt = np.empty(n), np.empty((n, b + 1)), np.empty(n), np.empty((n, b + 1))
-    assert assemble_dg(u, u1, dN, w, dofs, ops, consts, pr, fd, Kd, *dgs) == OK
-    assert assemble_dg(u, u1, dN, w, dofs, ops, consts, none, fd_pt, Kd_pt, *dgs) == OK
+    assert assemble_dg(u, u1, dN, w, dofs, ops, consts, pr, fd, Kd, *dg_scratch(ops.shape[0], dN, pr)) == OK
+    assert assemble_dg(u, u1, dN, w, dofs, ops, consts, none, fd_pt, Kd_pt, *dg_scratch(ops.shape[0], dN, none)) == OK
     fe_dg, Ke_dg = pen.discrete_gradient_terms(F, F1)
     np.testing.assert_allclose(fd - fd_pt, scatter(fe_dg), rtol=0, atol=1e-12 * np.abs(fd).max())
     np.testing.assert_allclose(0.5 * (dense(Kd) - dense(Kd_pt)), model.pattern.assemble(Ke_dg).to_sparse().toarray(),
