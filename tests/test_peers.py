@@ -293,7 +293,7 @@ def test_work_precision_anatomy_splits_the_time_and_judges_the_target_by_the_dec
     assert f["per_iteration_s"] == pytest.approx(4e-5) and f["per_step_s"] == pytest.approx(1.2e-4)
     recs = [ours, cable, rec("exudyn", 8, 1e-2, None, None, None), rec("ancf", 8, 1e-2, 0.014, 0.006, 200)]
     text = wp.report_markdown(recs)
-    assert "| 1 % | ours: HB2n-16 x 8, dt 5 ms | 100 | 300 | 3.00 | 40.0 | 120 | not met (0.60 > 0.5), by the grid's " \
+    assert "| 1 % | ours: HB2n-16 x 8, dt 5 ms | 100 | 300 | 3.00 | 40.0 | 120 | not met (0.600 > 0.5), by the grid's " \
            "medians |" in text
     assert "| | cable: cable x 4, dt 10 ms | 50 | 450 | 9.00 | 44.4 | 400 | |" in text
     assert "| 0.3 % | ours: HB2n-16 x 8, dt 5 ms | 100 | 300 | 3.00 | 40.0 | 120 | - |" in text    # no target there
@@ -301,7 +301,7 @@ def test_work_precision_anatomy_splits_the_time_and_judges_the_target_by_the_dec
     rounds = [{"scene": "pendulum", "accuracy": 0.001, **wp._pair(ours, cable), "repeats": 5,
                "rounds": [{"exudyn_s": 0.02, "ours_s": 0.008}, {"exudyn_s": 0.02, "ours_s": 0.012},
                           {"exudyn_s": 0.02, "ours_s": 0.009}]}]
-    assert "| 0.1 % | ours: HB2n-16 x 8, dt 5 ms | 100 | 300 | 3.00 | 40.0 | 120 | met (0.45 <= 0.5), by the rounds' " \
+    assert "| 0.1 % | ours: HB2n-16 x 8, dt 5 ms | 100 | 300 | 3.00 | 40.0 | 120 | met (0.450 <= 0.5), by the rounds' " \
            "median |" in wp.report_markdown(recs, rounds)
     assert anatomy.verdict(0.001, None, None, cable) == "not met: no run of ours reaches it"
     assert anatomy.verdict(0.001, None, None, None) == "not met: no run of ours reaches it, nor of the cable"

@@ -36,7 +36,8 @@ def verdict(accuracy: float, ratio: float | None, ours: dict | None, cable: dict
         return "not met: no run of ours reaches it" + ("" if cable else ", nor of the cable")
     if cable is None:
         return "no run of the cable reaches it"
-    return f"{'met' if ratio <= TARGET else 'not met'} ({ratio:.2f} {'<=' if ratio <= TARGET else '>'} {TARGET:g})"
+    ok = ratio <= TARGET
+    return f"{'met' if ok else 'not met'} ({ratio:.3f} {'<=' if ok else '>'} {TARGET:g})"    # 3 decimals: 0.498 is not 0.50
 
 
 def _run(r: dict | None) -> list[str]:
