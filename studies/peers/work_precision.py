@@ -232,15 +232,14 @@ def retime(recs: list[dict], a, path: Path) -> list[dict]:
     return out
 
 
-def deciding_ratio(recs: list[dict], rounds: list[dict], scene: str, accuracy: float) -> tuple:
-    """(ours, cable, ratio, source) of an accuracy: the two cheapest runs (or None), and
-    ours / cable's by the median of their rounds ('rounds') where they were re-timed, else
-    by the grid's medians ('grid'); ratio None without both runs."""
-    o, p = cheapest(recs, "ancf", None, accuracy), cheapest(recs, "exudyn", None, accuracy)
+def deciding_ratio(o: dict | None, p: dict | None, rr: dict | None) -> tuple:
+    """(ratio, source) of a row with our and the cable's cheapest runs o, p and their rounds
+    record rr: ours / cable's by the median of the rounds ('rounds') where they were
+    re-timed, else by the grid's medians ('grid'); (None, None) without both runs."""
     if not (o and p):
-        return o, p, None, None
-    rr = [x for x in _ratios(rounds_of(rounds, scene, accuracy, o, p)) if x is not None]
-    return (o, p, statistics.median(rr), "rounds") if rr else (o, p, o["time_s"] / p["time_s"], "grid")
+        return None, None
+    x = [r for r in _ratios(rr) if r is not None]
+    return (statistics.median(x), "rounds") if x else (o["time_s"] / p["time_s"], "grid")
 
 
 def rounds_text(r: dict | None) -> str:
@@ -371,6 +370,7 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = ()) -> lis
              "| accuracy | cheapest ours | time (s) | error (%) | cheapest Exudyn cable | time (s) | error (%) | "
              "ours / Exudyn (medians) | range over runs | by rounds: median (each round) |",
              "|---|---|---|---|---|---|---|---|---|---|"]
+    rows = []                          # (accuracy, ours, cable, ratio, source): the anatomy's rows
     for a in ACCURACIES:
         o, p = cheapest(recs, "ancf", None, a), cheapest(recs, "exudyn", None, a)
         fo = (f"{o['element']} x {o['elements']}, dt {o['dt'] * 1e3:g} ms | {o['time_s']:.4f} | "
@@ -381,13 +381,14 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = ()) -> lis
                  else "- (ours reaches it, the cable does not) | -" if o else "- | -")
         rr = rounds_of(rounds, scene, a, o, p) if o and p else None
         lines.append(f"| {100 * a:g} % | {fo} | {fp} | {ratio} | {rounds_text(rr)} |")
+        rows.append((a, o, p, *deciding_ratio(o, p, rr)))
     if any(r.get("rounds") for r in rounds):
         n = sorted({len(r["rounds"]) for r in rounds})
         lines += ["", f"By rounds: the two points of a row timed again alternately after the grid ({'/'.join(map(str, n))} "
                   f"rounds of {'/'.join(map(str, sorted({r['repeats'] for r in rounds})))} runs, the cable's first), "
                   "each round's ratio of its two medians; the machine's speed drifts within a run, and a round's "
                   "two medians share its phase (data/peers/" + f"{NAME}-rounds.jsonl)."]
-    lines += [""] + anatomy_lines([(a, *deciding_ratio(recs, rounds, scene, a)) for a in ACCURACIES])
+    lines += [""] + anatomy_lines(rows)
     lines += [""] + step_error_lines(recs)
     fl = floors(recs)
     if fl:
