@@ -391,13 +391,6 @@ def internal_force(u, dN, w, dofs, ops, consts, pr, f):
     return assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, np.empty((0, 0)), False, chunk, R, Fb, ab, Jb, ew)
 
 
-@njit(cache=True)
-def total_energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref):
-    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
-    return energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, np.empty(u.shape[0]), chunk, R, Fb,
-                  ab, Jb)
-
-
 # -- the Python side -----------------------------------------------------------------------
 def column_band(ab: np.ndarray, b: int) -> np.ndarray:
     """LAPACK general band ab (2 b + 1, n) of a symmetric matrix -> column band (n, b + 1)."""
@@ -468,11 +461,6 @@ class CompiledLoop:
         if internal_force(np.ascontiguousarray(u, dtype=float), *self.data[:6], f) != OK:
             return self.model_force(u)
         return f
-
-    def energy(self, u: np.ndarray, v: np.ndarray) -> float:
-        """Kinetic + strain + dead-load potential (J), as the integrator's energies total."""
-        return float(total_energy(np.ascontiguousarray(u, dtype=float), np.ascontiguousarray(v, dtype=float),
-                                  *self.data[:10]))
 
     def advance(self, s: time_loop.State, h: float, t_out: float, dt: float, budget: int, offset: int = 0,
                 energy_every: int = 0, energy_max: float = math.inf) -> Advanced:

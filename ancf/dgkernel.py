@@ -76,5 +76,5 @@ def assemble_dg(u0, u1, dN, w, dofs, ops, consts, pr, f, Kc, chunk, R, Fb, ab, J
             W[1, p] = 0.5 * wa
             W[2, p] = 0.5 * wj
             W[3, p], W[4, p], W[5, p] = Wm[3, p], Wm[4, p], Wm[5, p]
-        element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, True)
+        element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc)
     return OK

@@ -248,7 +248,7 @@ def assemble_fused(u, u_n, alpha_f, dN, w, dofs, ops, consts, pr, f, Kc, with_ta
             return INADMISSIBLE
         tape_batch(ops, consts, ab, Jb, R, m, 2 if with_tangent else 1)
         if with_tangent:
-            element_terms(Fb, R[ops.shape[0] - 1], Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent)
+            element_terms(Fb, R[ops.shape[0] - 1], Jb, e0, e1, dN, w, dofs, pr, f, Kc)
         else:
             element_forces(Fb, R[ops.shape[0] - 1], Jb, e0, e1, dN, w, dofs, pr, f, ew)
     return OK
@@ -298,6 +298,14 @@ def element_pressures(pr, Jb, p0, nq, g, pk, out):
     return U
 
 
+@njit(cache=True, fastmath=FASTMATH, inline="always")
+def _piola(wq, Wa, WJ, F00, F01, F10, F11):
+    """w P at a point, P = 2 W_a F + W_J cof F (F = [[F00, F01], [F10, F11]]), as (P00,
+    P01, P10, P11): the one copy of the stress for the force and the tangent."""
+    return (wq * (2.0 * Wa * F00 + WJ * F11), wq * (2.0 * Wa * F01 - WJ * F10),
+            wq * (2.0 * Wa * F10 - WJ * F01), wq * (2.0 * Wa * F11 + WJ * F00))
+
+
 @njit(cache=True, fastmath=FASTMATH)
 def element_forces(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, ew):
     """Add the force of elements e0 .. e1 - 1 to f: :func:`element_terms` without the
@@ -319,11 +327,7 @@ def element_forces(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, ew):
             element_pressures(pr, Jb, p, nq, gk, pk, pf)
         for q in range(nq):
             F00, F01, F10, F11 = Fb[p, 0], Fb[p, 1], Fb[p, 2], Fb[p, 3]
-            Wa, WJ, wq = W[1, p], W[2, p] + pf[q], w[q]
-            P0 = wq * (2.0 * Wa * F00 + WJ * F11)         # P = 2 W_a F + W_J cof F
-            P1 = wq * (2.0 * Wa * F01 - WJ * F10)
-            P2 = wq * (2.0 * Wa * F10 - WJ * F01)
-            P3 = wq * (2.0 * Wa * F11 + WJ * F00)
+            P0, P1, P2, P3 = _piola(w[q], W[1, p], W[2, p] + pf[q], F00, F01, F10, F11)
             for s in range(ns):
                 g0, g1 = dN[q, s, 0], dN[q, s, 1]
                 fl[2 * s] += g0 * P0 + g1 * P1
@@ -334,10 +338,11 @@ def element_forces(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, ew):
 
 
 @njit(cache=True, fastmath=FASTMATH)
-def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
-    """Add the force (and the upper half of the tangent) of elements e0 .. e1 - 1 to f
-    (and Kc), from F at their points (Fb, in :func:`point_gradients`' order) and the
-    energy's (a, J) derivatives there, W (6, m) = (W, W_a, W_J, W_aa, W_aJ, W_JJ).
+def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc):
+    """Add the force and the upper half of the tangent of elements e0 .. e1 - 1 to f and
+    Kc (the force alone: :func:`element_forces`), from F at their points (Fb, in
+    :func:`point_gradients`' order) and the energy's (a, J) derivatives there,
+    W (6, m) = (W, W_a, W_J, W_aa, W_aJ, W_JJ).
 
     A node block's four entries are contiguous (Kb[s, s2, 2i + k]) and the loops over
     them read only scalars hoisted out of the arrays, so the compiler packs each block
@@ -380,90 +385,82 @@ def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
     p = 0
     for e in range(e0, e1):
         fl[:] = 0.0
-        if with_tangent:
-            Kb[:, :, :] = 0.0
+        Kb[:, :, :] = 0.0
         if nk > 0:
             element_pressures(pr, Jb, p, nq, gk, pk, pf)
-            if with_tangent:
-                for q in range(nq):
-                    Jt[q] = Fb[p + q, 0] * Fb[p + q, 3] - Fb[p + q, 1] * Fb[p + q, 2]
-                element_pressures(pr, Jt, 0, nq, gk, pk, pt)
-                Gl[:, :] = 0.0
+            for q in range(nq):
+                Jt[q] = Fb[p + q, 0] * Fb[p + q, 3] - Fb[p + q, 1] * Fb[p + q, 2]
+            element_pressures(pr, Jt, 0, nq, gk, pk, pt)
+            Gl[:, :] = 0.0
         for q in range(nq):
             F00, F01, F10, F11 = Fb[p, 0], Fb[p, 1], Fb[p, 2], Fb[p, 3]
-            Wa, WJ = W[1, p], W[2, p] + pf[q]
-            wq = w[q]
-            # P = 2 W_a F + W_J cof F;  f_(s, i) += w dN_s,j P_ij
-            P0 = wq * (2.0 * Wa * F00 + WJ * F11)
-            P1 = wq * (2.0 * Wa * F01 - WJ * F10)
-            P2 = wq * (2.0 * Wa * F10 - WJ * F01)
-            P3 = wq * (2.0 * Wa * F11 + WJ * F00)
+            Wa, wq = W[1, p], w[q]
+            P0, P1, P2, P3 = _piola(wq, Wa, W[2, p] + pf[q], F00, F01, F10, F11)     # f_(s, i) += w dN_s,j P_ij
             for s in range(ns):
                 g0, g1 = dN[q, s, 0], dN[q, s, 1]
                 fl[2 * s] += g0 * P0 + g1 * P1
                 fl[2 * s + 1] += g0 * P2 + g1 * P3
-            if with_tangent:
-                # A = 4 W_aa F F + 2 W_aJ (F cof + cof F) + W_JJ cof cof + 2 W_a I + W_J dcof/dF
-                Waa, WaJ, WJJ = W[3, p], W[4, p], W[5, p]
-                Fv[0], Fv[1], Fv[2], Fv[3] = F00, F01, F10, F11
-                cof[0], cof[1], cof[2], cof[3] = F11, -F10, -F01, F00
-                for i in range(4):
-                    fi, ci = Fv[i], cof[i]
-                    for k in range(i, 4):
-                        fk, ck = Fv[k], cof[k]
-                        v = wq * (4.0 * Waa * fi * fk + 2.0 * WaJ * (fi * ck + ci * fk) + WJJ * ci * ck)
-                        A[i, k] = v
-                        A[k, i] = v
-                    A[i, i] += wq * 2.0 * Wa
-                WJt = W[2, p] + pt[q]
-                A[0, 3] += wq * WJt
-                A[3, 0] += wq * WJt
-                A[1, 2] -= wq * WJt
-                A[2, 1] -= wq * WJt
-                if nk > 0:
-                    # dJ/du_(s, i) = cof F : dF/du_(s, i) = sum_j cof_ij dN_s,j at this point,
-                    # Gl += wl_q^T dJ/du (four entries at a time: one vector operation)
-                    for s in range(ns):
-                        g0, g1 = dN[q, s, 0], dN[q, s, 1]
-                        dj[2 * s] = F11 * g0 - F10 * g1
-                        dj[2 * s + 1] = F00 * g1 - F01 * g0
-                    for k in range(nk):
-                        c = wl[q, k]
-                        Gk = Gl[k]
-                        for j in range(0, tail, 4):
-                            d0, d1, d2, d3 = dj[j], dj[j + 1], dj[j + 2], dj[j + 3]
-                            Gk[j] += c * d0
-                            Gk[j + 1] += c * d1
-                            Gk[j + 2] += c * d2
-                            Gk[j + 3] += c * d3
-                        for j in range(tail, nd):
-                            Gk[j] += c * dj[j]
-                for j in range(2):
-                    for l in range(2):
-                        Av[j, l, 0] = A[j, l]
-                        Av[j, l, 1] = A[j, 2 + l]
-                        Av[j, l, 2] = A[2 + j, l]
-                        Av[j, l, 3] = A[2 + j, 2 + l]
-                for l in range(2):
-                    p0, p1, p2, p3 = Av[0, l, 0], Av[0, l, 1], Av[0, l, 2], Av[0, l, 3]
-                    r0, r1, r2, r3 = Av[1, l, 0], Av[1, l, 1], Av[1, l, 2], Av[1, l, 3]
-                    for s in range(ns):
-                        g0, g1 = dN[q, s, 0], dN[q, s, 1]
-                        Tv[s, l, 0] = g0 * p0 + g1 * r0
-                        Tv[s, l, 1] = g0 * p1 + g1 * r1
-                        Tv[s, l, 2] = g0 * p2 + g1 * r2
-                        Tv[s, l, 3] = g0 * p3 + g1 * r3
+            # A = 4 W_aa F F + 2 W_aJ (F cof + cof F) + W_JJ cof cof + 2 W_a I + W_J dcof/dF
+            Waa, WaJ, WJJ = W[3, p], W[4, p], W[5, p]
+            Fv[0], Fv[1], Fv[2], Fv[3] = F00, F01, F10, F11
+            cof[0], cof[1], cof[2], cof[3] = F11, -F10, -F01, F00
+            for i in range(4):
+                fi, ci = Fv[i], cof[i]
+                for k in range(i, 4):
+                    fk, ck = Fv[k], cof[k]
+                    v = wq * (4.0 * Waa * fi * fk + 2.0 * WaJ * (fi * ck + ci * fk) + WJJ * ci * ck)
+                    A[i, k] = v
+                    A[k, i] = v
+                A[i, i] += wq * 2.0 * Wa
+            WJt = W[2, p] + pt[q]
+            A[0, 3] += wq * WJt
+            A[3, 0] += wq * WJt
+            A[1, 2] -= wq * WJt
+            A[2, 1] -= wq * WJt
+            if nk > 0:
+                # dJ/du_(s, i) = cof F : dF/du_(s, i) = sum_j cof_ij dN_s,j at this point,
+                # Gl += wl_q^T dJ/du (four entries at a time: one vector operation)
                 for s in range(ns):
-                    x0, x1, x2, x3 = Tv[s, 0, 0], Tv[s, 0, 1], Tv[s, 0, 2], Tv[s, 0, 3]
-                    y0, y1, y2, y3 = Tv[s, 1, 0], Tv[s, 1, 1], Tv[s, 1, 2], Tv[s, 1, 3]
-                    for s2 in range(s, ns):
-                        h0, h1 = dN[q, s2, 0], dN[q, s2, 1]
-                        Kb[s, s2, 0] += x0 * h0 + y0 * h1
-                        Kb[s, s2, 1] += x1 * h0 + y1 * h1
-                        Kb[s, s2, 2] += x2 * h0 + y2 * h1
-                        Kb[s, s2, 3] += x3 * h0 + y3 * h1
+                    g0, g1 = dN[q, s, 0], dN[q, s, 1]
+                    dj[2 * s] = F11 * g0 - F10 * g1
+                    dj[2 * s + 1] = F00 * g1 - F01 * g0
+                for k in range(nk):
+                    c = wl[q, k]
+                    Gk = Gl[k]
+                    for j in range(0, tail, 4):
+                        d0, d1, d2, d3 = dj[j], dj[j + 1], dj[j + 2], dj[j + 3]
+                        Gk[j] += c * d0
+                        Gk[j + 1] += c * d1
+                        Gk[j + 2] += c * d2
+                        Gk[j + 3] += c * d3
+                    for j in range(tail, nd):
+                        Gk[j] += c * dj[j]
+            for j in range(2):
+                for l in range(2):
+                    Av[j, l, 0] = A[j, l]
+                    Av[j, l, 1] = A[j, 2 + l]
+                    Av[j, l, 2] = A[2 + j, l]
+                    Av[j, l, 3] = A[2 + j, 2 + l]
+            for l in range(2):
+                p0, p1, p2, p3 = Av[0, l, 0], Av[0, l, 1], Av[0, l, 2], Av[0, l, 3]
+                r0, r1, r2, r3 = Av[1, l, 0], Av[1, l, 1], Av[1, l, 2], Av[1, l, 3]
+                for s in range(ns):
+                    g0, g1 = dN[q, s, 0], dN[q, s, 1]
+                    Tv[s, l, 0] = g0 * p0 + g1 * r0
+                    Tv[s, l, 1] = g0 * p1 + g1 * r1
+                    Tv[s, l, 2] = g0 * p2 + g1 * r2
+                    Tv[s, l, 3] = g0 * p3 + g1 * r3
+            for s in range(ns):
+                x0, x1, x2, x3 = Tv[s, 0, 0], Tv[s, 0, 1], Tv[s, 0, 2], Tv[s, 0, 3]
+                y0, y1, y2, y3 = Tv[s, 1, 0], Tv[s, 1, 1], Tv[s, 1, 2], Tv[s, 1, 3]
+                for s2 in range(s, ns):
+                    h0, h1 = dN[q, s2, 0], dN[q, s2, 1]
+                    Kb[s, s2, 0] += x0 * h0 + y0 * h1
+                    Kb[s, s2, 1] += x1 * h0 + y1 * h1
+                    Kb[s, s2, 2] += x2 * h0 + y2 * h1
+                    Kb[s, s2, 3] += x3 * h0 + y3 * h1
             p += 1
-        if with_tangent and nk > 0:
+        if nk > 0:
             # the pressure's rank-nk part G^T pm G = Gl^T Gl, into the upper node blocks
             for s in range(ns):
                 for k in range(nk):
@@ -476,38 +473,37 @@ def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
                         Kb[s, s2, 3] += x1 * h1
         for i in range(nd):
             f[dofs[e, i]] += fl[i]
-        if with_tangent:
-            # upper half into the column band (the lower entry of a diagonal block is skipped)
-            g = dofs[e, 0]
-            contiguous = True
-            for k in range(1, nd):
-                contiguous = contiguous and dofs[e, k] == g + k
-            if contiguous:
-                for s in range(ns):
-                    # diagonal block: (2s, 2s), (2s, 2s + 1), (2s + 1, 2s + 1)
-                    c = g + 2 * s
-                    Kc[c, b] += Kb[s, s, 0]
-                    Kc[c + 1, b - 1] += Kb[s, s, 1]
-                    Kc[c + 1, b] += Kb[s, s, 3]
-                    for s2 in range(s + 1, ns):
-                        c = g + 2 * s2
-                        o = b + 2 * (s - s2)
-                        Kc[c, o] += Kb[s, s2, 0]
-                        Kc[c, o + 1] += Kb[s, s2, 2]
-                        Kc[c + 1, o - 1] += Kb[s, s2, 1]
-                        Kc[c + 1, o] += Kb[s, s2, 3]
-            else:
-                for s in range(ns):
-                    for i in range(2):
-                        r = dofs[e, 2 * s + i]
-                        for s2 in range(s, ns):
-                            for k in range(i if s2 == s else 0, 2):
-                                c = dofs[e, 2 * s2 + k]
-                                v = Kb[s, s2, 2 * i + k]
-                                if r <= c:
-                                    Kc[c, b + r - c] += v
-                                else:
-                                    Kc[r, b + c - r] += v
+        # upper half into the column band (the lower entry of a diagonal block is skipped)
+        g = dofs[e, 0]
+        contiguous = True
+        for k in range(1, nd):
+            contiguous = contiguous and dofs[e, k] == g + k
+        if contiguous:
+            for s in range(ns):
+                # diagonal block: (2s, 2s), (2s, 2s + 1), (2s + 1, 2s + 1)
+                c = g + 2 * s
+                Kc[c, b] += Kb[s, s, 0]
+                Kc[c + 1, b - 1] += Kb[s, s, 1]
+                Kc[c + 1, b] += Kb[s, s, 3]
+                for s2 in range(s + 1, ns):
+                    c = g + 2 * s2
+                    o = b + 2 * (s - s2)
+                    Kc[c, o] += Kb[s, s2, 0]
+                    Kc[c, o + 1] += Kb[s, s2, 2]
+                    Kc[c + 1, o - 1] += Kb[s, s2, 1]
+                    Kc[c + 1, o] += Kb[s, s2, 3]
+        else:
+            for s in range(ns):
+                for i in range(2):
+                    r = dofs[e, 2 * s + i]
+                    for s2 in range(s, ns):
+                        for k in range(i if s2 == s else 0, 2):
+                            c = dofs[e, 2 * s2 + k]
+                            v = Kb[s, s2, 2 * i + k]
+                            if r <= c:
+                                Kc[c, b + r - c] += v
+                            else:
+                                Kc[r, b + c - r] += v
 
 
 
@@ -515,12 +511,12 @@ def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
 def strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, ew):
     """U = sum_e sum_q w_q W(F_eq) (J), plus the element pressure field's
     alpha/2 g^T M^-1 g per element (pr, :func:`pressure_arrays`); nan if det F <= 0
-    somewhere."""
+    somewhere. chunk .. ew: :func:`step_scratch` (the pressures work in ew's gk, pk, pf)."""
     ne = dofs.shape[0]
-    nq = dN.shape[0]
     last = ops.shape[0] - 1
     nk = pr[2].shape[0]
-    g, pk, pq = np.empty(nk), np.empty(nk), np.empty(nq)
+    nq = dN.shape[0]
+    g, pk, pq = ew[1], ew[2], ew[3]
     total = 0.0
     for e0 in range(0, ne, chunk):
         e1 = min(ne, e0 + chunk)
