@@ -306,3 +306,34 @@ def test_work_precision_anatomy_splits_the_time_and_judges_the_target_by_the_dec
     assert anatomy.verdict(0.001, None, None, cable) == "not met: no run of ours reaches it"
     assert anatomy.verdict(0.001, None, None, None) == "not met: no run of ours reaches it, nor of the cable"
     assert anatomy.verdict(0.01, None, ours, None) == "no run of the cable reaches it"
+
+
+def test_work_precision_asks_whether_an_element_could_meet_a_missed_target():
+    """Where the target is missed, half the cable's time is set against our cheapest run at
+    each step at any error: no run within it -> no element as cheap per step meets it;
+    runs within it only at a step whose own error (finest mesh) is above the accuracy ->
+    only by cancellation; a step that allows the accuracy -> an element's question."""
+    from studies.peers import anatomy
+
+    def rec(solver, element, n, dt, e, t):
+        return {"scene": "pendulum", "solver": solver, "element": element, "elements": n, "dt": dt,
+                "rho_inf": 0.5, "status": "converged", "time_s": t, "time_runs_s": [t], "error": e,
+                "newton_iterations": 100}
+    cable = rec("exudyn", "ANCFCable2D", 4, 1e-2, 0.008, 0.004)
+    coarse = [rec("ancf", "HB2n-12", 2, 1e-2, 0.2, 0.003), rec("ancf", "HB2n-12", 2, 5e-3, 0.2, 0.005),
+              rec("ancf", "HB2n-16", 16, 1e-2, 0.014, 0.02), rec("ancf", "HB2n-16", 16, 5e-3, 0.002, 0.03)]
+    best = coarse[3]                                    # ours at 1 %: 7.5 x the cable's time
+    rows = [(0.01, best, cable, best["time_s"] / cable["time_s"], "grid")]
+    (text,) = anatomy.reach_lines(coarse + [cable], rows)
+    assert "0.5 of the cable's time is 2.00 ms (its grid median 4.00 ms)" in text
+    assert "10 ms HB2n-12 x 2 3.0 ms (20.0 %), 5 ms HB2n-12 x 2 5.0 ms (20.0 %)" in text
+    assert "None is within it (the cheapest, 0.75 of the cable's time)" in text
+    cheap = [dict(r, time_s=r["time_s"] / 2) for r in coarse]      # 10 ms runs within it, 1.4 % step error there
+    (text,) = anatomy.reach_lines(cheap + [cable], rows)
+    assert "Only the runs at 10 ms are within it, and there our finest meshes are off by 1.40 %" in text
+    assert "only through a mesh error that cancels the step's" in text
+    fine = cheap + [rec("ancf", "HB2n-16", 32, 1e-2, 0.005, 0.05)]  # the finest mesh at 10 ms: 0.5 % < 1 %
+    (text,) = anatomy.reach_lines(fine + [cable], rows)
+    assert "a step among them allows 1 %: an element that reaches it on as few elements would meet the target" in text
+    met = [(0.01, best, cable, 0.4, "rounds"), (0.003, best, cable, 7.5, "grid"), (0.001, None, None, None, None)]
+    assert anatomy.reach_lines(coarse + [cable], met) == []       # met, no target at 0.3 %, no cable time

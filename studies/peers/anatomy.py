@@ -10,6 +10,12 @@ the row was re-timed in rounds, else the grid's.
 The coarsest step's error on the finest meshes (:func:`step_error_lines`) is the step's
 own error, the same for every element: no element reaches an accuracy below it at that
 step, except where a coarse mesh's error happens to cancel it.
+
+Where a target is not met, :func:`reach_lines` asks whether any element could meet it:
+our cheapest run at each step, at any error (the fewest elements of the cheapest
+element), against the target's time. A step with no run under it is out of reach for
+every element at least that cheap per step; a step whose own error is above the accuracy
+admits it only by cancellation. What is left is an element's question.
 """
 from __future__ import annotations
 
@@ -84,3 +90,60 @@ def step_error_lines(recs: list[dict]) -> list[str]:
         parts.append(f"{name} {lo}{'' if lo == hi else ' to ' + hi} % ({n} elements)")
     return [f"At the coarsest step, {dt * 1e3:g} ms, the runs on the finest mesh with a result there (the "
             "step's error plus the model's floor, tabled below) are off by: " + "; ".join(parts) + "."] if parts else []
+
+
+def _cheapest_per_step(recs: list[dict]) -> dict[float, dict]:
+    """dt -> our fastest run at that step, whatever its element, mesh and error."""
+    out = {}
+    for r in recs:
+        if r["solver"] == "ancf" and r.get("time_s") and (r["dt"] not in out or r["time_s"] < out[r["dt"]]["time_s"]):
+            out[r["dt"]] = r
+    return out
+
+
+def step_floor(recs: list[dict], dt: float) -> float | None:
+    """Our smallest error at step dt on the finest mesh with a result there: the step's own
+    error plus the best model's floor (None: no result at dt)."""
+    mine = [r for r in recs if r["solver"] == "ancf" and r["dt"] == dt and r.get("error") is not None]
+    if not mine:
+        return None
+    n = max(r["elements"] for r in mine)
+    return min(r["error"] for r in mine if r["elements"] == n)
+
+
+def reach_lines(recs: list[dict], rows: list[tuple]) -> list[str]:
+    """For each row of ``rows`` (as :func:`anatomy_lines`) whose target is not met and the
+    cable reaches: can an element meet it? Half the cable's time (grid medians) against our
+    cheapest run at each step at any error, and the step's own error where one fits."""
+    out = []
+    per_step = _cheapest_per_step(recs)
+    for acc, o, p, ratio, _ in rows:
+        if acc not in TARGET_ACCURACIES or p is None or (o is not None and ratio <= TARGET) or not per_step:
+            continue
+        budget = TARGET * p["time_s"]
+        steps = sorted(per_step, reverse=True)
+        listed = ", ".join(f"{dt * 1e3:g} ms {r['element']} x {r['elements']} {r['time_s'] * 1e3:.1f} ms "
+                           f"({100 * r['error']:.1f} %)" if r.get("error") is not None else
+                           f"{dt * 1e3:g} ms {r['element']} x {r['elements']} {r['time_s'] * 1e3:.1f} ms"
+                           for dt, r in ((dt, per_step[dt]) for dt in steps))
+        text = (f"Can an element meet the {100 * acc:g} % target? {TARGET:g} of the cable's time is "
+                f"{budget * 1e3:.2f} ms (its grid median {p['time_s'] * 1e3:.2f} ms). Our cheapest run at each step, "
+                f"at any error: {listed}. ")
+        fit = [dt for dt in steps if per_step[dt]["time_s"] <= budget]
+        if not fit:
+            lo = min(per_step.values(), key=lambda r: r["time_s"])
+            text += (f"None is within it (the cheapest, {lo['time_s'] / p['time_s']:.2f} of the cable's time): no "
+                     "element at least as cheap per step as these meets the target on this step loop; it takes a "
+                     "cheaper step, not a better element.")
+        else:
+            floor = {dt: step_floor(recs, dt) for dt in fit}
+            if all(e is not None and e > acc for e in floor.values()):
+                text += (f"Only the runs at {', '.join(f'{dt * 1e3:g}' for dt in fit)} ms are within it, and there our "
+                         "finest meshes are off by " + ", ".join(f"{100 * floor[dt]:.2f} %" for dt in fit)
+                         + f" (the step's own error): an element would reach {100 * acc:g} % there only through a "
+                         "mesh error that cancels the step's.")
+            else:
+                text += (f"Runs at {', '.join(f'{dt * 1e3:g}' for dt in fit)} ms are within it, and a step among them "
+                         f"allows {100 * acc:g} %: an element that reaches it on as few elements would meet the target.")
+        out.append(text)
+    return out

@@ -52,7 +52,7 @@ import sys
 import time
 from pathlib import Path
 
-from .anatomy import anatomy_lines, step_error_lines
+from .anatomy import anatomy_lines, reach_lines, step_error_lines
 from .compare import PEER_PYTHON, peer
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -390,6 +390,8 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = ()) -> lis
                   "two medians share its phase (data/peers/" + f"{NAME}-rounds.jsonl)."]
     lines += [""] + anatomy_lines(rows)
     lines += [""] + step_error_lines(recs)
+    for text in reach_lines(recs, rows):
+        lines += ["", text]
     fl = floors(recs)
     if fl:
         lines += ["", "Accuracy floors, read at the finest step of the finest mesh (the cable's: its physics, "
