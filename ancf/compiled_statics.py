@@ -159,7 +159,8 @@ def force_magnitude(u, dN, w, dofs, ops, consts, pr, out):
     chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
     W = R[ops.shape[0] - 1]
     nk = pr[2].shape[0]
-    g, pk, pp = np.empty(nk), np.empty(nk), np.zeros(nq)
+    g, pk, pp = ew[1], ew[2], ew[3]          # the pressures' work (element_scratch)
+    pp[:] = 0.0                              # p = 0 without a pressure field
     out[:] = 0.0
     for e0 in range(0, ne, chunk):
         e1 = min(ne, e0 + chunk)

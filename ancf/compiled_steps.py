@@ -296,12 +296,27 @@ def step_dg(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, inew
 
 
 @njit(cache=True)
-def energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, tmp, chunk, R, Fb, ab, Jb, ew):
-    """Kinetic + strain + gravity potential (J); the gravity potential is
-    -f_ext . (q_ref + u) as in ancf.integrators.Integrator.energies."""
+def energies(u, v, dN, w, dofs, ops, consts, pr, Mc, first, tmp, chunk, R, Fb, ab, Jb, ew):
+    """(kinetic, strain) energy (J); the strain energy is nan if det F <= 0 somewhere
+    (:func:`strain_energy_fused`). tmp: work (n,); chunk .. ew: :func:`step_scratch`."""
     col_matvec(Mc, first, v, tmp)
-    kin = 0.5 * np.dot(v, tmp)
-    return kin + strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, ew) - np.dot(f_ext, q_ref + u)
+    return 0.5 * np.dot(v, tmp), strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, ew)
+
+
+@njit(cache=True)
+def observed_energies(u, v, dN, w, dofs, ops, consts, pr, Mc, first):
+    """:func:`energies` with its work arrays made here (an output's call: fewer arguments
+    to pass cost less than the arrays to make)."""
+    return energies(u, v, dN, w, dofs, ops, consts, pr, Mc, first, np.empty(u.shape[0]),
+                    *step_scratch(ops.shape[0], dN, pr))
+
+
+@njit(cache=True)
+def energy(u, v, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, tmp, chunk, R, Fb, ab, Jb, ew):
+    """Kinetic + strain + the loads' potential (J), the potential -f_ext . (q_ref + u) as in
+    ancf.integrators.Integrator.energies."""
+    kin, strain = energies(u, v, dN, w, dofs, ops, consts, pr, Mc, first, tmp, chunk, R, Fb, ab, Jb, ew)
+    return kin + strain - np.dot(f_ext, q_ref + u)
 
 
 @njit(cache=True)
@@ -385,6 +400,30 @@ def advance(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, fixed, coef, 
 
 
 @njit(cache=True)
+def start(u, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, a):
+    """A run's initial accelerations in one call: a = M^-1 (f_ext - f_int(u)) on the free
+    dofs, 0 on the fixed ones, with M constrained and factorised (:func:`col_ldlt`, M is
+    positive definite: no pivoting needed, and the pivot test is relative to the
+    diagonal, so small generalized masses lose nothing) at every run's start, as a peer
+    computing initial accelerations does. Returns OK, INADMISSIBLE (det F <= 0) or
+    SINGULAR."""
+    n = u.shape[0]
+    status = internal_force(u, dN, w, dofs, ops, consts, pr, a)
+    if status != OK:
+        return status
+    for i in range(n):
+        a[i] = f_ext[i] - a[i]
+    for k in fixed:
+        a[k] = 0.0
+    C = Mc.copy()
+    col_constrain(C, fixed)
+    if col_ldlt(C, first, np.empty((2, n))) < 0:
+        return SINGULAR
+    col_ldlt_solve(C, first, a)
+    return OK
+
+
+@njit(cache=True)
 def internal_force(u, dN, w, dofs, ops, consts, pr, f):
     """f = f_int(u) by the fused assembly (force only); returns its status."""
     chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
@@ -461,6 +500,21 @@ class CompiledLoop:
         if internal_force(np.ascontiguousarray(u, dtype=float), *self.data[:6], f) != OK:
             return self.model_force(u)
         return f
+
+    def initial_acceleration(self, u: np.ndarray) -> np.ndarray | None:
+        """a0 from M a0 = f_ext - f_int(u) on the free dofs (:func:`start`); None if
+        det F <= 0 at u or M is singular (the caller's Python route names why)."""
+        a = np.empty(self.n)
+        dN, w, dofs, ops, consts, pr, Mc, first, f_ext, _, fixed = self.data
+        if start(np.ascontiguousarray(u, dtype=float), dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed,
+                 a) != OK:
+            return None
+        return a
+
+    def energies(self, u: np.ndarray, v: np.ndarray) -> tuple[float, float]:
+        """(kinetic, strain) energy (J) (:func:`energies`); strain nan if det F <= 0."""
+        return observed_energies(np.ascontiguousarray(u, dtype=float), np.ascontiguousarray(v, dtype=float),
+                                 *self.data[:8])
 
     def advance(self, s: time_loop.State, h: float, t_out: float, dt: float, budget: int, offset: int = 0,
                 energy_every: int = 0, energy_max: float = math.inf) -> Advanced:

@@ -110,12 +110,13 @@ class Integrator:
     # -- what the loop asks for ----------------------------------------------------------
     def initial_state(self, u0: np.ndarray) -> State:
         """At rest at u0; a0 from M a0 = Q_K - f_int(u0) on the free dofs."""
+        a0 = None
         if self.advance is not None:
             self._loop.reset()               # a new run: no factorisation kept
-            f = self._loop.internal_force(u0)
-        else:
+            a0 = self._loop.initial_acceleration(u0)     # None: the route below says why
+        if a0 is None:
             f = self.model.internal_force(u0)
-        a0 = self.M_constrained().solve(np.where(self.free, self.f_ext - f, 0.0))
+            a0 = self.M_constrained().solve(np.where(self.free, self.f_ext - f, 0.0))
         return State(0.0, u0.copy(), np.zeros_like(u0), a0)
 
     def M_constrained(self) -> Banded:
@@ -126,10 +127,16 @@ class Integrator:
 
     def energies(self, s: State) -> Energies:
         """Kinetic, strain, and the potential -Q . (q_ref + u) of each dead load."""
-        r = self.model.mesh.reference + s.u
-        pot = {k: -float(q @ r) for k, q in self.loads.items()}
-        return Energies(0.5 * float(s.v @ self.M.matvec(s.v)), self.model.strain_energy(s.u),
-                        pot.get("gravity", 0.0), pot.get("tip_force"))
+        pot = {k: -float(q @ s.u) - q_ref for k, (q, q_ref) in self._load_potentials.items()}
+        kinetic, strain = self._loop.energies(s.u, s.v) if self.advance is not None else (math.nan, math.nan)
+        if not math.isfinite(strain):        # no compiled loop, or det F <= 0 (the model names the point)
+            kinetic, strain = 0.5 * float(s.v @ self.M.matvec(s.v)), self.model.strain_energy(s.u)
+        return Energies(float(kinetic), float(strain), pot.get("gravity", 0.0), pot.get("tip_force"))
+
+    @cached_property
+    def _load_potentials(self) -> dict[str, tuple[np.ndarray, float]]:
+        """{load: (Q, Q . q_ref)}: a dead load's potential at u is -Q . u - Q . q_ref."""
+        return {k: (q, float(q @ self.model.mesh.reference)) for k, q in self.loads.items()}
 
     def output(self, s: State) -> Output:
         m = self.model

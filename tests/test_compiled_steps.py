@@ -326,3 +326,44 @@ def test_the_initial_force_of_the_loop_equals_the_model(element, form):
     mirrored = np.where(np.arange(u.size) % 2 == 0, -2.0 * model.mesh.reference, 0.0)    # x -> -x: det F = -1
     with pytest.raises(InadmissibleState):
         integ._loop.internal_force(mirrored)
+
+
+@pytest.mark.parametrize("element", sorted(set(ELEMENTS) | {"HB2n-84p"}))
+def test_the_loops_start_and_energies_equal_the_python_route(element):
+    """A run's start (initial accelerations, :func:`ancf.compiled_steps.start`: M
+    constrained and factorised by LDL^T in compiled code) and the energies of its outputs
+    (:meth:`CompiledLoop.energies`) against the Python route they replace (the scaled
+    banded LU of :meth:`Integrator.M_constrained` on the same right-hand side, the
+    model's strain energy, 1/2 v.Mv),
+    on every registered element and the sextic section (generalized masses ~1e-50 of a
+    position dof's): the accelerations agree in the Jacobi-scaled unknowns sqrt(M_ii) a_i
+    to the scaled mass matrix's condition number times round-off, the energies to
+    round-off; at det F <= 0 the start defers to the Python route, which names the point."""
+    import examples.sextic_section  # noqa: F401  (registers HB2n-84p)
+    from ancf.beam import InadmissibleState
+    sc = scene(element=element, n=3, material=paper.material_table("yeoh", "plane-stress"))
+    _, integ = run(sc, max_steps=1)
+    model, loop = integ.model, integ._loop
+    rng = np.random.default_rng(11)
+    u = 1e-4 * rng.standard_normal(model.mesh.n_dof)
+    u[model.fixed] = 0.0
+    v = rng.standard_normal(model.mesh.n_dof)
+    a = loop.initial_acceleration(u)
+    assert a is not None                                             # the compiled start, not the fallback
+    Mc = integ.M_constrained()
+    # the same right-hand side (the loop's force equals the model's to round-off: above)
+    a_ref = Mc.solve(np.where(integ.free, integ.f_ext - loop.internal_force(u), 0.0))
+    s = np.sqrt(np.abs(Mc.to_sparse().diagonal()))
+    dense = (Mc.to_sparse().toarray() / s[:, None]) / s[None, :]
+    bound = np.linalg.cond(dense) * np.finfo(float).eps * 10
+    np.testing.assert_allclose(s * a, s * a_ref, rtol=0, atol=bound * np.abs(s * a_ref).max())
+    assert np.all(a[model.fixed] == 0.0)
+    kinetic, strain = loop.energies(u, v)
+    assert strain == model.strain_energy(u)                          # the same kernel
+    assert kinetic == pytest.approx(0.5 * float(v @ integ.M.matvec(v)), rel=1e-13)
+    e = integ.energies(integ.initial_state(u))
+    assert e.strain == strain and e.kinetic == 0.0
+    mirrored = np.where(np.arange(u.size) % 2 == 0, -2.0 * model.mesh.reference, 0.0)    # x -> -x: det F = -1
+    assert loop.initial_acceleration(mirrored) is None
+    with pytest.raises(InadmissibleState):
+        integ.initial_state(mirrored)
