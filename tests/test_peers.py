@@ -332,8 +332,18 @@ def test_work_precision_asks_whether_an_element_could_meet_a_missed_target():
     (text,) = anatomy.reach_lines(cheap + [cable], rows)
     assert "Only the runs at 10 ms are within it, and there our finest meshes are off by 1.40 %" in text
     assert "only through a mesh error that cancels the step's" in text
-    fine = cheap + [rec("ancf", "HB2n-16", 32, 1e-2, 0.005, 0.05)]  # the finest mesh at 10 ms: 0.5 % < 1 %
-    (text,) = anatomy.reach_lines(fine + [cable], rows)
-    assert "a step among them allows 1 %: an element that reaches it on as few elements would meet the target" in text
+    fine = cheap + [rec("ancf", "HB2n-16", 32, 1e-2, 0.005, 0.05),  # the finest mesh at 10 ms: 0.5 % < 1 %
+                    rec("ancf", "HB2n-60p", 2, 1e-2, 0.012, 0.03), rec("ancf", "HB2n-60p", 2, 5e-3, 0.007, 0.05)]
+    cable2 = rec("exudyn", "ANCFCable2D", 2, 1e-2, 0.05, 0.002)
+    (text,) = anatomy.reach_lines(fine + [cable, cable2], rows)
+    assert ("Runs at 10 ms are within it, and at 10 ms the step allows 1 %: an element that reaches it there on 2 "
+            "elements or fewer (the most within the time) would meet the target.") in text
+    # how close anything comes on 2 elements at 10 ms, at any cost (not the 5 ms run, not the 4-element cable)
+    assert ("On 2 elements or fewer at that step, the smallest error of any run, at any cost: ours 1.20 % "
+            "(HB2n-60p x 2, 10 ms, 30.0 ms); the cable's 5.00 % (2 elements, 10 ms, 2.0 ms).") in text
+    graze = [(0.01, fine[0], cable, 0.6, "rounds")]          # within the time by the grid, not by the rounds
+    (text,) = anatomy.reach_lines(fine + [cable, cable2], graze)
+    assert text.endswith("Our cheapest 1 % run is within it by the grid's medians (1.5 ms); the verdict above is the "
+                         "rounds'.")
     met = [(0.01, best, cable, 0.4, "rounds"), (0.003, best, cable, 7.5, "grid"), (0.001, None, None, None, None)]
     assert anatomy.reach_lines(coarse + [cable], met) == []       # met, no target at 0.3 %, no cable time

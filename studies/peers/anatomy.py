@@ -15,7 +15,9 @@ Where a target is not met, :func:`reach_lines` asks whether any element could me
 our cheapest run at each step, at any error (the fewest elements of the cheapest
 element), against the target's time. A step with no run under it is out of reach for
 every element at least that cheap per step; a step whose own error is above the accuracy
-admits it only by cancellation. What is left is an element's question.
+admits it only by cancellation. What is left is an element's question, and the sentence
+says how far any run is from it: the smallest error, at any cost, of ours and of the
+cable's on as few elements as fit the time.
 """
 from __future__ import annotations
 
@@ -152,7 +154,30 @@ def reach_lines(recs: list[dict], rows: list[tuple]) -> list[str]:
                          + f" (the step's own error): an element would reach {100 * acc:g} % there only through a "
                          "mesh error that cancels the step's.")
             else:
-                text += (f"Runs at {', '.join(f'{dt * 1e3:g}' for dt in fit)} ms are within it, and a step among them "
-                         f"allows {100 * acc:g} %: an element that reaches it on as few elements would meet the target.")
+                allows = [dt for dt in fit if floor[dt] is not None and floor[dt] <= acc]
+                n = max(r["elements"] for r in recs if r["solver"] == "ancf" and r["dt"] in allows
+                        and r.get("time_s") and r["time_s"] <= budget)
+                text += (f"Runs at {', '.join(f'{dt * 1e3:g}' for dt in fit)} ms are within it, and at "
+                         f"{', '.join(f'{dt * 1e3:g}' for dt in allows)} ms the step allows {100 * acc:g} %: an "
+                         f"element that reaches it there on {n} elements or fewer (the most within the time) would "
+                         "meet the target. " + _fewest_elements(recs, n, allows))
+                if o is not None and o["time_s"] <= budget:
+                    text += (f" Our cheapest {100 * acc:g} % run is within it by the grid's medians "
+                             f"({o['time_s'] * 1e3:.1f} ms); the verdict above is the rounds'.")
         out.append(text)
     return out
+
+
+def _fewest_elements(recs: list[dict], n: int, steps: list[float]) -> str:
+    """How close any run comes on n elements or fewer at these steps, at any cost: the
+    smallest error of ours and of the cable's."""
+    parts = []
+    for solver, name in (("ancf", "ours"), ("exudyn", "the cable's")):
+        mine = [r for r in recs if r["solver"] == solver and r["elements"] <= n and r["dt"] in steps
+                and r.get("error") is not None and r.get("time_s")]
+        if mine:
+            b = min(mine, key=lambda r: r["error"])
+            what = f"{b['element']} x {b['elements']}" if solver == "ancf" else f"{b['elements']} elements"
+            parts.append(f"{name} {100 * b['error']:.2f} % ({what}, {b['dt'] * 1e3:g} ms, {b['time_s'] * 1e3:.1f} ms)")
+    return (f"On {n} elements or fewer at {'these steps' if len(steps) > 1 else 'that step'}, the smallest error of "
+            "any run, at any cost: " + "; ".join(parts) + ".") if parts else ""
