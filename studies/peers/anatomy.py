@@ -154,7 +154,7 @@ def reach_lines(recs: list[dict], rows: list[tuple]) -> list[str]:
                          + f" (the step's own error): an element would reach {100 * acc:g} % there only through a "
                          "mesh error that cancels the step's.")
             else:
-                allows = [dt for dt in fit if floor[dt] is not None and floor[dt] <= acc]
+                allows = [dt for dt in fit if floor[dt] is None or floor[dt] <= acc]     # as the test above
                 n = max(r["elements"] for r in recs if r["solver"] == "ancf" and r["dt"] in allows
                         and r.get("time_s") and r["time_s"] <= budget)
                 text += (f"Runs at {', '.join(f'{dt * 1e3:g}' for dt in fit)} ms are within it, and at "
