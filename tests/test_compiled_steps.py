@@ -333,12 +333,12 @@ def test_the_loops_start_and_energies_equal_the_python_route(element):
     """A run's start (initial accelerations, :func:`ancf.compiled_steps.start`: M
     constrained and factorised by LDL^T in compiled code) and the energies of its outputs
     (:meth:`CompiledLoop.energies`) against the Python route they replace (the scaled
-    banded LU of :meth:`Integrator.M_constrained` on the same right-hand side, the
-    model's strain energy, 1/2 v.Mv),
-    on every registered element and the sextic section (generalized masses ~1e-50 of a
-    position dof's): the accelerations agree in the Jacobi-scaled unknowns sqrt(M_ii) a_i
-    to the scaled mass matrix's condition number times round-off, the energies to
-    round-off; at det F <= 0 the start defers to the Python route, which names the point."""
+    banded LU of :meth:`Integrator.M_constrained` on the same right-hand side, the model's
+    strain energy, 1/2 v.Mv), on every registered element and the sextic section
+    (generalized masses ~1e-50 of a position dof's): the accelerations agree in the
+    Jacobi-scaled unknowns sqrt(M_ii) a_i to the scaled mass matrix's condition number
+    times round-off, the energies to round-off; at det F <= 0 the start defers to the
+    Python route, which names the point."""
     import examples.sextic_section  # noqa: F401  (registers HB2n-84p)
     from ancf.beam import InadmissibleState
     sc = scene(element=element, n=3, material=paper.material_table("yeoh", "plane-stress"))
