@@ -308,9 +308,10 @@ def test_live_tape_replays_the_same_numbers(law, form):
 @pytest.mark.parametrize("form", ["plane-strain", "plane-stress"])
 def test_the_initial_force_of_the_loop_equals_the_model(element, form):
     """The initial acceleration's internal force comes from the loop's fused assembly
-    (:meth:`CompiledLoop.internal_force`, no numpy kernel in the timed solve): the model's
-    force at a deformed state, pressure field included, to round-off; at det F <= 0 it
-    defers to the model, which names the point."""
+    (:func:`ancf.compiled_steps.internal_force`, called by the run's compiled start; no
+    numpy kernel in the timed solve): the model's force at a deformed state, pressure field
+    included, to round-off; :meth:`CompiledLoop.internal_force` returns it, and at
+    det F <= 0 defers to the model, which names the point."""
     from ancf.beam import InadmissibleState
     from ancf.compiled_steps import internal_force as fused_force
     sc = scene(material=paper.material_table("yeoh", form), element=element, n=4)

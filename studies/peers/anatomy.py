@@ -149,7 +149,7 @@ def reach_lines(recs: list[dict], rows: list[tuple]) -> list[str]:
         else:
             floor = {dt: step_floor(recs, dt) for dt in fit}
             if all(e is not None and e > acc for e in floor.values()):
-                text += (f"Only the runs at {', '.join(f'{dt * 1e3:g}' for dt in fit)} ms are within it, and there our "
+                text += (f"Only the runs at {_ms(fit)} ms are within it, and there our "
                          "finest meshes are off by " + ", ".join(f"{100 * floor[dt]:.2f} %" for dt in fit)
                          + f" (the step's own error): an element would reach {100 * acc:g} % there only through a "
                          "mesh error that cancels the step's.")
@@ -157,15 +157,19 @@ def reach_lines(recs: list[dict], rows: list[tuple]) -> list[str]:
                 allows = [dt for dt in fit if floor[dt] is None or floor[dt] <= acc]     # as the test above
                 n = max(r["elements"] for r in recs if r["solver"] == "ancf" and r["dt"] in allows
                         and r.get("time_s") and r["time_s"] <= budget)
-                text += (f"Runs at {', '.join(f'{dt * 1e3:g}' for dt in fit)} ms are within it, and at "
-                         f"{', '.join(f'{dt * 1e3:g}' for dt in allows)} ms the step allows {100 * acc:g} %: an "
-                         f"element that reaches it there on {n} elements or fewer (the most within the time) would "
+                text += (f"Runs at {_ms(fit)} ms are within it, and at {_ms(allows)} ms the step allows "
+                         f"{100 * acc:g} %: an element that reaches it there on {n} elements or fewer (the most within the time) would "
                          "meet the target. " + _fewest_elements(recs, n, allows))
                 if o is not None and o["time_s"] <= budget:
                     text += (f" Our cheapest {100 * acc:g} % run is within it by the grid's medians "
                              f"({o['time_s'] * 1e3:.1f} ms); the verdict above is the rounds'.")
         out.append(text)
     return out
+
+
+def _ms(steps: list[float]) -> str:
+    """'10, 5, 2.5': steps in ms, as the reach sentences list them."""
+    return ", ".join(f"{dt * 1e3:g}" for dt in steps)
 
 
 def _fewest_elements(recs: list[dict], n: int, steps: list[float]) -> str:

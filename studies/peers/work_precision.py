@@ -521,7 +521,7 @@ def main(argv=None) -> int:
     ap.add_argument("--import", dest="imports", action="append", default=[],
                     help="a module that registers a user's element (repeatable)")
     ap.add_argument("--rounds", type=int, default=7, help="re-time each accuracy's two cheapest points "
-                    "alternately in this many rounds after the grid (default 7; 0: none)")
+                    "alternately in this many rounds after the grid (default %(default)s; 0: none)")
     ap.add_argument("--force", action="store_true", help="redo every point (and the rounds)")
     ap.add_argument("--report-only", action="store_true", help="redraw the table and figure from the records")
     ap.add_argument("--rescore", action="store_true", help="recompute every record's error from its tip history "
