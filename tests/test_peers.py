@@ -69,7 +69,7 @@ def test_missing_output_time_is_an_error():
 # -- work-precision (studies.peers.work_precision), without Exudyn ----------------------------
 def test_work_precision_error_is_zero_on_the_reference_and_the_report_picks_the_cheapest(tmp_path):
     from studies.pendulum_cases import continuum_pendulum
-    from studies.peers import work_precision as wp
+    from studies.peers import precision_report as pr, work_precision as wp
 
     ref = continuum_pendulum()[("yeoh", "plane-stress")]
     tips = [{"t": t, "x": x, "y": y} for t, (x, y) in sorted(ref.tips.items())]
@@ -82,16 +82,16 @@ def test_work_precision_error_is_zero_on_the_reference_and_the_report_picks_the_
                 "status": "converged", "time_s": t, "error": e}
     recs = [rec("ancf", "HB2n-12", 8, 0.02, 0.02), rec("ancf", "HB2n-12", 32, 0.2, 0.005),
             rec("ancf", "HB2n-16", 32, 0.1, 0.009), rec("exudyn", "ANCFCable2D", 8, 0.01, 0.006)]
-    assert wp.cheapest(recs, "ancf", None, 0.01)["element"] == "HB2n-16"
-    assert wp.cheapest(recs, "exudyn", None, 0.001) is None
-    text = wp.report(recs, tmp_path)
+    assert pr.cheapest(recs, "ancf", None, 0.01)["element"] == "HB2n-16"
+    assert pr.cheapest(recs, "exudyn", None, 0.001) is None
+    text = pr.report(recs, tmp_path)
     assert "| 1 % | HB2n-16 x 32, dt 1 ms | 0.1000 | 0.900 | 8 elements, dt 1 ms | 0.0100 | 0.600 | 10.00 |" in text
     assert (tmp_path / "peers_work_precision.png").exists()
 
 
 def test_work_precision_keeps_finished_points_and_skips_them_on_a_rerun(tmp_path, monkeypatch):
     from types import SimpleNamespace
-    from studies.peers import work_precision as wp
+    from studies.peers import precision_report as pr, work_precision as wp
 
     calls = []
 
@@ -111,11 +111,11 @@ def test_work_precision_keeps_finished_points_and_skips_them_on_a_rerun(tmp_path
     recs = wp.run(a)
     assert len(recs) == 8 and len(calls) == 12 and {r["scene"] for r in recs} == {"pendulum", "thick"}
     assert {r["height"] for r in recs if r["scene"] == "thick"} == {0.020} and calls[-1][-1] == "thick"
-    assert len(wp.run(a)) == 8 and len(calls) == 16 and wp.scenes_of(wp.run(a)) == ["pendulum", "thick"]
+    assert len(wp.run(a)) == 8 and len(calls) == 16 and pr.scenes_of(wp.run(a)) == ["pendulum", "thick"]
 
 
 def test_work_precision_report_has_a_section_per_scene_with_its_ratios():
-    from studies.peers import work_precision as wp
+    from studies.peers import precision_report as pr
 
     def rec(scene, solver, n, dt, e, runs):
         return {"scene": scene, "solver": solver, "element": "ANCFCable2D" if solver == "exudyn" else "HB2n-16",
@@ -124,7 +124,7 @@ def test_work_precision_report_has_a_section_per_scene_with_its_ratios():
     five = [0.01] * 5
     recs = [rec("pendulum", "exudyn", 8, 1e-3, 0.0005, [0.02] * 5), rec("pendulum", "ancf", 8, 1e-3, 0.0005, five),
             rec("thick", "exudyn", 8, 1e-3, 0.004, [0.02] * 5), rec("thick", "ancf", 8, 1e-3, 0.0005, five)]
-    text = wp.report_markdown(recs)
+    text = pr.report_markdown(recs)
     pend, thick = text.split("## Scene `pendulum`")[1].split("## Scene `thick`")
     assert "| 0.1 % | HB2n-16 x 8, dt 1 ms | 0.0100 | 0.050 | 8 elements, dt 1 ms | 0.0200 | 0.050 | 0.50 | 0.50-0.50 |" in pend
     # the cable's 0.4 % floor: it reaches 1 % but not 0.1 %
@@ -139,7 +139,7 @@ def test_work_precision_retimes_the_deciding_points_in_alternating_rounds(tmp_pa
     ours in each round; the table shows the median of the rounds' ratios beside the grid's
     ratio; a rerun keeps the rounds while the pair stays the cheapest, --force redoes them."""
     from types import SimpleNamespace
-    from studies.peers import work_precision as wp
+    from studies.peers import precision_report as pr, work_precision as wp
 
     calls = []
     times = iter([0.02, 0.01, 0.02, 0.004, 0.04, 0.01] * 10)     # cable, ours, cable, ours, ...
@@ -160,7 +160,7 @@ def test_work_precision_retimes_the_deciding_points_in_alternating_rounds(tmp_pa
     rounds = wp.retime(recs, a, path)
     assert calls == ["exudyn", "ancf"] * 9                    # 3 accuracies x 3 rounds, alternating
     assert [len(r["rounds"]) for r in rounds] == [3, 3, 3]
-    text = wp.report_markdown(recs, wp.read(wp.rounds_path(path)))
+    text = pr.report_markdown(recs, pr.read(pr.rounds_path(path)))
     assert "| 0.1 % | HB2n-16 x 8, dt 1 ms | 0.0100 | 0.050 | 8 elements, dt 1 ms | 0.0300 | 0.050 | 0.33 | " \
            "0.33-0.33 | 0.25 (0.50, 0.20, 0.25) |" in text
     assert wp.retime(recs, a, path) == rounds and len(calls) == 18      # kept: the same cheapest pair
@@ -168,24 +168,24 @@ def test_work_precision_retimes_the_deciding_points_in_alternating_rounds(tmp_pa
     wp.retime(recs, a, path)
     assert len(calls) == 36
     cheaper = recs + [rec("ancf", "HB2n-12", 8, 0.005, 0.0005)]       # another pair: its rounds are missing
-    assert "| 0.1 % | HB2n-12 x 8" in wp.report_markdown(cheaper, rounds) and "| 0.33-0.33 | - |" not in text
-    assert wp.report_markdown(cheaper, rounds).count("| - |") >= 3
+    assert "| 0.1 % | HB2n-12 x 8" in pr.report_markdown(cheaper, rounds) and "| 0.33-0.33 | - |" not in text
+    assert pr.report_markdown(cheaper, rounds).count("| - |") >= 3
 
 
 def test_work_precision_does_not_count_accuracy_by_cancellation():
-    from studies.peers import work_precision as wp
+    from studies.peers import precision_report as pr
 
     def rec(dt, e, t):
         return {"solver": "exudyn", "element": "ANCFCable2D", "elements": 8, "dt": dt, "rho_inf": 0.5,
                 "status": "converged", "time_s": t, "error": e}
     recs = [rec(5e-3, 0.0005, 0.01), rec(2.5e-3, 0.0013, 0.02), rec(1.25e-3, 0.0009, 0.04)]
     # 5 ms reaches 0.1 % only by luck (the 2.5 ms step loses it); 1.25 ms is the first that holds
-    assert wp.cheapest(recs, "exudyn", None, 0.001)["dt"] == 1.25e-3
-    assert wp.cheapest(recs, "exudyn", None, 0.002)["dt"] == 5e-3
+    assert pr.cheapest(recs, "exudyn", None, 0.001)["dt"] == 1.25e-3
+    assert pr.cheapest(recs, "exudyn", None, 0.002)["dt"] == 5e-3
 
 
 def test_work_precision_floors_are_read_at_fine_steps_and_the_rules_are_stated():
-    from studies.peers import work_precision as wp
+    from studies.peers import precision_report as pr
 
     def rec(n, dt, e, guard="none", runs=None):
         return {"solver": "exudyn", "element": "ANCFCable2D", "elements": n, "dt": dt, "rho_inf": 0.5,
@@ -193,16 +193,16 @@ def test_work_precision_floors_are_read_at_fine_steps_and_the_rules_are_stated()
     # 16 x 2.5 ms cancels to 0.039 %; the finest mesh at its finest step says 0.09 %
     recs = [rec(16, 2.5e-3, 0.00039), rec(16, 1.25e-3, 0.0008), rec(32, 2.5e-3, 0.0007),
             rec(32, 1.25e-3, 0.0009, runs=[0.01, 0.012, 0.011, 0.01, 0.013])]
-    f = wp.floors(recs)[("exudyn", "ANCFCable2D")]
+    f = pr.floors(recs)[("exudyn", "ANCFCable2D")]
     assert (f["elements"], f["dt"], f["error"]) == (32, 1.25e-3, 0.0009)
     ours = {**rec(32, 1.25e-3, 0.001, runs=[0.02] * 5), "solver": "ancf", "element": "HB2n-12"}
-    text = wp.report_markdown(recs + [ours])
+    text = pr.report_markdown(recs + [ours])
     assert "| exudyn | ANCFCable2D | 32 | 1.25 | 0.0900 |" in text
     assert "Energy guard: none on either side" in text
     assert "| exudyn | ANCFCable2D | 32 | 1.25 | converged | 0.0100 | 0.0100-0.0130 | 0.0900 |" in text
     old = {**ours, "energy_guard": None}
     old.pop("energy_guard")
-    assert "NOT the same on both sides" in wp.report_markdown(recs + [old])
+    assert "NOT the same on both sides" in pr.report_markdown(recs + [old])
 
 
 def test_peers_report_is_generated_from_the_record():
@@ -281,7 +281,7 @@ def test_work_precision_anatomy_splits_the_time_and_judges_the_target_by_the_dec
     median where the pair was re-timed, else by the grid's medians; the coarsest step's error
     is read on each side's finest mesh with a result there."""
     from studies.peers import anatomy
-    from studies.peers import work_precision as wp
+    from studies.peers import precision_report as pr
 
     def rec(solver, n, dt, e, t, its):
         return {"scene": "pendulum", "solver": solver, "element": "ANCFCable2D" if solver == "exudyn" else "HB2n-16",
@@ -292,17 +292,17 @@ def test_work_precision_anatomy_splits_the_time_and_judges_the_target_by_the_dec
     assert (f["steps"], f["iterations"], f["per_step"]) == (100, 300, 3.0)
     assert f["per_iteration_s"] == pytest.approx(4e-5) and f["per_step_s"] == pytest.approx(1.2e-4)
     recs = [ours, cable, rec("exudyn", 8, 1e-2, None, None, None), rec("ancf", 8, 1e-2, 0.014, 0.006, 200)]
-    text = wp.report_markdown(recs)
+    text = pr.report_markdown(recs)
     assert "| 1 % | ours: HB2n-16 x 8, dt 5 ms | 100 | 300 | 3.00 | 40.0 | 120 | not met (0.600 > 0.5), by the grid's " \
            "medians |" in text
     assert "| | cable: cable x 4, dt 10 ms | 50 | 450 | 9.00 | 44.4 | 400 | |" in text
     assert "| 0.3 % | ours: HB2n-16 x 8, dt 5 ms | 100 | 300 | 3.00 | 40.0 | 120 | - |" in text    # no target there
     assert "ours 1.40 % (8 elements); the cable's 0.05 % (4 elements)." in text     # the failed 8 x 10 ms is passed by
-    rounds = [{"scene": "pendulum", "accuracy": 0.001, **wp._pair(ours, cable), "repeats": 5,
+    rounds = [{"scene": "pendulum", "accuracy": 0.001, **pr.round_pair(ours, cable), "repeats": 5,
                "rounds": [{"exudyn_s": 0.02, "ours_s": 0.008}, {"exudyn_s": 0.02, "ours_s": 0.012},
                           {"exudyn_s": 0.02, "ours_s": 0.009}]}]
     assert "| 0.1 % | ours: HB2n-16 x 8, dt 5 ms | 100 | 300 | 3.00 | 40.0 | 120 | met (0.450 <= 0.5), by the rounds' " \
-           "median |" in wp.report_markdown(recs, rounds)
+           "median |" in pr.report_markdown(recs, rounds)
     assert anatomy.verdict(0.001, None, None, cable) == "not met: no run of ours reaches it"
     assert anatomy.verdict(0.001, None, None, None) == "not met: no run of ours reaches it, nor of the cable"
     assert anatomy.verdict(0.01, None, ours, None) == "no run of the cable reaches it"

@@ -80,7 +80,7 @@ def _peer_markdown(kind: str, path: Path) -> str:
     if kind == "compare":
         from ..peers.compare import peers_markdown
         return peers_markdown(json.loads(path.read_text()))
-    from ..peers.work_precision import read, report_markdown, rounds_path
+    from ..peers.precision_report import read, report_markdown, rounds_path
     return report_markdown(read(path), read(rounds_path(path)))
 
 
@@ -105,7 +105,7 @@ def audit_peers(reports: Path, res: AuditResult) -> set[str]:
         res.checked.append(name)
         res.problems += compare_text(str(reports / name), _peer_markdown(kind, rec), (reports / name).read_text())
         if kind == "work_precision":
-            from ..peers.work_precision import figure_csv, figure_name, read, scenes_of
+            from ..peers.precision_report import figure_csv, figure_name, read, scenes_of
             recs = read(rec)
             for scene in scenes_of(recs):
                 png = figure_name(scene)

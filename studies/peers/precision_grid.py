@@ -1,0 +1,22 @@
+"""The work-precision bench's grid and scenes (:mod:`studies.peers.work_precision` runs it,
+:mod:`studies.peers.precision_report` draws its records): one place for both."""
+STEPS_PER_OUTPUT = (10, 20, 40, 80, 160, 320)       # dt = 0.1 s / k
+COUNTS = (2, 4, 8, 16, 32, 64)
+ACCURACIES = (0.01, 0.003, 0.001)     # 0.3 % added after the thick scene's run: its floors lie between 1 % and 0.1 %
+NAME = "peers-work-precision"
+SCENE = "pendulum"          # the default scene
+# scene -> cross-section height (m) and what its reference is
+SCENES = {"pendulum": {"height": 0.005, "title": "the paper's slender pendulum, h = 5 mm (L / h = 70)",
+                       "reference": "the converged continuum plane-stress Yeoh pendulum (tests/gold/fem_pendulum.json)"},
+          "thick": {"height": 0.020, "title": "thick pendulum, h = 20 mm (L / h = 17.5)",
+                    "reference": "the continuum plane-stress Yeoh pendulum with h = 20 mm "
+                                 "(data/peers/thick-pendulum-reference.json, studies.peers.thick_reference: 8, 16 "
+                                 "and 32 Q2 cells across; the tip moves by the same 0.14 mm at each halving, the point "
+                                 "pin's logarithmic singularity, so the reference is the 16-cell run, a 1.25 mm pin as "
+                                 "in the slender pendulum's gold, and its estimate is the time error plus one pin "
+                                 "halving)"}}
+# The same rule for both sides: Exudyn's fixed-step run has no energy check, so ours runs
+# without its guard too (a run that gains energy shows it in its error, not by stopping).
+ENERGY_GUARD = "none"
+MIN_REPEATS = 5
+ELEMENTS = ("HB2n-12", "HB2n-16", "HB2n-20xyp", "HB2n-40p", "HB2n-60p")   # the paper's two and the lock-free ones with a pressure field
