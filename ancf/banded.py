@@ -110,9 +110,9 @@ class Banded:
     def scaled_inertia(self, shift: float = 0.0) -> tuple[int, float, float]:
         """(how many eigenvalues of S = D^-1/2 K D^-1/2 lie below ``shift``, smallest
         |pivot|, growth of the factors) by a banded LDL^T of S - shift I (Sylvester's law
-        of inertia; :func:`ancf.kernels.band_ldlt_inertia`). S is congruent to K, so at
+        of inertia; :func:`ancf.bandsolve.band_ldlt_inertia`). S is congruent to K, so at
         shift 0 the count is K's number of negative eigenvalues."""
-        from .kernels import band_ldlt_inertia
+        from .bandsolve import band_ldlt_inertia
         upper, _ = self.scaled_upper()
         neg, small, growth = band_ldlt_inertia(upper, self.b, float(shift))
         return int(neg), float(small), float(growth)
@@ -134,7 +134,7 @@ class Banded:
         return dia_matrix((self.ab, offsets), shape=(self.n, self.n)).tocsc()
 
     def matvec(self, x: np.ndarray) -> np.ndarray:
-        from .kernels import band_matvec
+        from .bandsolve import band_matvec
         return band_matvec(self.ab, self.b, np.ascontiguousarray(x, dtype=float))
 
 

@@ -187,8 +187,9 @@ class BeamModel:
         """What the compiled loops (:mod:`ancf.compiled_steps`, :mod:`ancf.compiled_statics`) read of
         the model: shape-function gradients, weights, element dofs, the law's tape (ops,
         consts), the element pressure field (:func:`ancf.kernels.pressure_arrays`: empty
-        without one) and the band envelope (:func:`ancf.kernels.envelope`), contiguous."""
-        from .kernels import envelope, pressure_arrays
+        without one) and the band envelope (:func:`ancf.bandsolve.envelope`), contiguous."""
+        from .bandsolve import envelope
+        from .kernels import pressure_arrays
         ops, consts = self._tape
         return (np.ascontiguousarray(self._dN), np.ascontiguousarray(self._w, dtype=float),
                 np.ascontiguousarray(self._dofs, dtype=np.int64), np.ascontiguousarray(ops),

@@ -4,7 +4,7 @@
 reference it is tested against) in one numba call: per iteration the fused assembly of
 the force and the upper half of the tangent (:func:`ancf.kernels.assemble_fused`, the
 step loop's), the constraint, a banded LDL^T without pivoting
-(:func:`ancf.kernels.col_ldlt`) and its solve; the same tests in the same order
+(:func:`ancf.bandsolve.col_ldlt`) and its solve; the same tests in the same order
 (non-finite residual, residual <= atol, divergence, correction <= utol) and the same
 line search. Per iteration of 640 x HB2n-16 this is 1.6 ms (assembly 0.94, LDL^T 0.55,
 solve 0.13) where the Python loop takes 3.1 ms (numpy gradients and the general band
@@ -26,8 +26,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .kernels import INADMISSIBLE, OK, assemble_fused, live_tape, col_constrain, col_ldlt, col_ldlt_solve, \
-    element_pressures, point_gradients, step_scratch
+from .bandsolve import col_constrain, col_ldlt, col_ldlt_solve
+from .kernels import INADMISSIBLE, OK, assemble_fused, element_pressures, live_tape, point_gradients, step_scratch
 from .tape import tape_batch
 
 # Outcomes of :func:`newton` (a converged attempt is CONVERGED).

@@ -30,7 +30,7 @@ The generalized-alpha family (Chung-Hulbert):
 
 by Newton on u_(n+1) from the predictor a_(n+1) = a_n, with the step matrix
 S = (1 - alpha_f) K + (1 - alpha_m) / (beta h^2) M, factorised by LDL^T without pivoting
-(:func:`ancf.kernels.col_ldlt`): S need not be positive definite at a Newton iterate (a
+(:func:`ancf.bandsolve.col_ldlt`): S need not be positive definite at a Newton iterate (a
 compressed beam with a stiff penalty, at the predictor), so only a (near) zero pivot
 rejects the step.
 
@@ -66,10 +66,10 @@ import numpy as np
 from numba import njit
 
 from mechanics import alpha_family, time_loop
+from .bandsolve import col_constrain, col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split, same_component_only
 from .dgkernel import assemble_dg, dg_scratch
-from .kernels import live_tape, same_component_only
-from .kernels import (INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, col_constrain,
-                      col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split, assemble_fused, step_scratch, strain_energy_fused)
+from .kernels import (INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, assemble_fused, live_tape,
+                      step_scratch, strain_energy_fused)
 
 NEWTON = ("chord", "full", "modified")
 STATUS = {NEWTON_FAILED: "Newton failed", SINGULAR: "singular step matrix", INADMISSIBLE: "det F <= 0"}
@@ -461,7 +461,6 @@ class CompiledLoop:
             raise ValueError(f"newton: {newton!r} is not one of {', '.join(NEWTON)}")
         b = model.mesh.bandwidth
         self.n, self.b = model.mesh.n_dof, b
-        self.model_force = model.internal_force
         dN, w, dofs, ops, consts, pr, first = model.fused
         ops, consts = live_tape(ops, consts)
         self.data = (dN, w, dofs, ops, consts, pr, column_band(M.ab, b), first, np.ascontiguousarray(f_ext, dtype=float),
@@ -492,14 +491,6 @@ class CompiledLoop:
     @property
     def stats(self) -> dict:
         return dict(zip(COUNTER_NAMES, (int(x) for x in self.counters)))
-
-    def internal_force(self, u: np.ndarray) -> np.ndarray:
-        """f_int(u) (N) by the loop's assembly; the model's (which names the point) if
-        det F <= 0 somewhere."""
-        f = np.empty(self.n)
-        if internal_force(np.ascontiguousarray(u, dtype=float), *self.data[:6], f) != OK:
-            return self.model_force(u)
-        return f
 
     def initial_acceleration(self, u: np.ndarray) -> np.ndarray | None:
         """a0 from M a0 = f_ext - f_int(u) on the free dofs (:func:`start`); None if

@@ -109,7 +109,10 @@ class Integrator:
 
     # -- what the loop asks for ----------------------------------------------------------
     def initial_state(self, u0: np.ndarray) -> State:
-        """At rest at u0; a0 from M a0 = Q_K - f_int(u0) on the free dofs."""
+        """At rest at u0; a0 from M a0 = Q_K - f_int(u0) on the free dofs, in one compiled
+        call where the compiled loop runs (:func:`ancf.compiled_steps.start`: the fused
+        force, M constrained and factorised by LDL^T), else, and at det F <= 0 (the model
+        then names the point), by the model's force and :meth:`M_constrained`."""
         a0 = None
         if self.advance is not None:
             self._loop.reset()               # a new run: no factorisation kept
@@ -120,9 +123,9 @@ class Integrator:
         return State(0.0, u0.copy(), np.zeros_like(u0), a0)
 
     def M_constrained(self) -> Banded:
-        """M with the fixed dofs' rows and columns those of the identity (factorised at
-        every run's start, in its timed solve, as a peer computing initial accelerations
-        does)."""
+        """M with the fixed dofs' rows and columns those of the identity: the Python route
+        of :meth:`initial_state` (factorised at the start of a run without the compiled
+        loop, in its timed solve, as a peer computing initial accelerations does)."""
         return Banded(self.M.ab.copy(), self.M.b).constrain(self.model.fixed)
 
     def energies(self, s: State) -> Energies:

@@ -161,7 +161,8 @@ def test_fused_kernel_matches_the_numpy_reference(element, law, form, rng):
     and statics). This holds the third equal to the first, force and tangent; with an
     element pressure field (HB2n-40p, penalised) the reference includes
     ancf.pressure.ProjectedPenalty, which the fused kernel reads as data."""
-    from ancf.kernels import OK, assemble_fused, col_matvec, step_scratch
+    from ancf.bandsolve import col_matvec
+    from ancf.kernels import OK, assemble_fused, step_scratch
 
     model = make_model(element, law, form)
     u = bent_state(model, rng)

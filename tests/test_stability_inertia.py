@@ -133,7 +133,7 @@ def test_the_factor_growth_decides_whether_a_tiny_pivot_spoils_the_count():
     """A nearly singular but definite matrix has a tiny pivot and no growth (its count
     is trusted); a tiny pivot that makes the factors large is reported as growth (the
     count then goes to LAPACK's bisection). Both counts are known in closed form."""
-    from ancf.kernels import band_ldlt_inertia
+    from ancf.bandsolve import band_ldlt_inertia
 
     def band(a, c):          # [[a, c], [c, a]] in upper band form, b = 1
         return np.array([[0.0, c], [a, a]])
