@@ -16,7 +16,9 @@ where it comes from:
    come from eps_xx, eps_yy (with the eps_xx eps_yy coupling) and shear.
 
 [3, 2] is not adopted: the rank tests reject it at l_e / h = 10, where mu_min is 0.04 and
-the finite-strain ratio 0.23 (``reports/cards/HB2n-20xyp.md``).
+the finite-strain ratio 0.23 (``reports/cards/HB2n-20xyp.md``). Which strain the three
+points relieve, the membrane stretch C_xx, is the next example's finding
+(``examples/assumed_membrane.py``).
 
     .venv/bin/python examples/along_rule.py
 """
