@@ -17,8 +17,8 @@ energy guard (:data:`ENERGY_GUARD`): Exudyn's fixed-step run has none, so ours r
 the converged continuum plane-stress pendulum (tests/gold/fem_pendulum.json), the
 reference of the accuracy-cost diagram. Exudyn's cable is linear elastic (E = 6 C10) and
 Euler-Bernoulli: its error has a floor set by its physics, not by its mesh or step; the
-floors are read at the finest step of the finest mesh (:func:`studies.peers.precision_report.floors`), not as the
-smallest error over the grid.
+floors are read at the finest step of the finest mesh
+(:func:`studies.peers.precision_report.floors`), not as the smallest error over the grid.
 
 Scenes (:data:`SCENES`, ``--scene``): ``pendulum``, the paper's slender pendulum (h = 5 mm,
 L / h = 70, small strains), and ``thick``, the same pendulum with h = 20 mm (L / h = 17.5),
