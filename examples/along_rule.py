@@ -32,8 +32,8 @@ from ancf.elements import get_element
 from ancf.quadrature import gauss
 from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
-from studies.peers.work_precision import SCENES, error
-from studies.pendulum_cases import LENGTH, pendulum_dict
+from studies.peers.work_precision import SCENES, error, scene_dict
+from studies.pendulum_cases import LENGTH
 
 ELEMENT = "HB2n-20xyp"
 RULES = (None, (3, 2))            # None: the element's default rule
@@ -42,9 +42,7 @@ D = np.array([[3.0, 1.0, 0.0], [1.0, 3.0, 0.0], [0.0, 0.0, 1.0]])   # plane stra
 
 def pendulum_error(scene: str, n: int, rule, dt: float = 1.25e-3) -> tuple[float, list[int]]:
     """(error / L, the rule used) of the work-precision scene on n elements."""
-    d = pendulum_dict(ELEMENT, n, "plane-stress", dt, rho_inf=0.5)
-    d["beam"]["height"] = SCENES[scene]["height"]
-    d["analysis"]["energy_limit"] = "inf"
+    d = scene_dict(ELEMENT, n, dt, 0.5, scene)
     if rule:
         d["ancf"]["quadrature"] = list(rule)
     rec = run_scene(scene_from_dict(d))[0]

@@ -22,16 +22,14 @@ the slender pendulum's error and the paper's cantilever's tip under each choice.
 """
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
 from ancf.build import build_model, external_loads
 from ancf.quadrature import gauss
+from contract import paper
 from contract.scene import scene_from_dict
 from mechanics import alpha_family
-from studies.peers.work_precision import error
-from studies.pendulum_cases import pendulum_dict
+from studies.peers.work_precision import error, scene_dict
 
 ELEMENT = "HB2n-20xyp"
 MODES = ("none", "xx", "xy", "yy", "xx+xy", "xx+xy+yy")
@@ -103,7 +101,7 @@ class AssumedStrain:
 def pendulum_error(n: int, mode: str, dt: float = 2.5e-3, rtol: float = 1e-8) -> float:
     """The slender pendulum of the work-precision bench (plane-stress Yeoh, rho_inf 0.5,
     pin, gravity) on n elements: error / L against the continuum (max over t = 0.1 ... 0.5 s)."""
-    scene = scene_from_dict(pendulum_dict(ELEMENT, n, "plane-stress", dt, rho_inf=0.5))
+    scene = scene_from_dict(scene_dict(ELEMENT, n, dt, 0.5))
     model = build_model(scene)
     f_ext = sum(external_loads(model, scene).values())
     M = model.mass_matrix().to_sparse().toarray()
@@ -141,15 +139,10 @@ def pendulum_error(n: int, mode: str, dt: float = 2.5e-3, rtol: float = 1e-8) ->
 
 
 def cantilever_tip(n: int, mode: str, increments: int = 20, rtol: float = 1e-10) -> float:
-    """The paper's cantilever (scenes/cantilever-yeoh.toml: plane-stress Yeoh, face clamp,
-    gravity) on n elements: the tip's vertical displacement (m), by Newton on equal load
+    """The paper's cantilever (``contract.paper.cantilever_scene``: plane-stress Yeoh, face
+    clamp, gravity) on n elements: the tip's vertical displacement (m), by Newton on equal load
     increments."""
-    import tomllib
-
-    d = tomllib.load(open(Path(__file__).resolve().parents[1] / "scenes" / "cantilever-yeoh.toml", "rb"))
-    d["ancf"].update(element=ELEMENT, elements=n)
-    d["ancf"].pop("quadrature", None)
-    scene = scene_from_dict(d)
+    scene = scene_from_dict(paper.cantilever_scene("yeoh", "plane-stress", ELEMENT, n, quadrature=None))
     model = build_model(scene)
     f_ext = sum(external_loads(model, scene).values())
     free = np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)

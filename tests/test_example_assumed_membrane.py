@@ -8,12 +8,11 @@ import pytest
 from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
 from examples.assumed_membrane import ELEMENT, AssumedStrain, pendulum_error
-from studies.peers.work_precision import error
-from studies.pendulum_cases import pendulum_dict
+from studies.peers.work_precision import error, scene_dict
 
 
 def harness_error(n: int, dt: float = 2.5e-3) -> float:
-    rec = run_scene(scene_from_dict(pendulum_dict(ELEMENT, n, "plane-stress", dt, rho_inf=0.5)))[0]
+    rec = run_scene(scene_from_dict(scene_dict(ELEMENT, n, dt, 0.5)))[0]
     assert rec["status"] == "converged"
     return error(rec["tip_history"])
 
@@ -44,7 +43,7 @@ def test_an_assumed_membrane_stretch_leaves_the_small_strain_stiffness_and_the_s
 
     from ancf.build import build_model
 
-    model = build_model(scene_from_dict(pendulum_dict(ELEMENT, 2, "plane-stress", 2.5e-3, rho_inf=0.5)))
+    model = build_model(scene_from_dict(scene_dict(ELEMENT, 2, 2.5e-3, 0.5)))
     free = np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)
     u = np.zeros(model.mesh.n_dof)
     K = {m: AssumedStrain(model, m).tangent(u, free) for m in ("none", "xx", "xy")}

@@ -64,15 +64,22 @@ def key(r: dict) -> tuple:
     return (r.get("scene", SCENE), r["solver"], r["element"], r["elements"], round(r["dt"], 12), r["rho_inf"])
 
 
-def ours(element: str, n: int, dt: float, rho_inf: float, repeats: int, scene: str = SCENE) -> dict:
-    from ancf.simulation import run_scene
-    from contract.scene import scene_from_dict
+def scene_dict(element: str, n: int, dt: float, rho_inf: float, scene: str = SCENE) -> dict:
+    """Our run of a point: the scene's plane-stress Yeoh pendulum on n elements, without
+    the energy guard (Exudyn's run has none: :data:`ENERGY_GUARD`)."""
     from ..pendulum_cases import pendulum_dict
 
     d = pendulum_dict(element, n, "plane-stress", dt, rho_inf=rho_inf)
     d["beam"]["height"] = SCENES[scene]["height"]
-    d["analysis"]["energy_limit"] = "inf"      # no energy guard: Exudyn's run has none (ENERGY_GUARD)
-    sc = scene_from_dict(d)
+    d["analysis"]["energy_limit"] = "inf"
+    return d
+
+
+def ours(element: str, n: int, dt: float, rho_inf: float, repeats: int, scene: str = SCENE) -> dict:
+    from ancf.simulation import run_scene
+    from contract.scene import scene_from_dict
+
+    sc = scene_from_dict(scene_dict(element, n, dt, rho_inf, scene))
     recs = [run_scene(sc)[0] for _ in range(repeats + 1)][1:]     # one untimed warm-up
     last = recs[-1]
     ok = last["status"] == "converged"
