@@ -51,15 +51,11 @@ def pendulum_error(scene: str, n: int, rule, dt: float = 1.25e-3) -> tuple[float
     return error(rec["tip_history"], scene), rec["quadrature"]
 
 
-def _element_stiffness(rule, le: float, h: float) -> np.ndarray:
-    el = get_element(ELEMENT)
-    _, dN = el.tabulate(rule.xi, rule.eta, le, h)
-    ns = el.n_shape
-    B = np.zeros((dN.shape[0], 3, ns, 2))
-    B[:, 0, :, 0], B[:, 1, :, 1] = dN[:, :, 0], dN[:, :, 1]
-    B[:, 2, :, 0], B[:, 2, :, 1] = dN[:, :, 1], dN[:, :, 0]
-    B = B.reshape(dN.shape[0], 3, 2 * ns)
-    return np.einsum("q,qia,ij,qjb->ab", rule.weight * le * h, B, D, B)
+def _stiffness(rule, aspect: float) -> np.ndarray:
+    """The small-strain stiffness of one element l_e = aspect, h = 1, under ``rule`` (a
+    Rule), per unit element area, from the rank tests' strain rows (``rank._strain_rows``)."""
+    G, _ = rank._strain_rows(get_element(ELEMENT), rule, aspect)
+    return sum(G[3 * q:3 * q + 3].T @ D @ G[3 * q:3 * q + 3] for q in range(G.shape[0] // 3))
 
 
 def linear_tip_ratio(n: int, rule, slenderness: float = 70.0) -> float:
@@ -67,7 +63,7 @@ def linear_tip_ratio(n: int, rule, slenderness: float = 70.0) -> float:
     over Timoshenko's P L^3 / (3 E' I) + P L / (k G A) (E' = E / (1 - nu^2), k = 5/6)."""
     el = get_element(ELEMENT)
     h, L = 1.0, slenderness
-    Ke = _element_stiffness(gauss(*rule) if rule else rank.exact_rule(el), L / n, h)
+    Ke = (L / n) * h * _stiffness(gauss(*rule) if rule else rank.exact_rule(el), L / n)
     per_node = 2 * len(el.kinds)
     K = np.zeros(((n + 1) * per_node,) * 2)
     for e in range(n):
@@ -89,12 +85,8 @@ def softest_modes(aspect: float, rule=(3, 2), count: int = 2) -> list[tuple[floa
     rule (rank.rank_test's eigenproblem): (mu, exact-energy share of eps_xx, of eps_yy with
     the coupling, of shear)."""
     el = get_element(ELEMENT)
-    G_r, _ = rank._strain_rows(el, gauss(*rule), aspect)
     G_e, _ = rank._strain_rows(el, rank.exact_rule(el), aspect)
-
-    def stiffness(G):
-        return sum(G[3 * q:3 * q + 3].T @ D @ G[3 * q:3 * q + 3] for q in range(G.shape[0] // 3))
-    K_r, K_e = stiffness(G_r), stiffness(G_e)
+    K_r, K_e = _stiffness(gauss(*rule), aspect), _stiffness(rank.exact_rule(el), aspect)
     s = 1.0 / np.sqrt(np.diag(K_e))
     Z = np.linalg.qr(rank._rigid(el, aspect) / s[:, None], mode="complete")[0][:, 3:]
     mu, V = sla.eigh(Z.T @ (s[:, None] * K_r * s) @ Z, Z.T @ (s[:, None] * K_e * s) @ Z)
