@@ -20,7 +20,7 @@ test-slow: setup
 
 study: setup
 	$(PY) -m studies run all
-	$(PY) -m studies card paper HB2n-20xyp HB2n-40p HB2n-60p HB2n-20 --import examples.transversely_cubic
+	$(PY) -m studies card paper HB2n-20xyp HB2n-20xypm HB2n-40p HB2n-60p HB2n-20 --import examples.transversely_cubic
 	$(PY) -m studies card HB2n-20xy --import examples.cubic_slope
 	$(PY) -m studies card HB2n-84p --import examples.sextic_section
 	$(PY) -m studies audit
@@ -50,7 +50,7 @@ bench-penalty: setup
 
 # Exudyn in a separate venv (.venv-peers), never in .venv
 # the elements of the work-precision diagram: the paper's two and the lock-free ones
-PEER_ELEMENTS = --element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-40p --element HB2n-60p
+PEER_ELEMENTS = --element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-20xypm --element HB2n-40p --element HB2n-60p
 
 bench-peers: setup
 	bash tools/setup_peers.sh && $(PY) -m studies.peers.compare --report

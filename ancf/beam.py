@@ -17,6 +17,12 @@ takes the penalty on the element-wise projection of J - 1 (:mod:`ancf.pressure`,
 numpy reference) instead of at the points: the points then see the material without its
 penalty (:attr:`BeamModel.pointwise`), and the compiled loops read the projection as data
 (:func:`ancf.kernels.pressure_arrays` in :attr:`BeamModel.fused`).
+
+An element with an assumed strain (``ElementSpec.assumed``) takes components of C from
+sample points along the beam (:mod:`ancf.assumed`): the compiled kernels see the rule's
+points followed by the sample points (weight zero) and the sampling T; the numpy
+reference is :class:`ancf.assumed.AssumedStrain` (:attr:`BeamModel.assumed`). Its energy
+is not a function of (a, J) at each point, so it has no discrete gradient here.
 """
 from __future__ import annotations
 
@@ -33,6 +39,15 @@ from .quadrature import Rule, exact_for
 
 class InadmissibleState(ArithmeticError):
     """A deformation gradient with det F <= 0 (or a non-finite one) somewhere."""
+
+
+def refuse_discrete_gradient(model) -> None:
+    """ValueError naming the element if it has an assumed strain: the discrete gradient
+    needs a and J quadratic in u at every point, and det C_bar is quartic."""
+    spec = model.mesh.element
+    if spec.assumed:
+        raise ValueError(f"element {spec.name}: an assumed strain ({', '.join(spec.assumed)}) has no discrete "
+                         "gradient here; use an alpha-family integrator (generalized-alpha, newmark, hht)")
 
 
 @dataclass
@@ -59,6 +74,29 @@ class BeamModel:
         """The material the quadrature points see: without its penalty where the pressure
         field carries it."""
         return self.material if self.pressure is None else replace(self.material, penalty=0.0)
+
+    @cached_property
+    def sampled(self):
+        """(points, T) of an element with an assumed strain (:func:`ancf.assumed.sampling`:
+        the rule's points then the sample points, and C_bar's sampling); None without one."""
+        spec = self.mesh.element
+        if not spec.assumed:
+            return None
+        from .assumed import sampling
+        return sampling(spec.assumed, spec.assumed_points, self.rule)
+
+    @cached_property
+    def assumed(self):
+        """The numpy reference of the assumed strain (:class:`ancf.assumed.AssumedStrain`),
+        or None."""
+        if self.sampled is None:
+            return None
+        from .assumed import AssumedStrain
+        points, T = self.sampled
+        m = self.mesh
+        _, dN = m.element.tabulate(points.xi, points.eta, m.element_length, m.height)
+        w = points.weight * m.element_length * m.height * m.width
+        return AssumedStrain(self.pointwise, dN, w, T, self.pressure)
 
     @property
     def compiled(self) -> bool:
@@ -145,6 +183,8 @@ class BeamModel:
         return float(U)
 
     def strain_energy_numpy(self, u: np.ndarray) -> float:
+        if self.assumed is not None:
+            return self.assumed.energy(u[self._dofs])
         F = self._checked(self.gradients(u))
         f = F.reshape(F.shape[0], F.shape[1], 4)
         a = np.einsum("eqi,eqi->eq", f, f)
@@ -157,6 +197,9 @@ class BeamModel:
         return self._kernel(u, with_tangent=False)[0]
 
     def internal_force_numpy(self, u: np.ndarray) -> np.ndarray:
+        if self.assumed is not None:
+            fe = self.assumed.element_terms(u[self._dofs], tangent=False)[0]
+            return np.bincount(self._dofs.ravel(), fe.ravel(), minlength=self.mesh.n_dof)
         F = self._checked(self.gradients(u))
         _, P, _ = self.pointwise.evaluate(F, tangent=False)
         fe = P.reshape(P.shape[0], -1) @ self._Bw_flat      # (ne, nd)
@@ -186,14 +229,19 @@ class BeamModel:
     def fused(self) -> tuple:
         """What the compiled loops (:mod:`ancf.compiled_steps`, :mod:`ancf.compiled_statics`) read of
         the model: shape-function gradients, weights, element dofs, the law's tape (ops,
-        consts), the element pressure field (:func:`ancf.kernels.pressure_arrays`: empty
-        without one) and the band envelope (:func:`ancf.bandsolve.envelope`), contiguous."""
+        consts), the element pressure field and assumed strain
+        (:func:`ancf.kernels.pressure_arrays`: empty without them; with an assumed strain
+        dN and w run over the sample points too) and the band envelope (:func:`ancf.bandsolve.envelope`), contiguous."""
         from .bandsolve import envelope
         from .kernels import pressure_arrays
         ops, consts = self._tape
-        return (np.ascontiguousarray(self._dN), np.ascontiguousarray(self._w, dtype=float),
+        dN, w, T = self._dN, self._w, None
+        if self.sampled is not None:                    # the rule's points, then the sample points
+            dN, w, T = self.assumed.dN, np.concatenate([self._w, np.zeros(len(self.assumed.dN) - len(self._w))]), \
+                self.sampled[1]
+        return (np.ascontiguousarray(dN), np.ascontiguousarray(w, dtype=float),
                 np.ascontiguousarray(self._dofs, dtype=np.int64), np.ascontiguousarray(ops),
-                np.ascontiguousarray(consts, dtype=float), pressure_arrays(self.pressure, self._dN.shape[0]),
+                np.ascontiguousarray(consts, dtype=float), pressure_arrays(self.pressure, dN.shape[0], T),
                 envelope(self._dofs, self.mesh.n_dof))
 
     @cached_property
@@ -231,6 +279,8 @@ class BeamModel:
     def _kernel(self, u: np.ndarray, with_tangent: bool):
         from .kernels import assemble_force_tangent
 
+        if self.sampled is not None:
+            return self._kernel_fused(u, with_tangent)
         F = self._checked(self.gradients(u))
         ne, nq = F.shape[:2]
         f4 = np.ascontiguousarray(F.reshape(ne, nq, 4))
@@ -248,6 +298,25 @@ class BeamModel:
                 K = Banded(K.ab + self.pattern.assemble(Ke).ab, m.bandwidth)
         return f, K
 
+    def _kernel_fused(self, u: np.ndarray, with_tangent: bool):
+        """:meth:`_kernel` by the compiled loops' assembly (:func:`ancf.kernels.assemble_fused`),
+        its upper column band made a general band: the route of an assumed strain."""
+        from .kernels import OK, assemble_fused, step_scratch
+        dN, w, dofs, ops, consts, pr, _ = self.fused
+        m, b = self.mesh, self.mesh.bandwidth
+        u = np.ascontiguousarray(u, dtype=float)
+        f, Kc = np.zeros(m.n_dof), np.zeros((m.n_dof, b + 1))
+        scratch = step_scratch(ops.shape[0], dN, pr)
+        if assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, Kc, with_tangent, *scratch) != OK:
+            raise InadmissibleState("det C_bar <= 0 (or not finite) at a quadrature point")
+        if not with_tangent:
+            return f, None
+        ab = np.zeros((2 * b + 1, m.n_dof))
+        ab[:b + 1] = Kc.T                               # K[c - d, c] = Kc[c, b - d]
+        for d in range(1, b + 1):                       # K[c + d, c] = K[c, c + d] = Kc[c + d, b - d]
+            ab[b + d, :m.n_dof - d] = Kc[d:, b - d]
+        return f, Banded(ab, b)
+
     def discrete_gradient_force_and_tangent(self, u0: np.ndarray, u1: np.ndarray):
         """f_dg(u0, u1) with (u1 - u0) . f_dg = U(u1) - U(u0), and the midpoint tangent / 2.
 
@@ -257,8 +326,11 @@ class BeamModel:
         alike) is evaluated as line integrals of W_a and W_J by 3-point Gauss in s:
         exact up to O(d^6), far below round-off for a time step, and free of the
         cancellation of the quotients (which left a 1e-10 noise floor in Newton). Then
-        P = 2 W^_a F_m + W^_J cof F_m goes through the same compiled kernel."""
+        P = 2 W^_a F_m + W^_J cof F_m goes through the same compiled kernel. Not for an
+        element with an assumed strain (its det C_bar is not quadratic in u)."""
         from .kernels import assemble_force_tangent
+
+        refuse_discrete_gradient(self)
 
         F0, F1 = self._checked(self.gradients(u0)), self._checked(self.gradients(u1))
         ne, nq = F0.shape[:2]
@@ -290,6 +362,10 @@ class BeamModel:
         return f, K
 
     def internal_force_and_tangent_numpy(self, u: np.ndarray) -> tuple[np.ndarray, Banded]:
+        if self.assumed is not None:
+            fe, Ke = self.assumed.element_terms(u[self._dofs])
+            f = np.bincount(self._dofs.ravel(), fe.ravel(), minlength=self.mesh.n_dof)
+            return f, self.pattern.assemble(Ke)
         F = self._checked(self.gradients(u))
         _, P, A = self.pointwise.evaluate(F, tangent=True)
         ne, nq = P.shape[:2]

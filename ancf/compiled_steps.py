@@ -67,6 +67,7 @@ from numba import njit
 
 from mechanics import alpha_family, time_loop
 from .bandsolve import col_constrain, col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split, same_component_only
+from .beam import refuse_discrete_gradient
 from .dgkernel import assemble_dg, dg_scratch
 from .kernels import (INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, assemble_fused, live_tape,
                       step_scratch, strain_energy_fused)
@@ -459,6 +460,8 @@ class CompiledLoop:
         coefficients do not apply), else by :func:`step` with ``newton``."""
         if newton not in NEWTON:
             raise ValueError(f"newton: {newton!r} is not one of {', '.join(NEWTON)}")
+        if discrete_gradient:
+            refuse_discrete_gradient(model)
         b = model.mesh.bandwidth
         self.n, self.b = model.mesh.n_dof, b
         dN, w, dofs, ops, consts, pr, first = model.fused

@@ -21,6 +21,9 @@ element, discontinuous between elements). In a penalised formulation the penalty
 acts on the element-wise L2 projection of J - 1 onto that field instead of at every
 point: the u-p mixed form with its pressure condensed per element
 (:mod:`ancf.pressure`), the remedy for volumetric locking.
+
+An element may take components of C from fewer points along the beam (``assumed``:
+an assumed strain, :mod:`ancf.assumed`), the remedy for membrane locking.
 """
 from __future__ import annotations
 
@@ -71,8 +74,18 @@ class ElementSpec:
     # the element-wise pressure basis of the mixed form (penalised formulations); empty:
     # the penalty at every quadrature point
     pressure: tuple[str, ...] = ()
+    # components of C ("xx", "yy", "xy") the elastic rule takes from ``assumed_points``
+    # Gauss points along the beam instead of its own points (:mod:`ancf.assumed`); empty:
+    # C at the rule's points
+    assumed: tuple[str, ...] = ()
+    assumed_points: int = 3
 
     def __post_init__(self):
+        from .assumed import COMPONENTS
+        bad = [c for c in self.assumed if c not in COMPONENTS]
+        if bad or len(set(self.assumed)) != len(self.assumed) or self.assumed_points < 1:
+            raise ValueError(f"element {self.name}: assumed {list(self.assumed)} with {self.assumed_points} points; "
+                             f"assumed components are distinct ones of {', '.join(COMPONENTS)}, points >= 1")
         unknown = [k for k in self.kinds if k not in KINDS]
         if unknown:
             raise ValueError(f"element {self.name}: unknown kinds {unknown}; a kind is 'r' or 'r_' and "
@@ -239,3 +252,18 @@ register_element(ElementSpec(
     "this harness: HB2n-16 with r_xy (cubic r_y along the beam), element pressure {1, y}",
     ((False, 1.0, (4, 2)), (False, 0.0, (3, 3)), (True, 1.0, (4, 2)), (True, 0.0, (3, 3))),
     pressure=("1", "y")))
+# Found with the harness (issue 20): HB2n-20xyp with an assumed membrane stretch, C_xx taken
+# from 3 Gauss points along the beam at each row across and carried to the rule's 4 by
+# quadratic Lagrange (ancf.assumed). A cubic centre line in large rotation cannot keep its
+# stretch at 1 at 4 points of an element and bends too stiffly (membrane locking); in small
+# strain eps_xx is quadratic along x, so the 3 points see it exactly and the stiffness at
+# u = 0 (the rank tests) is HB2n-20xyp's. Measured in the numpy prototype
+# (examples/assumed_membrane.py), slender pendulum, dt 2.5 ms: 2 / 4 elements 5.23 / 0.447 %
+# of L (HB2n-20xyp 7.25 / 1.18 %); with C_xy assumed as well 2.57 / 0.442 %, which changes
+# the stiffness at u = 0 (not taken).
+register_element(ElementSpec(
+    "HB2n-20xypm", ("1", "x", "x^2", "x^3", "y", "x*y", "x^2*y", "x^3*y", "y^2", "x*y^2"), (0.0, 1.0),
+    ("r", "r_x", "r_y", "r_xy", "r_yy"),
+    "this harness: HB2n-20xyp with an assumed membrane stretch C_xx (3 points along)",
+    ((False, 1.0, (4, 2)), (False, 0.0, (3, 3)), (True, 1.0, (4, 2)), (True, 0.0, (3, 3))),
+    pressure=("1", "y"), assumed=("xx",)))

@@ -18,6 +18,8 @@ count) is :mod:`ancf.bandsolve`.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -171,8 +173,10 @@ def assemble_fused(u, u_n, alpha_f, dN, w, dofs, ops, consts, pr, f, Kc, with_ta
     element P (and A = dP/dF), the element force and the upper half of the element
     tangent by 2 x 2 node blocks, and one scatter per element. pr: the element
     pressure field's arrays (:func:`pressure_arrays`; empty without one); chunk, R, Fb,
-    ab, Jb, ew: :func:`step_scratch` for these dN and pr. Returns OK, or INADMISSIBLE if
-    det F <= 0 (or is not finite) at a point."""
+    ab, Jb, ew: :func:`step_scratch` for these dN and pr. An element with an assumed
+    strain (pr's T, :mod:`ancf.assumed`) takes (a, J) from C_bar at the rule's points
+    (:func:`assumed_invariants`) and :func:`assumed_terms`. Returns OK, or INADMISSIBLE
+    if det F (det C_bar) <= 0 (or is not finite) at a point."""
     ne = dofs.shape[0]
     f[:] = 0.0
     if with_tangent:
@@ -180,30 +184,37 @@ def assemble_fused(u, u_n, alpha_f, dN, w, dofs, ops, consts, pr, f, Kc, with_ta
     for e0 in range(0, ne, chunk):
         e1 = min(ne, e0 + chunk)
         m = point_gradients(u, u_n, alpha_f, dN, dofs, e0, e1, Fb, ab, Jb)
-        if m < 0:
+        if m < 0 or assumed_invariants(Fb, ab, Jb, m, pr[4]) < 0:
             return INADMISSIBLE
         tape_batch(ops, consts, ab, Jb, R, m, 2 if with_tangent else 1)
-        if with_tangent:
+        if pr[4].shape[1] > 0:
+            assumed_terms(Fb, R[ops.shape[0] - 1], Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent)
+        elif with_tangent:
             element_terms(Fb, R[ops.shape[0] - 1], Jb, e0, e1, dN, w, dofs, pr, f, Kc)
         else:
             element_forces(Fb, R[ops.shape[0] - 1], Jb, e0, e1, dN, w, dofs, pr, f, ew)
     return OK
 
 
-def pressure_arrays(penalty, nq: int) -> tuple:
-    """The element pressure field as the compiled kernels read it (``pr``): q (nq, nk)
-    the pressure basis at the points, wq (nq, nk) the basis times the weights,
+def pressure_arrays(penalty, nq: int, T: np.ndarray | None = None) -> tuple:
+    """The element's fields as the compiled kernels read them (``pr``): the pressure
+    field's q (nq, nk) basis at the points, wq (nq, nk) the basis times the weights,
     pm (nk, nk) = alpha M^-1 and wl = wq L (nq, nk), pm = L L^T (Cholesky: the tangent's
     G^T pm G = (L^T G)^T (L^T G), L^T G = wl^T dJ/du), from a
-    :class:`ancf.pressure.ProjectedPenalty`; with ``penalty`` None (no pressure field, or
-    no penalty) nk = 0 and the kernels' pressure loops run zero times: one code path for
-    every element."""
+    :class:`ancf.pressure.ProjectedPenalty` (tabulated at the first nq' <= nq points:
+    the rows of the sample points after them are zero); and the assumed strain's T
+    (3, nq', nq) (:func:`ancf.assumed.sampling`). With ``penalty`` None (no pressure
+    field, or no penalty) nk = 0 and the kernels' pressure loops run zero times; with
+    ``T`` None it is (3, 0, 0) and the points take their own C: one code path for every
+    element."""
     if penalty is None:
         q, wq, pm, wl = np.zeros((nq, 0)), np.zeros((nq, 0)), np.zeros((0, 0)), np.zeros((nq, 0))
     else:
-        q, wq, pm = penalty.q, penalty.wq, penalty.alpha * penalty.minv
+        pad = ((0, nq - penalty.q.shape[0]), (0, 0))
+        q, wq, pm = np.pad(penalty.q, pad), np.pad(penalty.wq, pad), penalty.alpha * penalty.minv
         wl = wq @ np.linalg.cholesky(0.5 * (pm + pm.T))
-    return tuple(np.ascontiguousarray(x, dtype=float) for x in (q, wq, pm, wl))
+    T = np.zeros((3, 0, 0)) if T is None else T
+    return tuple(np.ascontiguousarray(x, dtype=float) for x in (q, wq, pm, wl, T))
 
 
 @njit(cache=True, fastmath=FASTMATH)
@@ -445,8 +456,8 @@ def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc):
 @njit(cache=True)
 def strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, ew):
     """U = sum_e sum_q w_q W(F_eq) (J), plus the element pressure field's
-    alpha/2 g^T M^-1 g per element (pr, :func:`pressure_arrays`); nan if det F <= 0
-    somewhere. chunk .. ew: :func:`step_scratch` (the pressures work in ew's gk, pk, pf)."""
+    alpha/2 g^T M^-1 g per element (pr, :func:`pressure_arrays`; with an assumed strain W at
+    C_bar, the sample points weighing zero); nan if det F <= 0 somewhere. chunk .. ew: :func:`step_scratch` (the pressures work in ew's gk, pk, pf)."""
     ne = dofs.shape[0]
     last = ops.shape[0] - 1
     nk = pr[2].shape[0]
@@ -456,7 +467,7 @@ def strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, e
     for e0 in range(0, ne, chunk):
         e1 = min(ne, e0 + chunk)
         m = point_gradients(u, u, 0.0, dN, dofs, e0, e1, Fb, ab, Jb)
-        if m < 0:
+        if m < 0 or assumed_invariants(Fb, ab, Jb, m, pr[4]) < 0:
             return np.nan
         tape_batch(ops, consts, ab, Jb, R, m, 0)
         for p in range(m):
@@ -466,3 +477,161 @@ def strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, e
                 total += element_pressures(pr, Jb, p0, nq, g, pk, pq)
     return total
 
+
+
+# -- assumed strains (:mod:`ancf.assumed`, whose numpy AssumedStrain these are tested against) --
+@njit(cache=True, fastmath=FASTMATH)
+def assumed_invariants(Fb, ab, Jb, m, T):
+    """At the rule's points of the m points in Fb (elements of T.shape[2] points each, the
+    rule's T.shape[1] first), a = tr C_bar and J = sqrt(det C_bar) into ab and Jb, with
+    C_bar_c = sum_p T[c, r, p] C_c(x_p). Nothing if T is empty. Returns -1 if det C_bar <= 0
+    (or is not finite) at a point, else 0."""
+    nr, npts = T.shape[1], T.shape[2]
+    if nr == 0:
+        return 0
+    for base in range(0, m, npts):
+        for r in range(nr):
+            c0, c1, c2 = 0.0, 0.0, 0.0
+            for p in range(npts):
+                F00, F01, F10, F11 = Fb[base + p, 0], Fb[base + p, 1], Fb[base + p, 2], Fb[base + p, 3]
+                c0 += T[0, r, p] * (F00 * F00 + F10 * F10)
+                c1 += T[1, r, p] * (F01 * F01 + F11 * F11)
+                c2 += T[2, r, p] * (F00 * F01 + F10 * F11)
+            det = c0 * c1 - c2 * c2
+            if not (det > 0.0 and det < 1e300):
+                return -1
+            ab[base + r] = c0 + c1
+            Jb[base + r] = math.sqrt(det)
+    return 0
+
+
+@njit(cache=True, fastmath=FASTMATH)
+def assumed_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
+    """Add the force and, if with_tangent, the upper half of the tangent of elements
+    e0 .. e1 - 1 with an assumed strain to f and Kc: :class:`ancf.assumed.AssumedStrain`
+    compiled. Fb: F at each element's points (the rule's, then the sample points); W (6, m)
+    the energy's (a, J) derivatives at (tr C_bar, sqrt(det C_bar)) on the rule's points
+    (:func:`assumed_invariants`); Jb: J_bar there, which the pressure field projects
+    (pr, :func:`pressure_arrays`, with T = pr[4]). Dense element matrices, plainly looped:
+    the element has few points and dofs."""
+    nd = dofs.shape[1]
+    npts, ns = dN.shape[0], dN.shape[1]
+    T, wl = pr[4], pr[3]
+    nr, nk = T.shape[1], wl.shape[1]
+    b = Kc.shape[1] - 1
+    dC = np.empty((npts, 3, nd))      # dC_c(x_p)/du_e
+    Cp = np.empty((npts, 3))
+    Sp = np.empty((npts, 3))          # the point stresses sum_r w_r dW/dC_bar_c(r) T[c, r, p]
+    g = np.empty((3, nd))             # dC_bar_c(x_r)/du_e
+    h = np.empty((3, nd))
+    fl = np.empty(nd)
+    Ke = np.empty((nd, nd))
+    geo = np.empty((ns, ns))
+    gk, pk, pf = np.empty(nk), np.empty(nk), np.zeros(npts)
+    Gl = np.empty((nk, nd))
+    D = np.empty((3, 3))
+    for e in range(e0, e1):
+        base = (e - e0) * npts
+        for p in range(npts):
+            F00, F01, F10, F11 = Fb[base + p, 0], Fb[base + p, 1], Fb[base + p, 2], Fb[base + p, 3]
+            Cp[p, 0] = F00 * F00 + F10 * F10
+            Cp[p, 1] = F01 * F01 + F11 * F11
+            Cp[p, 2] = F00 * F01 + F10 * F11
+            for s in range(ns):
+                gx, gy = dN[p, s, 0], dN[p, s, 1]
+                dC[p, 0, 2 * s], dC[p, 0, 2 * s + 1] = 2.0 * F00 * gx, 2.0 * F10 * gx
+                dC[p, 1, 2 * s], dC[p, 1, 2 * s + 1] = 2.0 * F01 * gy, 2.0 * F11 * gy
+                dC[p, 2, 2 * s], dC[p, 2, 2 * s + 1] = F00 * gy + F01 * gx, F10 * gy + F11 * gx
+        if nk > 0:
+            element_pressures(pr, Jb, base, npts, gk, pk, pf)
+            Gl[:, :] = 0.0
+        Sp[:, :] = 0.0
+        if with_tangent:
+            Ke[:, :] = 0.0
+        for r in range(nr):
+            c0, c1, c2 = 0.0, 0.0, 0.0
+            for p in range(npts):
+                c0 += T[0, r, p] * Cp[p, 0]
+                c1 += T[1, r, p] * Cp[p, 1]
+                c2 += T[2, r, p] * Cp[p, 2]
+            J = Jb[base + r]
+            Wa, WJ = W[1, base + r], W[2, base + r] + pf[r]
+            j0, j1, j2 = c1 / (2.0 * J), c0 / (2.0 * J), -c2 / J          # dJ_bar/dC_bar
+            wr = w[r]
+            s0, s1, s2 = wr * (Wa + WJ * j0), wr * (Wa + WJ * j1), wr * WJ * j2
+            for p in range(npts):
+                Sp[p, 0] += s0 * T[0, r, p]
+                Sp[p, 1] += s1 * T[1, r, p]
+                Sp[p, 2] += s2 * T[2, r, p]
+            if not with_tangent:
+                continue
+            for c in range(3):
+                for d in range(nd):
+                    g[c, d] = 0.0
+                for p in range(npts):
+                    t = T[c, r, p]
+                    if t != 0.0:
+                        for d in range(nd):
+                            g[c, d] += t * dC[p, c, d]
+            # D = d2W/dC_bar2: W_aa da da + W_aJ (da dJ + dJ da) + W_JJ dJ dJ + W_J d2J,
+            # d2J = H / (2 J) - det' det'^T / (4 J^3), det' = (c1, c0, -2 c2)
+            Waa, WaJ, WJJ = W[3, base + r], W[4, base + r], W[5, base + r]
+            da = (1.0, 1.0, 0.0)
+            dj = (j0, j1, j2)
+            dd = (c1, c0, -2.0 * c2)
+            for c in range(3):
+                for k in range(3):
+                    D[c, k] = (Waa * da[c] * da[k] + WaJ * (da[c] * dj[k] + dj[c] * da[k]) + WJJ * dj[c] * dj[k]
+                               - WJ * dd[c] * dd[k] / (4.0 * J * J * J))
+            D[0, 1] += WJ / (2.0 * J)
+            D[1, 0] += WJ / (2.0 * J)
+            D[2, 2] -= WJ / J
+            for c in range(3):
+                for d in range(nd):
+                    h[c, d] = wr * (D[c, 0] * g[0, d] + D[c, 1] * g[1, d] + D[c, 2] * g[2, d])
+            for i in range(nd):                                   # the upper half
+                x0, x1, x2 = g[0, i], g[1, i], g[2, i]
+                for j in range(i, nd):
+                    Ke[i, j] += x0 * h[0, j] + x1 * h[1, j] + x2 * h[2, j]
+            if nk > 0:
+                for k in range(nk):
+                    c = wl[r, k]
+                    for d in range(nd):
+                        Gl[k, d] += c * (j0 * g[0, d] + j1 * g[1, d] + j2 * g[2, d])
+        fl[:] = 0.0
+        for p in range(npts):
+            for c in range(3):
+                s = Sp[p, c]
+                if s != 0.0:
+                    for d in range(nd):
+                        fl[d] += s * dC[p, c, d]
+        for i in range(nd):
+            f[dofs[e, i]] += fl[i]
+        if not with_tangent:
+            continue
+        # geometric part: sum_p sum_c S_pc d2C_c(x_p)/du2, d2C/du_(s,i) du_(t,k) = delta_ik (...)
+        geo[:, :] = 0.0
+        for p in range(npts):
+            sx, sy, sxy = 2.0 * Sp[p, 0], 2.0 * Sp[p, 1], Sp[p, 2]
+            for s in range(ns):
+                xs, ys = dN[p, s, 0], dN[p, s, 1]
+                c0, c1 = sx * xs + sxy * ys, sy * ys + sxy * xs
+                for t in range(s, ns):
+                    geo[s, t] += c0 * dN[p, t, 0] + c1 * dN[p, t, 1]
+        for s in range(ns):
+            for t in range(s, ns):
+                Ke[2 * s, 2 * t] += geo[s, t]
+                Ke[2 * s + 1, 2 * t + 1] += geo[s, t]
+        for k in range(nk):
+            for i in range(nd):
+                x = Gl[k, i]
+                for j in range(i, nd):
+                    Ke[i, j] += x * Gl[k, j]
+        for i in range(nd):                                       # Ke's upper half, into Kc's
+            r = dofs[e, i]
+            for j in range(i, nd):
+                c = dofs[e, j]
+                if r <= c:
+                    Kc[c, b + r - c] += Ke[i, j]
+                else:
+                    Kc[r, b + c - r] += Ke[i, j]

@@ -167,15 +167,16 @@ def test_fused_tangent_of_every_element_in_either_dof_numbering(element):
     u, un = (1e-4 * np.random.default_rng(5).standard_normal(n) for _ in range(2))
     f_ref, K_ref = model.internal_force_and_tangent(0.6 * u + 0.4 * un)
     ops, consts = model._tape
-    scratch = step_scratch(ops.shape[0], model._dN, model.fused[5])
+    dN, w = model.fused[:2]                         # with an assumed strain, the sample points too
+    scratch = step_scratch(ops.shape[0], dN, model.fused[5])
     rev = n - 1 - np.arange(n)
     for dofs, perm in ((model._dofs.astype(np.int64), np.arange(n)), ((n - 1 - model._dofs).astype(np.int64), rev)):
         f, Kc = np.empty(n), np.empty((n, b + 1))
-        assert assemble_fused(u[perm], un[perm], 0.4, model._dN, model._w, dofs, ops, consts, model.fused[5], f,
+        assert assemble_fused(u[perm], un[perm], 0.4, dN, w, dofs, ops, consts, model.fused[5], f,
                               Kc, True, *scratch) == OK
         np.testing.assert_allclose(f, f_ref[perm], rtol=0, atol=1e-12 * np.abs(f_ref).max())
         f_only = np.empty(n)                        # the force alone: element_forces, its own work arrays
-        assert assemble_fused(u[perm], un[perm], 0.4, model._dN, model._w, dofs, ops, consts, model.fused[5], f_only,
+        assert assemble_fused(u[perm], un[perm], 0.4, dN, w, dofs, ops, consts, model.fused[5], f_only,
                               np.empty((0, 0)), False, *scratch) == OK
         np.testing.assert_allclose(f_only, f_ref[perm], rtol=0, atol=1e-12 * np.abs(f_ref).max())
         dense = np.zeros((n, n))

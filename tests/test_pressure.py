@@ -48,9 +48,10 @@ def test_a_pressure_element_runs_on_the_compiled_loops_with_its_field_as_data():
     compiled."""
     for form in ("plane-strain", "paper"):
         model = small_model("HB2n-40p", "yeoh", form)
-        q, wq, pm, wl = model.fused[5]
+        q, wq, pm, wl, T = model.fused[5]
         nq, nk = len(model.rule.weight), 6
         assert model.compiled and q.shape == wq.shape == wl.shape == (nq, nk) and pm.shape == (nk, nk)
+        assert T.shape == (3, 0, 0)                    # no assumed strain
         np.testing.assert_allclose(pm, model.pressure.alpha * model.pressure.minv, rtol=1e-15)
         np.testing.assert_allclose(wl.T @ np.linalg.pinv(wq).T, np.linalg.cholesky(pm).T, rtol=0,
                                    atol=1e-12 * np.abs(pm).max() ** 0.5)

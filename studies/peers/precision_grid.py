@@ -19,4 +19,4 @@ SCENES = {"pendulum": {"height": 0.005, "title": "the paper's slender pendulum, 
 # without its guard too (a run that gains energy shows it in its error, not by stopping).
 ENERGY_GUARD = "none"
 MIN_REPEATS = 5
-ELEMENTS = ("HB2n-12", "HB2n-16", "HB2n-20xyp", "HB2n-40p", "HB2n-60p")   # the paper's two and the lock-free ones with a pressure field
+ELEMENTS = ("HB2n-12", "HB2n-16", "HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", "HB2n-60p")   # the paper's two and the lock-free ones with a pressure field
