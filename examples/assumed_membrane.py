@@ -1,10 +1,12 @@
 """Which strain the three points along the beam relieve (issue 20; examples/along_rule.py).
 
-A prototype in numpy, not a remedy in the package. HB2n-20xyp keeps its default rule
-[4, 2]. Chosen components of C = F^T F are taken from three points along the beam:
-sampled at the 3 Gauss points along x at each of the rule's 2 points across, and
-interpolated (quadratic Lagrange) to the rule's 4 points along. Components: "xx", the membrane stretch; "xy", the
-shear; "yy", the thickness stretch. The energy is the harness's law at the modified C,
+A prototype in numpy; the remedy it found is built in as ``ElementSpec.assumed``
+(ancf/assumed.py) and the element HB2n-20xypm, which tests/test_hb2n_20xypm.py holds
+equal to this prototype. HB2n-20xyp keeps its default rule [4, 2]. Chosen components of
+C = F^T F are taken from three points along the beam: sampled at the 3 Gauss points along
+x at each of the rule's 2 points across, and interpolated (quadratic Lagrange) to the
+rule's 4 points along. Components: "xx", the membrane stretch; "xy", the shear; "yy", the
+thickness stretch. The energy is the harness's law at the modified C,
 W(a, J) with a = tr C and J = sqrt(det C) (``Material.energy_jet``, plane stress). The
 force is its exact gradient. Everything else is the harness's own: the mesh, the mass
 matrix, the gravity load and the supports of ``ancf.build``, and the generalized-alpha
