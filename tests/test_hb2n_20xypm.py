@@ -12,24 +12,20 @@ import pytest
 
 from ancf.assumed import sampling
 from ancf.build import build_model
+from ancf.checks import bent_state
 from ancf.elements import ElementSpec
 from ancf.quadrature import gauss
-from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
 from examples.assumed_membrane import AssumedStrain, pendulum_error
-from studies.peers.work_precision import error, scene_dict
+from studies.peers.work_precision import scene_dict
+
+from .test_example_assumed_membrane import harness_error
 
 ELEMENT, BASE = "HB2n-20xypm", "HB2n-20xyp"
 
 
 def _model(element: str, n: int = 2):
     return build_model(scene_from_dict(scene_dict(element, n, 2.5e-3, 0.5)))
-
-
-def _error(element: str, n: int, dt: float = 2.5e-3) -> float:
-    rec = run_scene(scene_from_dict(scene_dict(element, n, dt, 0.5)))[0]
-    assert rec["status"] == "converged", rec["reason"]
-    return error(rec["tip_history"])
 
 
 def test_the_sampling_interpolates_along_and_keeps_the_other_components():
@@ -57,26 +53,22 @@ def test_a_bad_assumed_component_is_refused_with_the_allowed_ones():
 
 
 def test_the_element_is_the_prototype():
-    """The force at a bent, stretched state: the compiled kernel against the prototype's
-    numpy einsum (round-off), and the 2-element pendulum's error against the prototype's
-    own step loop (each solves its steps to rtol 1e-8; 1e-7 relative, as the prototype's
-    own test against the plain harness)."""
+    """The force at a bent, stretched state (ancf.checks.bent_state with noise 1e-3): the
+    compiled kernel against the prototype's numpy einsum (round-off), and the 2-element
+    pendulum's error against the prototype's own step loop (each solves its steps to rtol
+    1e-8; 1e-7 relative, as the prototype's own test against the plain harness)."""
     model = _model(ELEMENT, 3)
-    rng = np.random.default_rng(3)
-    x = model.mesh.reference[0::2]
-    u = np.zeros(model.mesh.n_dof)
-    u[0::2] = 0.05 * x + 1e-3 * rng.standard_normal(x.size)
-    u[1::2] = 0.3 * x ** 2 + 1e-3 * rng.standard_normal(x.size)
+    u = bent_state(model, np.random.default_rng(3), angle=0.5, noise=1e-3)
     f_proto = AssumedStrain(model, "xx").force(u)
     np.testing.assert_allclose(model.internal_force(u), f_proto, rtol=0, atol=1e-12 * np.abs(f_proto).max())
-    assert _error(ELEMENT, 2) == pytest.approx(pendulum_error(2, "xx"), rel=1e-7)
+    assert harness_error(2, element=ELEMENT) == pytest.approx(pendulum_error(2, "xx"), rel=1e-7)
 
 
 def test_the_small_strain_stiffness_is_hb2n_20xyps():
     """At u = 0 the element's eps_xx is quadratic along x, so the three points carry it
     exactly: K is HB2n-20xyp's to round-off, and with it the rank tests' eigenvalues."""
-    K = _model(ELEMENT).internal_force_and_tangent(np.zeros(_model(ELEMENT).mesh.n_dof))[1].to_sparse().toarray()
-    K0 = _model(BASE).internal_force_and_tangent(np.zeros(_model(BASE).mesh.n_dof))[1].to_sparse().toarray()
+    K, K0 = (m.internal_force_and_tangent(np.zeros(m.mesh.n_dof))[1].to_sparse().toarray()
+             for m in (_model(ELEMENT), _model(BASE)))
     np.testing.assert_allclose(K, K0, rtol=0, atol=1e-12 * np.abs(K0).max())
 
 
@@ -84,6 +76,6 @@ def test_the_assumed_stretch_relieves_the_slender_pendulums_coarse_meshes():
     """Measured at dt = 2.5 ms (error / L against the continuum): 2 / 4 / 8 elements 5.23 /
     0.447 / 0.041 %, HB2n-20xyp 7.25 / 1.18 / 0.033 %: the cure is at the coarse meshes;
     at 8 elements both are converged in the mesh to the step's and the section's error."""
-    e2, e4 = _error(ELEMENT, 2), _error(ELEMENT, 4)
-    b2, b4 = _error(BASE, 2), _error(BASE, 4)
+    e2, e4 = (harness_error(n, element=ELEMENT) for n in (2, 4))
+    b2, b4 = (harness_error(n, element=BASE) for n in (2, 4))
     assert e4 < 0.5 * b4 and e2 < 0.8 * b2
