@@ -128,7 +128,7 @@ def element_scratch(dN, pr):
     33 -> 39 us; with point_gradients' ue passed in, the 32 x HB2n-12 pendulum 2 to 3 %
     slower, at the edge of the machine's noise)."""
     nq, ns = dN.shape[0], dN.shape[1]
-    nd, nk = 2 * ns, pr[3].shape[1]
+    nd, nk = 2 * ns, pr[2].shape[0]
     return np.empty(nd), np.empty(nk), np.empty(nk), np.empty(nq)
 
 
@@ -184,12 +184,12 @@ def assemble_fused(u, u_n, alpha_f, dN, w, dofs, ops, consts, pr, f, Kc, with_ta
     for e0 in range(0, ne, chunk):
         e1 = min(ne, e0 + chunk)
         m = point_gradients(u, u_n, alpha_f, dN, dofs, e0, e1, Fb, ab, Jb)
-        if m >= 0 and pr[4].shape[1] > 0:
-            m = assumed_invariants(Fb, ab, Jb, m, pr[4])     # the rule's points only, from here
+        if m >= 0 and pr[3].shape[1] > 0:
+            m = assumed_invariants(Fb, ab, Jb, m, pr[3])     # the rule's points only, from here
         if m < 0:
             return INADMISSIBLE
         tape_batch(ops, consts, ab, Jb, R, m, 2 if with_tangent else 1)
-        if pr[4].shape[1] > 0:
+        if pr[3].shape[1] > 0:
             assumed_terms(Fb, R[ops.shape[0] - 1], Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent)
         elif with_tangent:
             element_terms(Fb, R[ops.shape[0] - 1], Jb, e0, e1, dN, w, dofs, pr, f, Kc)
@@ -199,16 +199,19 @@ def assemble_fused(u, u_n, alpha_f, dN, w, dofs, ops, consts, pr, f, Kc, with_ta
 
 
 def pressure_arrays(penalty, nq: int, T: np.ndarray | None = None) -> tuple:
-    """The element's fields as the compiled kernels read them (``pr``): the pressure
-    field's q (nq, nk) basis at the points, wq (nq, nk) the basis times the weights,
-    pm (nk, nk) = alpha M^-1 and wl = wq L (nq, nk), pm = L L^T (Cholesky: the tangent's
-    G^T pm G = (L^T G)^T (L^T G), L^T G = wl^T dJ/du), from a
-    :class:`ancf.pressure.ProjectedPenalty` (tabulated at the first nq' <= nq points:
-    the rows of the sample points after them are zero); and the assumed strain's T
-    (3, nq', nq) (:func:`ancf.assumed.sampling`). With ``penalty`` None (no pressure
-    field, or no penalty) nk = 0 and the kernels' pressure loops run zero times; with
-    ``T`` None it is (3, 0, 0) and the points take their own C: one code path for every
-    element."""
+    """The element's fields as the compiled kernels read them (``pr``), four arrays: the
+    pressure field's q (nq, nk) basis at the points; qw (2, nq, nk), the basis times the
+    weights wq and wl = wq L, pm = L L^T (Cholesky: the tangent's G^T pm G = (L^T G)^T
+    (L^T G), L^T G = wl^T dJ/du); pm (nk, nk) = alpha M^-1, from a
+    :class:`ancf.pressure.ProjectedPenalty` (tabulated at the first nq' <= nq points: the
+    rows of the sample points after them are zero); and the assumed strain's T (3, nq',
+    nq) (:func:`ancf.assumed.sampling`). With ``penalty`` None (no pressure field, or no
+    penalty) nk = 0 and the kernels' pressure loops run zero times; with ``T`` None it is
+    (3, 0, 0) and the points take their own C: one code path for every element.
+
+    Four, not five: numba's dispatcher fingerprints a tuple of at most four arrays in C;
+    with five it typed the arguments in Python at every call (about 1 ms per run of 2 x
+    HB2n-12 on the thick pendulum, 1.2 -> 2.2 ms)."""
     if penalty is None:
         q, wq, pm, wl = np.zeros((nq, 0)), np.zeros((nq, 0)), np.zeros((0, 0)), np.zeros((nq, 0))
     else:
@@ -216,7 +219,7 @@ def pressure_arrays(penalty, nq: int, T: np.ndarray | None = None) -> tuple:
         q, wq, pm = np.pad(penalty.q, pad), np.pad(penalty.wq, pad), penalty.alpha * penalty.minv
         wl = wq @ np.linalg.cholesky(0.5 * (pm + pm.T))
     T = np.zeros((3, 0, 0)) if T is None else T
-    return tuple(np.ascontiguousarray(x, dtype=float) for x in (q, wq, pm, wl, T))
+    return tuple(np.ascontiguousarray(x, dtype=float) for x in (q, np.stack([wq, wl]), pm, T))
 
 
 @njit(cache=True, fastmath=FASTMATH)
@@ -224,7 +227,7 @@ def element_pressures(pr, Jb, p0, nq, g, pk, out):
     """The element pressure at the element's points p0 .. p0 + nq - 1 into out (nq,), from
     the J there (Jb): g = wq^T (J - 1), its coefficients pk = alpha M^-1 g
     (:class:`ancf.pressure.ProjectedPenalty`). Returns the element's U_vol = g . pk / 2."""
-    pq, pw, pm = pr[0], pr[1], pr[2]
+    pq, pw, pm = pr[0], pr[1][0], pr[2]
     nk = pm.shape[0]
     for k in range(nk):
         g[k] = 0.0
@@ -264,7 +267,7 @@ def element_forces(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, ew):
     nd = dofs.shape[1]
     nq, ns = dN.shape[0], dN.shape[1]
     fl, gk, pk, pf = ew
-    nk = pr[3].shape[1]
+    nk = pr[2].shape[0]
     if fl.shape[0] != nd or gk.shape[0] != nk or pf.shape[0] != nq:
         raise ValueError("element_forces: work arrays made for another element or pressure field")
     if nk == 0:
@@ -322,7 +325,7 @@ def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc):
     A = np.empty((4, 4))
     Fv = np.empty(4)
     cof = np.empty(4)
-    wl = pr[3]
+    wl = pr[1][1]
     nk = wl.shape[1]
     gk, pk = np.empty(nk), np.empty(nk)
     pf = np.zeros(nq)            # the pressure at the points: in P (from Jb) ...
@@ -463,7 +466,7 @@ def strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, e
     ne = dofs.shape[0]
     last = ops.shape[0] - 1
     nk = pr[2].shape[0]
-    nq, nr = dN.shape[0], pr[4].shape[1]
+    nq, nr = dN.shape[0], pr[3].shape[1]
     nw = nr if nr > 0 else nq                  # points per element that carry energy
     g, pk, pq = ew[1], ew[2], ew[3]
     total = 0.0
@@ -471,7 +474,7 @@ def strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, e
         e1 = min(ne, e0 + chunk)
         m = point_gradients(u, u, 0.0, dN, dofs, e0, e1, Fb, ab, Jb)
         if m >= 0 and nr > 0:
-            m = assumed_invariants(Fb, ab, Jb, m, pr[4])     # the rule's points only, from here
+            m = assumed_invariants(Fb, ab, Jb, m, pr[3])     # the rule's points only, from here
         if m < 0:
             return np.nan
         tape_batch(ops, consts, ab, Jb, R, m, 0)
@@ -518,12 +521,12 @@ def assumed_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
     compiled. Fb: F at each element's points (the rule's, then the sample points); W (6, .)
     the energy's (a, J) derivatives at (tr C_bar, sqrt(det C_bar)) and Jb the J_bar at the
     rule's points only, element by element (:func:`assumed_invariants`); the pressure field
-    (pr, :func:`pressure_arrays`, with T = pr[4]) projects J_bar. A dense element matrix,
+    (pr, :func:`pressure_arrays`, with T = pr[3]) projects J_bar. A dense element matrix,
     its upper half by 2 x 2 node blocks. Measured on 4 elements of the slender pendulum,
     force / tangent: 14 / 36 us, HB2n-20xyp's 5.6 / 13 us (element_terms)."""
     nd = dofs.shape[1]
     npts, ns = dN.shape[0], dN.shape[1]
-    T, wl = pr[4], pr[3]
+    T, wl = pr[3], pr[1][1]
     nr, nk = T.shape[1], wl.shape[1]
     b = Kc.shape[1] - 1
     nz = np.zeros((3, nr), np.int64)  # T's non-zeros by row: C_bar_c(x_r) = sum_k tv[c, r, k] C_c(x_tp[c, r, k])
