@@ -20,7 +20,7 @@ stiffness at u = 0, and with it the rank tests, as they are.
 
 This module tabulates the sampling (:func:`sampling`: the rule's points followed by the
 sample points, weights zero there, and T) and holds the numpy reference
-(:class:`AssumedStrain`) that the compiled kernel (:func:`ancf.kernels.assumed_terms`) is
+(:class:`AssumedStrain`) that the compiled kernel (:func:`ancf.assumed_kernels.assumed_terms`) is
 tested against. The force is f = sum_p sum_c S_pc dC_c(p)/du with the point stresses
 S_pc = sum_r w_r dW/dC_bar_c(r) T_c[r, p]; the tangent adds to the geometric part
 sum_p sum_c S_pc d2C_c(p)/du2 the material part sum_r w_r g_r^T D_r g_r,

@@ -16,7 +16,7 @@ An element with a pressure field (``ElementSpec.pressure``) in a penalised formu
 takes the penalty on the element-wise projection of J - 1 (:mod:`ancf.pressure`, the
 numpy reference) instead of at the points: the points then see the material without its
 penalty (:attr:`BeamModel.pointwise`), and the compiled loops read the projection as data
-(:func:`ancf.kernels.pressure_arrays` in :attr:`BeamModel.fused`).
+(:func:`ancf.element_fields.pressure_arrays` in :attr:`BeamModel.fused`).
 
 An element with an assumed strain (``ElementSpec.assumed``) takes components of C from
 sample points along the beam (:mod:`ancf.assumed`): the compiled kernels see the rule's
@@ -227,13 +227,14 @@ class BeamModel:
 
     @cached_property
     def fused(self) -> tuple:
-        """What the compiled loops (:mod:`ancf.compiled_steps`, :mod:`ancf.compiled_statics`) read of
-        the model: shape-function gradients, weights, element dofs, the law's tape (ops,
-        consts), the element pressure field and assumed strain
-        (:func:`ancf.kernels.pressure_arrays`: empty without them; with an assumed strain
-        dN and w run over the sample points too) and the band envelope (:func:`ancf.bandsolve.envelope`), contiguous."""
+        """What the compiled loops (:mod:`ancf.compiled_steps`, :mod:`ancf.compiled_statics`)
+        read of the model, contiguous: shape-function gradients, weights, element dofs, the
+        law's tape (ops, consts), the element pressure field and assumed strain
+        (:func:`ancf.element_fields.pressure_arrays`: empty without them; with an assumed
+        strain dN and w run over the sample points too, which weigh zero) and the band
+        envelope (:func:`ancf.bandsolve.envelope`)."""
         from .bandsolve import envelope
-        from .kernels import pressure_arrays
+        from .element_fields import pressure_arrays
         ops, consts = self._tape
         dN, w, T = self._dN, self._w, None
         if self.sampled is not None:                    # the rule's points, then the sample points
@@ -308,7 +309,7 @@ class BeamModel:
         f, Kc = np.zeros(m.n_dof), np.zeros((m.n_dof, b + 1))
         scratch = step_scratch(ops.shape[0], dN, pr)
         if assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, Kc, with_tangent, *scratch) != OK:
-            raise InadmissibleState("det C_bar <= 0 (or not finite) at a quadrature point")
+            raise InadmissibleState("det F or det C_bar <= 0 (or not finite) at a quadrature point")
         if not with_tangent:
             return f, None
         ab = np.zeros((2 * b + 1, m.n_dof))

@@ -17,7 +17,7 @@ iteration is not called singular here: the attempt returns ``UNPIVOTED`` and
 
 Laws and elements stay data, as in :mod:`ancf.compiled_steps`: the compiled code sees the
 tabulated shape-function gradients, weights, element dofs, the law's tape and the element
-pressure field's arrays (:func:`ancf.kernels.pressure_arrays`, empty without one).
+pressure field's arrays (:func:`ancf.element_fields.pressure_arrays`, empty without one).
 """
 from __future__ import annotations
 
@@ -27,7 +27,8 @@ import numpy as np
 from numba import njit
 
 from .bandsolve import col_constrain, col_ldlt, col_ldlt_solve
-from .kernels import INADMISSIBLE, OK, assemble_fused, element_pressures, live_tape, point_gradients, step_scratch
+from .element_fields import element_pressures
+from .kernels import INADMISSIBLE, OK, assemble_fused, live_tape, point_gradients, step_scratch
 from .tape import tape_batch
 
 # Outcomes of :func:`newton` (a converged attempt is CONVERGED).
@@ -151,9 +152,11 @@ def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, u, atol, utol,
 def force_magnitude(u, dN, w, dofs, ops, consts, pr, out):
     """out (n,) <- the internal force assembled from the magnitudes of its terms,
     sum |w dN_s,j| (|2 W_a F_ij| + (|W_J| + |p|) |(cof F)_ij|), p the element pressure
-    field's value at the point (pr, :func:`ancf.kernels.pressure_arrays`; 0 without one):
-    what the force's round-off is relative to. Returns OK, or INADMISSIBLE if det F <= 0
-    somewhere."""
+    field's value at the point (pr, :func:`ancf.element_fields.pressure_arrays`; 0 without one):
+    what the force's round-off is relative to. An element with an assumed strain is
+    measured by its rule's points' own F and (a, J), not C_bar's (its sample points weigh
+    zero): terms of the same size, which is all a floor needs. Returns OK, or INADMISSIBLE
+    if det F <= 0 somewhere."""
     ne = dofs.shape[0]
     nq, ns = dN.shape[0], dN.shape[1]
     chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)

@@ -17,7 +17,7 @@ checks ``dt_min``, ``max_steps`` and ``wall_time`` there.
 Laws and elements stay data: the compiled code sees the tabulated shape-function
 gradients ``dN`` (nq, ns, 2) and weights ``w`` of the model, the element dofs, the law x
 formulation energy traced into a tape (:mod:`ancf.tape`), the element pressure field's
-arrays (:func:`ancf.kernels.pressure_arrays`, empty without one), the mass matrix, the
+arrays (:func:`ancf.element_fields.pressure_arrays`, empty without one), the mass matrix, the
 load and the fixed dofs. A registered element or law runs with no new compiled code. The
 integrator's coefficients (alpha_m, alpha_f, beta, gamma) come from the integrator class
 as data.

@@ -23,6 +23,8 @@ import math
 import numpy as np
 from numba import njit
 
+from .assumed_kernels import assumed_invariants, assumed_terms
+from .element_fields import element_pressures
 from .tape import FASTMATH, tape_batch
 
 
@@ -110,13 +112,16 @@ def live_tape(ops: np.ndarray, consts: np.ndarray) -> tuple[np.ndarray, np.ndarr
 @njit(cache=True)
 def step_scratch(n_ops, dN, pr):
     """Work arrays of the element loop for chunks of about 192 points: (chunk, R (n_ops,
-    6, m) tape jets, Fb (m, 4) deformation gradients, ab, Jb (m,) invariants, ew the
-    element work of :func:`element_scratch`), m = chunk * nq; dN (nq, ns, 2) the shape
-    gradients, pr the element pressure field (:func:`pressure_arrays`)."""
+    6, m) tape jets, Fb (m, 4) deformation gradients (m, 7 with an assumed strain: C_bar
+    in columns 4 to 6, :func:`ancf.assumed_kernels.assumed_invariants`), ab, Jb (m,)
+    invariants, ew the element work of :func:`element_scratch`), m = chunk * nq; dN (nq,
+    ns, 2) the shape gradients, pr the element's fields
+    (:func:`ancf.element_fields.pressure_arrays`)."""
     nq = dN.shape[0]
     chunk = max(1, 192 // nq)
     m = chunk * nq
-    return chunk, np.empty((n_ops, 6, m)), np.empty((m, 4)), np.empty(m), np.empty(m), element_scratch(dN, pr)
+    nf = 7 if pr[3].shape[1] > 0 else 4
+    return chunk, np.empty((n_ops, 6, m)), np.empty((m, nf)), np.empty(m), np.empty(m), element_scratch(dN, pr)
 
 
 @njit(cache=True)
@@ -171,12 +176,12 @@ def assemble_fused(u, u_n, alpha_f, dN, w, dofs, ops, consts, pr, f, Kc, with_ta
     with_tangent, the upper half of the tangent into Kc (column band, (n, b + 1)).
     Per chunk of elements: F at all points, the tape over all of them, then per
     element P (and A = dP/dF), the element force and the upper half of the element
-    tangent by 2 x 2 node blocks, and one scatter per element. pr: the element
-    pressure field's arrays (:func:`pressure_arrays`; empty without one); chunk, R, Fb,
-    ab, Jb, ew: :func:`step_scratch` for these dN and pr. An element with an assumed
-    strain (pr's T, :mod:`ancf.assumed`) takes (a, J) from C_bar at the rule's points
-    (:func:`assumed_invariants`) and :func:`assumed_terms`. Returns OK, or INADMISSIBLE
-    if det F (det C_bar) <= 0 (or is not finite) at a point."""
+    tangent by 2 x 2 node blocks, and one scatter per element. pr: the element's fields
+    (:func:`ancf.element_fields.pressure_arrays`; empty without them); chunk, R, Fb, ab, Jb,
+    ew: :func:`step_scratch` for these dN and pr. An element with an assumed strain (pr's
+    T, :mod:`ancf.assumed`) takes (a, J) from C_bar at the rule's points
+    (:mod:`ancf.assumed_kernels`: :func:`assumed_invariants`, :func:`assumed_terms`).
+    Returns OK, or INADMISSIBLE if det F (det C_bar) <= 0 (or is not finite) at a point."""
     ne = dofs.shape[0]
     f[:] = 0.0
     if with_tangent:
@@ -196,58 +201,6 @@ def assemble_fused(u, u_n, alpha_f, dN, w, dofs, ops, consts, pr, f, Kc, with_ta
         else:
             element_forces(Fb, R[ops.shape[0] - 1], Jb, e0, e1, dN, w, dofs, pr, f, ew)
     return OK
-
-
-def pressure_arrays(penalty, nq: int, T: np.ndarray | None = None) -> tuple:
-    """The element's fields as the compiled kernels read them (``pr``), four arrays: the
-    pressure field's q (nq, nk) basis at the points; qw (2, nq, nk), the basis times the
-    weights wq and wl = wq L, pm = L L^T (Cholesky: the tangent's G^T pm G = (L^T G)^T
-    (L^T G), L^T G = wl^T dJ/du); pm (nk, nk) = alpha M^-1, from a
-    :class:`ancf.pressure.ProjectedPenalty` (tabulated at the first nq' <= nq points: the
-    rows of the sample points after them are zero); and the assumed strain's T (3, nq',
-    nq) (:func:`ancf.assumed.sampling`). With ``penalty`` None (no pressure field, or no
-    penalty) nk = 0 and the kernels' pressure loops run zero times; with ``T`` None it is
-    (3, 0, 0) and the points take their own C: one code path for every element.
-
-    Four, not five: numba's dispatcher fingerprints a tuple of at most four arrays in C;
-    with five it typed the arguments in Python at every call (about 1 ms per run of 2 x
-    HB2n-12 on the thick pendulum, 1.2 -> 2.2 ms)."""
-    if penalty is None:
-        q, wq, pm, wl = np.zeros((nq, 0)), np.zeros((nq, 0)), np.zeros((0, 0)), np.zeros((nq, 0))
-    else:
-        pad = ((0, nq - penalty.q.shape[0]), (0, 0))
-        q, wq, pm = np.pad(penalty.q, pad), np.pad(penalty.wq, pad), penalty.alpha * penalty.minv
-        wl = wq @ np.linalg.cholesky(0.5 * (pm + pm.T))
-    T = np.zeros((3, 0, 0)) if T is None else T
-    return tuple(np.ascontiguousarray(x, dtype=float) for x in (q, np.stack([wq, wl]), pm, T))
-
-
-@njit(cache=True, fastmath=FASTMATH)
-def element_pressures(pr, Jb, p0, nq, g, pk, out):
-    """The element pressure at the element's points p0 .. p0 + nq - 1 into out (nq,), from
-    the J there (Jb): g = wq^T (J - 1), its coefficients pk = alpha M^-1 g
-    (:class:`ancf.pressure.ProjectedPenalty`). Returns the element's U_vol = g . pk / 2."""
-    pq, pw, pm = pr[0], pr[1][0], pr[2]
-    nk = pm.shape[0]
-    for k in range(nk):
-        g[k] = 0.0
-    for q in range(nq):
-        d = Jb[p0 + q] - 1.0
-        for k in range(nk):
-            g[k] += pw[q, k] * d
-    U = 0.0
-    for k in range(nk):
-        s = 0.0
-        for l in range(nk):
-            s += pm[k, l] * g[l]
-        pk[k] = s
-        U += 0.5 * s * g[k]
-    for q in range(nq):
-        s = 0.0
-        for k in range(nk):
-            s += pq[q, k] * pk[k]
-        out[q] = s
-    return U
 
 
 @njit(cache=True, fastmath=FASTMATH, inline="always")
@@ -302,8 +255,8 @@ def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc):
     ascending (the mesh's numbering) is scattered without index arrays or branches.
     Together: the 32 x HB2n-16 tangent 65 -> 46 us (force 17 us).
 
-    The element pressure field pr (:func:`pressure_arrays`, nk functions; nothing to do
-    if nk = 0), :class:`ancf.pressure.ProjectedPenalty` compiled: its force
+    The element pressure field pr (:func:`ancf.element_fields.pressure_arrays`, nk
+    functions; nothing to do if nk = 0), :class:`ancf.pressure.ProjectedPenalty` compiled: its force
     G^T p = sum_q w_q p(x_q) cof F_q : dF/du is the pointwise W_J term with W_J + p(x_q),
     so the pressure at the points is added to W_J in P, that from the J in Jb (the
     discrete gradient passes the mean of the two states' J there: the pressure of the
@@ -460,9 +413,10 @@ def element_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc):
 
 @njit(cache=True)
 def strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, ew):
-    """U = sum_e sum_q w_q W(F_eq) (J), plus the element pressure field's
-    alpha/2 g^T M^-1 g per element (pr, :func:`pressure_arrays`; with an assumed strain W at
-    C_bar, the sample points weighing zero); nan if det F <= 0 somewhere. chunk .. ew: :func:`step_scratch` (the pressures work in ew's gk, pk, pf)."""
+    """U = sum_e sum_q w_q W(F_eq) (J), plus the element pressure field's alpha/2 g^T M^-1 g
+    per element (pr, :func:`ancf.element_fields.pressure_arrays`; with an assumed strain W
+    at C_bar, the sample points weighing zero); nan if det F (det C_bar) <= 0 somewhere.
+    chunk .. ew: :func:`step_scratch` (the pressures work in ew's gk, pk, pf)."""
     ne = dofs.shape[0]
     last = ops.shape[0] - 1
     nk = pr[2].shape[0]
@@ -484,193 +438,3 @@ def strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, e
             for p0 in range(0, m, nw):
                 total += element_pressures(pr, Jb, p0, nw, g, pk, pq)
     return total
-
-
-
-# -- assumed strains (:mod:`ancf.assumed`, whose numpy AssumedStrain these are tested against) --
-@njit(cache=True, fastmath=FASTMATH)
-def assumed_invariants(Fb, ab, Jb, m, T):
-    """For the m points in Fb (elements of T.shape[2] points each, the rule's T.shape[1]
-    first): a = tr C_bar and J = sqrt(det C_bar) at the rule's points, C_bar_c = sum_p
-    T[c, r, p] C_c(x_p), into ab and Jb compacted (element by element, the rule's points
-    only: the tape need not run at the sample points). Returns their number, or -1 if
-    det C_bar <= 0 (or is not finite) at a point."""
-    nr, npts = T.shape[1], T.shape[2]
-    n = 0
-    for base in range(0, m, npts):
-        for r in range(nr):
-            c0, c1, c2 = 0.0, 0.0, 0.0
-            for p in range(npts):
-                F00, F01, F10, F11 = Fb[base + p, 0], Fb[base + p, 1], Fb[base + p, 2], Fb[base + p, 3]
-                c0 += T[0, r, p] * (F00 * F00 + F10 * F10)
-                c1 += T[1, r, p] * (F01 * F01 + F11 * F11)
-                c2 += T[2, r, p] * (F00 * F01 + F10 * F11)
-            det = c0 * c1 - c2 * c2
-            if not (det > 0.0 and det < 1e300):
-                return -1
-            ab[n] = c0 + c1
-            Jb[n] = math.sqrt(det)
-            n += 1
-    return n
-
-
-@njit(cache=True, fastmath=FASTMATH)
-def assumed_terms(Fb, W, Jb, e0, e1, dN, w, dofs, pr, f, Kc, with_tangent):
-    """Add the force and, if with_tangent, the upper half of the tangent of elements
-    e0 .. e1 - 1 with an assumed strain to f and Kc: :class:`ancf.assumed.AssumedStrain`
-    compiled. Fb: F at each element's points (the rule's, then the sample points); W (6, .)
-    the energy's (a, J) derivatives at (tr C_bar, sqrt(det C_bar)) and Jb the J_bar at the
-    rule's points only, element by element (:func:`assumed_invariants`); the pressure field
-    (pr, :func:`pressure_arrays`, with T = pr[3]) projects J_bar. A dense element matrix,
-    its upper half by 2 x 2 node blocks. Measured on 4 elements of the slender pendulum,
-    force / tangent: 14 / 36 us, HB2n-20xyp's 5.6 / 13 us (element_terms)."""
-    nd = dofs.shape[1]
-    npts, ns = dN.shape[0], dN.shape[1]
-    T, wl = pr[3], pr[1][1]
-    nr, nk = T.shape[1], wl.shape[1]
-    b = Kc.shape[1] - 1
-    nz = np.zeros((3, nr), np.int64)  # T's non-zeros by row: C_bar_c(x_r) = sum_k tv[c, r, k] C_c(x_tp[c, r, k])
-    tp = np.empty((3, nr, npts), np.int64)
-    tv = np.empty((3, nr, npts))
-    for c in range(3):
-        for r in range(nr):
-            for p in range(npts):
-                if T[c, r, p] != 0.0:
-                    tp[c, r, nz[c, r]], tv[c, r, nz[c, r]] = p, T[c, r, p]
-                    nz[c, r] += 1
-    dxT, dyT = np.empty((ns, npts)), np.empty((ns, npts))   # dN transposed, and the geometric
-    k0T, k1T = np.empty((ns, npts)), np.empty((ns, npts))   # part's stress times dN
-    for p in range(npts):
-        for s in range(ns):
-            dxT[s, p], dyT[s, p] = dN[p, s, 0], dN[p, s, 1]
-    dC = np.empty((npts, 3, nd))      # dC_c(x_p)/du_e
-    Cp = np.empty((npts, 3))
-    Sp = np.empty((npts, 3))          # the point stresses sum_r w_r dW/dC_bar_c(r) T[c, r, p]
-    g = np.empty((3, nd))             # dC_bar_c(x_r)/du_e
-    h = np.empty((3, nd))
-    fl = np.empty(nd)
-    Ke = np.empty((nd, nd))
-    geo = np.empty((ns, ns))
-    gk, pk, pf = np.empty(nk), np.empty(nk), np.zeros(npts)
-    Gl = np.empty((nk, nd))
-    D = np.empty((3, 3))
-    for e in range(e0, e1):
-        base = (e - e0) * npts
-        for p in range(npts):
-            F00, F01, F10, F11 = Fb[base + p, 0], Fb[base + p, 1], Fb[base + p, 2], Fb[base + p, 3]
-            Cp[p, 0] = F00 * F00 + F10 * F10
-            Cp[p, 1] = F01 * F01 + F11 * F11
-            Cp[p, 2] = F00 * F01 + F10 * F11
-            for s in range(ns):
-                gx, gy = dN[p, s, 0], dN[p, s, 1]
-                dC[p, 0, 2 * s], dC[p, 0, 2 * s + 1] = 2.0 * F00 * gx, 2.0 * F10 * gx
-                dC[p, 1, 2 * s], dC[p, 1, 2 * s + 1] = 2.0 * F01 * gy, 2.0 * F11 * gy
-                dC[p, 2, 2 * s], dC[p, 2, 2 * s + 1] = F00 * gy + F01 * gx, F10 * gy + F11 * gx
-        if nk > 0:
-            element_pressures(pr, Jb, (e - e0) * nr, nr, gk, pk, pf)
-            Gl[:, :] = 0.0
-        Sp[:, :] = 0.0
-        if with_tangent:
-            Ke[:, :] = 0.0
-        for r in range(nr):
-            c0, c1, c2 = 0.0, 0.0, 0.0
-            for k in range(nz[0, r]):
-                c0 += tv[0, r, k] * Cp[tp[0, r, k], 0]
-            for k in range(nz[1, r]):
-                c1 += tv[1, r, k] * Cp[tp[1, r, k], 1]
-            for k in range(nz[2, r]):
-                c2 += tv[2, r, k] * Cp[tp[2, r, k], 2]
-            q = (e - e0) * nr + r                                   # compacted (assumed_invariants)
-            J = Jb[q]
-            Wa, WJ = W[1, q], W[2, q] + pf[r]
-            j0, j1, j2 = c1 / (2.0 * J), c0 / (2.0 * J), -c2 / J          # dJ_bar/dC_bar
-            wr = w[r]
-            s0, s1, s2 = wr * (Wa + WJ * j0), wr * (Wa + WJ * j1), wr * WJ * j2
-            for k in range(nz[0, r]):
-                Sp[tp[0, r, k], 0] += s0 * tv[0, r, k]
-            for k in range(nz[1, r]):
-                Sp[tp[1, r, k], 1] += s1 * tv[1, r, k]
-            for k in range(nz[2, r]):
-                Sp[tp[2, r, k], 2] += s2 * tv[2, r, k]
-            if not with_tangent:
-                continue
-            for c in range(3):
-                p, t = tp[c, r, 0], tv[c, r, 0]
-                for d in range(nd):
-                    g[c, d] = t * dC[p, c, d]
-                for k in range(1, nz[c, r]):
-                    p, t = tp[c, r, k], tv[c, r, k]
-                    for d in range(nd):
-                        g[c, d] += t * dC[p, c, d]
-            # D = d2W/dC_bar2: W_aa da da + W_aJ (da dJ + dJ da) + W_JJ dJ dJ + W_J d2J,
-            # d2J = H / (2 J) - det' det'^T / (4 J^3), det' = (c1, c0, -2 c2)
-            Waa, WaJ, WJJ = W[3, q], W[4, q], W[5, q]
-            da = (1.0, 1.0, 0.0)
-            dj = (j0, j1, j2)
-            dd = (c1, c0, -2.0 * c2)
-            for c in range(3):
-                for k in range(3):
-                    D[c, k] = (Waa * da[c] * da[k] + WaJ * (da[c] * dj[k] + dj[c] * da[k]) + WJJ * dj[c] * dj[k]
-                               - WJ * dd[c] * dd[k] / (4.0 * J * J * J))
-            D[0, 1] += WJ / (2.0 * J)
-            D[1, 0] += WJ / (2.0 * J)
-            D[2, 2] -= WJ / J
-            for c in range(3):
-                for d in range(nd):
-                    h[c, d] = wr * (D[c, 0] * g[0, d] + D[c, 1] * g[1, d] + D[c, 2] * g[2, d])
-            for s in range(ns):                                   # the upper half, by node blocks
-                a0, a1, b0, b1 = g[0, 2 * s], g[0, 2 * s + 1], g[1, 2 * s], g[1, 2 * s + 1]
-                x0, x1 = g[2, 2 * s], g[2, 2 * s + 1]
-                for t in range(s, ns):
-                    p0, p1, q0, q1 = h[0, 2 * t], h[0, 2 * t + 1], h[1, 2 * t], h[1, 2 * t + 1]
-                    y0, y1 = h[2, 2 * t], h[2, 2 * t + 1]
-                    Ke[2 * s, 2 * t] += a0 * p0 + b0 * q0 + x0 * y0
-                    Ke[2 * s, 2 * t + 1] += a0 * p1 + b0 * q1 + x0 * y1
-                    Ke[2 * s + 1, 2 * t] += a1 * p0 + b1 * q0 + x1 * y0
-                    Ke[2 * s + 1, 2 * t + 1] += a1 * p1 + b1 * q1 + x1 * y1
-            if nk > 0:
-                for k in range(nk):
-                    c = wl[r, k]
-                    for d in range(nd):
-                        Gl[k, d] += c * (j0 * g[0, d] + j1 * g[1, d] + j2 * g[2, d])
-        fl[:] = 0.0
-        for p in range(npts):
-            for c in range(3):
-                s = Sp[p, c]
-                if s != 0.0:
-                    for d in range(nd):
-                        fl[d] += s * dC[p, c, d]
-        for i in range(nd):
-            f[dofs[e, i]] += fl[i]
-        if not with_tangent:
-            continue
-        # geometric part: sum_p sum_c S_pc d2C_c(x_p)/du2, d2C/du_(s,i) du_(t,k) = delta_ik (...)
-        for p in range(npts):
-            sx, sy, sxy = 2.0 * Sp[p, 0], 2.0 * Sp[p, 1], Sp[p, 2]
-            for s in range(ns):
-                xs, ys = dxT[s, p], dyT[s, p]
-                k0T[s, p] = sx * xs + sxy * ys
-                k1T[s, p] = sy * ys + sxy * xs
-        for s in range(ns):
-            for t in range(s, ns):
-                v = 0.0
-                for p in range(npts):
-                    v += k0T[s, p] * dxT[t, p] + k1T[s, p] * dyT[t, p]
-                geo[s, t] = v
-        for s in range(ns):
-            for t in range(s, ns):
-                Ke[2 * s, 2 * t] += geo[s, t]
-                Ke[2 * s + 1, 2 * t + 1] += geo[s, t]
-        for k in range(nk):
-            for i in range(nd):
-                x = Gl[k, i]
-                for j in range(i, nd):
-                    Ke[i, j] += x * Gl[k, j]
-        for i in range(nd):                                       # Ke's upper half, into Kc's
-            r = dofs[e, i]
-            for j in range(i, nd):
-                c = dofs[e, j]
-                if r <= c:
-                    Kc[c, b + r - c] += Ke[i, j]
-                else:
-                    Kc[r, b + c - r] += Ke[i, j]

@@ -42,7 +42,7 @@ def test_a_pressure_value_per_point_is_the_pointwise_penalty(rng):
 
 
 def test_a_pressure_element_runs_on_the_compiled_loops_with_its_field_as_data():
-    """The compiled loops read the pressure field as arrays (ancf.kernels.pressure_arrays):
+    """The compiled loops read the pressure field as arrays (ancf.element_fields.pressure_arrays):
     q and w q (nq, nk), alpha M^-1 = L L^T (nk, nk), w q L (nq, nk); empty (nk = 0) where
     there is none (plane stress: no penalty, no pressure term), so every model runs
     compiled."""
@@ -68,7 +68,8 @@ def test_compiled_pressure_terms_equal_the_projected_penalty(rng):
     tests/test_compiled_steps.py hold the whole against the numpy reference.)"""
     from ancf.compiled_statics import force_magnitude
     from ancf.dgkernel import assemble_dg, dg_scratch
-    from ancf.kernels import OK, assemble_fused, pressure_arrays, step_scratch, strain_energy_fused
+    from ancf.element_fields import pressure_arrays
+    from ancf.kernels import OK, assemble_fused, step_scratch, strain_energy_fused
 
     model = small_model("HB2n-40p", "yeoh", "plane-strain", 4, 1e4 * paper.materials()["yeoh"]["C10"])
     pen = model.pressure
@@ -194,7 +195,7 @@ def test_the_element_fields_are_a_tuple_numba_types_in_c(element, form):
     """The fields reach every compiled call as one tuple (BeamModel.fused[5]). numba's
     dispatcher fingerprints a tuple of at most four arrays in C (the fingerprint spells the
     types: b"(A..."); a fifth array made it type the arguments in Python at every call,
-    about 1 ms per run of 2 x HB2n-12 on the thick pendulum (ancf.kernels.pressure_arrays)."""
+    about 1 ms per run of 2 x HB2n-12 on the thick pendulum (ancf.element_fields.pressure_arrays)."""
     from numba._dispatcher import compute_fingerprint
 
     fields = small_model(element, "yeoh", form).fused[5]
