@@ -30,6 +30,7 @@ from functools import lru_cache
 import numpy as np
 import scipy.linalg as sla
 
+from .assumed import sampling
 from .elements import ElementSpec, get_element
 from .quadrature import Rule, exact_for, gauss
 
@@ -73,37 +74,67 @@ def _rigid(element: ElementSpec, aspect: float) -> np.ndarray:
     return np.array(out).T
 
 
+LAME = np.array([[3.0, 1.0, 0.0], [1.0, 3.0, 0.0], [0.0, 0.0, 1.0]])  # plane, lambda = mu = 1:
+# the isotropic small-strain tangent of the tests, on [eps_xx, eps_yy, 2 eps_xy]
+
+
+def small_strain_stiffness(element: ElementSpec, rule: Rule, aspect: float) -> np.ndarray:
+    """The small-strain stiffness (2 ns, 2 ns) of one element l_e = aspect, h = 1, under
+    ``rule``, per unit element area, with the tests' tangent :data:`LAME`."""
+    G, _ = _strain_rows(element, rule, aspect)
+    return sum(G[3 * q:3 * q + 3].T @ LAME @ G[3 * q:3 * q + 3] for q in range(G.shape[0] // 3))
+
+
+def _eigen(element: ElementSpec, rule: Rule, aspect: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(mu ascending, V, s): the generalized eigenproblem of the rule's small-strain energy
+    against the exact rule's on the complement of the rigid modes, Jacobi-scaled by s =
+    diag(K_exact)^-1/2; V (2 ns, k) the modes as element dofs."""
+    K_r = small_strain_stiffness(element, rule, aspect)
+    K_e = small_strain_stiffness(element, exact_rule(element), aspect)
+    s = 1.0 / np.sqrt(np.diag(K_e))
+    Z = np.linalg.qr(_rigid(element, aspect) / s[:, None], mode="complete")[0][:, 3:]
+    S_r, S_e = s[:, None] * K_r * s, s[:, None] * K_e * s
+    mu, V = sla.eigh(Z.T @ S_r @ Z, Z.T @ S_e @ Z)
+    return mu, s[:, None] * (Z @ V), s
+
+
+def softest_modes(element: str | ElementSpec, rule: tuple[int, int] | Rule, aspect: float,
+                  count: int = 1) -> tuple[np.ndarray, np.ndarray]:
+    """The ``count`` deformation modes whose energy ``rule`` sees least against the exact
+    rule (:func:`rank_test`'s eigenproblem): (mu (count,), modes (2 ns, count) as element
+    dofs, q flattened node by node as (ux, uy))."""
+    el = get_element(element) if isinstance(element, str) else element
+    mu, modes, _ = _eigen(el, gauss(*rule) if not isinstance(rule, Rule) else rule, aspect)
+    return mu[:count], modes[:, :count]
+
+
 def rank_test(element: str | ElementSpec, rule: tuple[int, int] | Rule, aspect: float) -> dict:
     """The u = 0 eigenvalue test: {"spurious": zero-energy modes beyond the rigid three,
     "mu_min": smallest rule/exact energy ratio of a deformation mode, "passes": bool}.
-    Energies are those of an isotropic small-strain tangent (unit Lame constants); the
-    null space does not depend on the law."""
+    Energies are those of an isotropic small-strain tangent (:data:`LAME`); the null space
+    does not depend on the law."""
     el = get_element(element) if isinstance(element, str) else element
     rule = gauss(*rule) if not isinstance(rule, Rule) else rule
-    D = np.diag([3.0, 3.0, 1.0]); D[0, 1] = D[1, 0] = 1.0              # lambda = mu = 1, plane
+    mu, _, s = _eigen(el, rule, aspect)
     G_r, _ = _strain_rows(el, rule, aspect)
     G_e, _ = _strain_rows(el, exact_rule(el), aspect)
-    nq_r, nq_e = G_r.shape[0] // 3, G_e.shape[0] // 3
-    K_r = sum(G_r[3 * q:3 * q + 3].T @ D @ G_r[3 * q:3 * q + 3] for q in range(nq_r))
-    K_e = sum(G_e[3 * q:3 * q + 3].T @ D @ G_e[3 * q:3 * q + 3] for q in range(nq_e))
-    s = 1.0 / np.sqrt(np.diag(K_e))
     sv = np.linalg.svd(G_r * s, compute_uv=False)
     sv_e = np.linalg.svd(G_e * s, compute_uv=False)
-    n = G_r.shape[1]
     rank = int(np.sum(sv > SVD_TOL * sv_e[0]))
-    Z = np.linalg.qr(_rigid(el, aspect) / s[:, None], mode="complete")[0][:, 3:]
-    S_r, S_e = s[:, None] * K_r * s, s[:, None] * K_e * s
-    mu = sla.eigh(Z.T @ S_r @ Z, Z.T @ S_e @ Z, eigvals_only=True)
-    spurious = n - rank - 3
+    spurious = G_r.shape[1] - rank - 3
     mu_min = max(float(mu.min()), 0.0)
     return {"spurious": spurious, "mu_min": mu_min, "passes": spurious == 0 and mu_min >= MU_MIN}
 
 
-def _green(q: np.ndarray, dN: np.ndarray) -> np.ndarray:
+def _green(q: np.ndarray, dN: np.ndarray, T: np.ndarray | None = None) -> np.ndarray:
+    """[E_xx, E_yy, sqrt(2) E_xy] at the points of dN, or, with an assumed strain's T
+    (:func:`ancf.assumed.sampling`; dN at its points), the assumed E_bar = (C_bar - I) / 2
+    at the rule's (T's rows reproduce constants, so E_bar = T E)."""
     G = np.einsum("qaj,ai->qij", dN, q)
     F = G + np.eye(2)
     E = 0.5 * (np.einsum("qki,qkj->qij", F, F) - np.eye(2))
-    return np.stack([E[:, 0, 0], E[:, 1, 1], np.sqrt(2.0) * E[:, 0, 1]], axis=1)
+    E = np.stack([E[:, 0, 0], E[:, 1, 1], np.sqrt(2.0) * E[:, 0, 1]], axis=1)
+    return E if T is None else np.stack([T[c] @ E[:, c] for c in range(3)], axis=1)
 
 
 @lru_cache(maxsize=256)
@@ -112,7 +143,8 @@ def _strain_test(name: str, rule: tuple[int, int], aspect: float, amplitude: flo
 
     el = get_element(name)
     r, fine = gauss(*rule), gauss(8, 8)
-    _, dN_r = el.tabulate(r.xi, r.eta, aspect, 1.0)
+    seen_at, T = (r, None) if not el.assumed else sampling(el.assumed, el.assumed_points, r)
+    _, dN_r = el.tabulate(seen_at.xi, seen_at.eta, aspect, 1.0)
     _, dN_f = el.tabulate(fine.xi, fine.eta, aspect, 1.0)
     ns, nk = el.n_shape, len(el.kinds)
     fixed = [0, 1, 2 * (ns - nk) + 1]         # node 0's r, the last node's r_y component: no rigid motion
@@ -126,7 +158,7 @@ def _strain_test(name: str, rule: tuple[int, int], aspect: float, amplitude: flo
 
     def resid(z):
         q = unpack(z)
-        seen = (sw_r * _green(q, dN_r)).ravel()
+        seen = (sw_r * _green(q, dN_r, T)).ravel()
         true = np.sqrt(np.sum((sw_f * _green(q, dN_f)) ** 2))
         return np.concatenate([seen, [30.0 * (true - amplitude)]])
 
@@ -140,7 +172,7 @@ def _strain_test(name: str, rule: tuple[int, int], aspect: float, amplitude: flo
         q = unpack(sol.x)
         true = np.sqrt(np.sum((sw_f * _green(q, dN_f)) ** 2))
         if abs(true - amplitude) <= 0.05 * amplitude:
-            best = min(best, float(np.sqrt(np.sum((sw_r * _green(q, dN_r)) ** 2)) / true))
+            best = min(best, float(np.sqrt(np.sum((sw_r * _green(q, dN_r, T)) ** 2)) / true))
     return best
 
 

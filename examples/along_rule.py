@@ -25,7 +25,6 @@ points relieve, the membrane stretch C_xx, is the next example's finding
 from __future__ import annotations
 
 import numpy as np
-import scipy.linalg as sla
 
 from ancf import rank
 from ancf.elements import get_element
@@ -37,7 +36,6 @@ from studies.pendulum_cases import LENGTH
 
 ELEMENT = "HB2n-20xyp"
 RULES = (None, (3, 2))            # None: the element's default rule
-D = np.array([[3.0, 1.0, 0.0], [1.0, 3.0, 0.0], [0.0, 0.0, 1.0]])   # plane strain, lambda = mu = 1
 
 
 def pendulum_error(scene: str, n: int, rule, dt: float = 1.25e-3) -> tuple[float, list[int]]:
@@ -51,19 +49,12 @@ def pendulum_error(scene: str, n: int, rule, dt: float = 1.25e-3) -> tuple[float
     return error(rec["tip_history"], scene), rec["quadrature"]
 
 
-def _stiffness(rule, aspect: float) -> np.ndarray:
-    """The small-strain stiffness of one element l_e = aspect, h = 1, under ``rule`` (a
-    Rule), per unit element area, from the rank tests' strain rows (``rank._strain_rows``)."""
-    G, _ = rank._strain_rows(get_element(ELEMENT), rule, aspect)
-    return sum(G[3 * q:3 * q + 3].T @ D @ G[3 * q:3 * q + 3] for q in range(G.shape[0] // 3))
-
-
 def linear_tip_ratio(n: int, rule, slenderness: float = 70.0) -> float:
     """Small-strain cantilever, face clamp, tip load on the centre line: tip deflection
     over Timoshenko's P L^3 / (3 E' I) + P L / (k G A) (E' = E / (1 - nu^2), k = 5/6)."""
     el = get_element(ELEMENT)
     h, L = 1.0, slenderness
-    Ke = (L / n) * h * _stiffness(gauss(*rule) if rule else rank.exact_rule(el), L / n)
+    Ke = (L / n) * h * rank.small_strain_stiffness(el, gauss(*rule) if rule else rank.exact_rule(el), L / n)
     per_node = 2 * len(el.kinds)
     K = np.zeros(((n + 1) * per_node,) * 2)
     for e in range(n):
@@ -82,20 +73,17 @@ def linear_tip_ratio(n: int, rule, slenderness: float = 70.0) -> float:
 
 def softest_modes(aspect: float, rule=(3, 2), count: int = 2) -> list[tuple[float, float, float, float]]:
     """The ``count`` deformation modes whose energy ``rule`` sees least against the exact
-    rule (rank.rank_test's eigenproblem): (mu, exact-energy share of eps_xx, of eps_yy with
-    the coupling, of shear)."""
+    rule (``rank.softest_modes``): (mu, exact-energy share of eps_xx, of eps_yy with the
+    coupling, of shear)."""
     el = get_element(ELEMENT)
     G_e, _ = rank._strain_rows(el, rank.exact_rule(el), aspect)
-    K_r, K_e = _stiffness(gauss(*rule), aspect), _stiffness(rank.exact_rule(el), aspect)
-    s = 1.0 / np.sqrt(np.diag(K_e))
-    Z = np.linalg.qr(rank._rigid(el, aspect) / s[:, None], mode="complete")[0][:, 3:]
-    mu, V = sla.eigh(Z.T @ (s[:, None] * K_r * s) @ Z, Z.T @ (s[:, None] * K_e * s) @ Z)
+    mus, modes = rank.softest_modes(el, rule, aspect, count)
     out = []
-    for j in range(count):
-        e = G_e @ (s * (Z @ V[:, j]))
+    for mu, mode in zip(mus, modes.T):
+        e = G_e @ mode
         exx, eyy, gxy = e[0::3], e[1::3], e[2::3]
         parts = np.array([3 * exx @ exx, 3 * eyy @ eyy + 2 * exx @ eyy, gxy @ gxy])
-        out.append((float(mu[j]), *(parts / parts.sum())))
+        out.append((float(mu), *(parts / parts.sum())))
     return out
 
 

@@ -56,8 +56,8 @@ GRID = {
     "pendulum": {"counts": (8, 16, 32, 64), "dt": 5e-4, "t_end": 0.5, "formulation": "plane-stress"},
     "slender": {"slenderness": (35.0, 70.0, 140.0), "counts": (4, 8, 16, 32)},
     "rules": ((2, 2), (3, 2), (3, 3), (5, 3)),
-    "aspects": (10.0, 3.0, 1.0, 0.3, 0.1, 0.05, 0.025, 0.01),
-    "patch_aspects": (4.0, 1.0, 0.3, 0.1, 0.05),
+    "aspects": (35.0, 17.5, 10.0, 3.0, 1.0, 0.3, 0.1, 0.05, 0.025, 0.01),   # 35, 17.5: the slender
+    "patch_aspects": (4.0, 1.0, 0.3, 0.1, 0.05),                             # pendulum's 2 and 4 elements
 }
 TINY = {
     "laws": ("neo-hookean",), "formulations": ("plane-stress",), "counts": (4, 8, 16),
@@ -151,14 +151,18 @@ def measure_checks(element: str, tiny: bool = False) -> dict:
         forms[form] = {"energy_gradient": checks.energy_gradient(model, rng),
                        "tangent_gradient": checks.tangent_gradient(model, rng),
                        "rigid_motion": checks.rigid_motion(model, rng)}
+    def tests(r, a):
+        lin = rank_test(spec, r, a)
+        fs = strain_test(element, r, a) if lin["spurious"] == 0 else None
+        return {**lin, "strain_ratio": fs["ratio"] if fs else None}
+
     rank = []
     for a in g["aspects"]:
         row = {"aspect": a, "default": {"plane-stress": list(default_quadrature(spec, False, a)),
                                         "penalised": list(default_quadrature(spec, True, a))}, "rules": {}}
         for r in g["rules"]:
-            lin = rank_test(spec, r, a)
-            fs = strain_test(element, r, a) if lin["spurious"] == 0 else None
-            row["rules"][f"{r[0]}x{r[1]}"] = {**lin, "strain_ratio": fs["ratio"] if fs else None}
+            row["rules"][f"{r[0]}x{r[1]}"] = tests(r, a)
+        row["default_tests"] = {k: tests(tuple(r), a) for k, r in row["default"].items()}
         rank.append(row)
     patch = [{"aspect": a, **checks.patch(spec, length=a * 0.005 * 3)} for a in g["patch_aspects"]]
     return {"element": element, "definition": repr(spec), "source": source_hash("ancf"),

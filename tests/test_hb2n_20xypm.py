@@ -13,7 +13,7 @@ import pytest
 from ancf.assumed import sampling
 from ancf.build import build_model
 from ancf.checks import bent_state
-from ancf.elements import ElementSpec
+from ancf.elements import ElementSpec, get_element
 from ancf.quadrature import gauss
 from contract.scene import scene_from_dict
 from examples.assumed_membrane import AssumedStrain, pendulum_error
@@ -79,3 +79,29 @@ def test_the_assumed_stretch_relieves_the_slender_pendulums_coarse_meshes():
     e2, e4 = (harness_error(n, element=ELEMENT) for n in (2, 4))
     b2, b4 = (harness_error(n, element=BASE) for n in (2, 4))
     assert e4 < 0.5 * b4 and e2 < 0.8 * b2
+
+
+def test_the_finite_strain_rank_test_sees_the_assumed_strain():
+    """ancf.rank's finite-strain test reads E_bar = (C_bar - I) / 2 at the rule's points for
+    an element with an assumed strain. Second route: the numpy reference's C_bar
+    (AssumedStrain) at a random state of one element. Measured: at l_e / h = 10 the worst
+    state shows [4, 2] 0.44 of its strain through C_bar (HB2n-20xyp's own points 0.51);
+    [3, 3] samples along at its own points, so both see the same 0.86 at 0.1; the declared
+    rules pass where they are declared."""
+    from ancf import rank
+    from ancf.assumed import AssumedStrain as Reference
+
+    el, aspect = get_element(ELEMENT), 3.0
+    points, T = sampling(el.assumed, el.assumed_points, gauss(4, 2))
+    _, dN = el.tabulate(points.xi, points.eta, aspect, 1.0)
+    q = 0.1 * np.random.default_rng(5).standard_normal((el.n_shape, 2))
+    _, Cbar, _, _ = Reference(None, dN, points.weight, T)._kinematics(q.reshape(1, -1))
+    Ebar = 0.5 * (Cbar[0] - [1.0, 1.0, 0.0]) * [1.0, 1.0, np.sqrt(2.0)]
+    np.testing.assert_allclose(rank._green(q, dN, T), Ebar, rtol=0, atol=1e-14)
+
+    ratio = {name: rank.strain_test(name, (4, 2), 10.0)["ratio"] for name in (ELEMENT, BASE)}
+    assert ratio[ELEMENT] < ratio[BASE] - 0.03, ratio
+    assert rank.strain_test(ELEMENT, (3, 3), 0.1)["ratio"] == pytest.approx(rank.strain_test(BASE, (3, 3), 0.1)["ratio"])
+    for aspect in (10.0, 1.0, 0.1):
+        rule = rank.default_quadrature(el, False, aspect)
+        assert rank.rank_test(el, rule, aspect)["passes"] and rank.strain_test(ELEMENT, rule, aspect)["passes"]
