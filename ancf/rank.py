@@ -38,7 +38,8 @@ from .quadrature import Rule, exact_for, gauss
 SVD_TOL = 3e-7        # zero singular value of sqrt(w) B_sym, relative to the largest (eigenvalue ~1e-14)
 MU_MIN = 0.1          # a deformation mode whose energy the rule sees below 10 % is near-spurious
 STRAIN_RATIO = 0.3    # a finite-strain state whose strain the rule sees below 30 % (full-rank rules: >= 0.78)
-ASPECTS = (10.0, 3.0, 1.0, 0.3, 0.1, 0.05, 0.025, 0.01)   # l_e / h of the tests' sweeps
+ASPECTS = (35.0, 17.5, 10.0, 3.0, 1.0, 0.3, 0.1, 0.05, 0.025, 0.01)   # l_e / h of the tests' sweeps
+# (35, 17.5: the slender pendulum's 2 and 4 elements)
 
 
 def exact_rule(element: ElementSpec) -> Rule:

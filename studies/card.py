@@ -37,6 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ancf.rank import ASPECTS
 from contract import paper
 
 from .engine.case import Case, make_case
@@ -56,8 +57,8 @@ GRID = {
     "pendulum": {"counts": (8, 16, 32, 64), "dt": 5e-4, "t_end": 0.5, "formulation": "plane-stress"},
     "slender": {"slenderness": (35.0, 70.0, 140.0), "counts": (4, 8, 16, 32)},
     "rules": ((2, 2), (3, 2), (3, 3), (5, 3)),
-    "aspects": (35.0, 17.5, 10.0, 3.0, 1.0, 0.3, 0.1, 0.05, 0.025, 0.01),   # 35, 17.5: the slender
-    "patch_aspects": (4.0, 1.0, 0.3, 0.1, 0.05),                             # pendulum's 2 and 4 elements
+    "aspects": ASPECTS,                 # the rank tests' sweep, 35 .. 0.01
+    "patch_aspects": (4.0, 1.0, 0.3, 0.1, 0.05),
 }
 TINY = {
     "laws": ("neo-hookean",), "formulations": ("plane-stress",), "counts": (4, 8, 16),
