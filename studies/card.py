@@ -152,6 +152,7 @@ def measure_checks(element: str, tiny: bool = False) -> dict:
         forms[form] = {"energy_gradient": checks.energy_gradient(model, rng),
                        "tangent_gradient": checks.tangent_gradient(model, rng),
                        "rigid_motion": checks.rigid_motion(model, rng)}
+
     def tests(r, a):
         lin = rank_test(spec, r, a)
         fs = strain_test(element, r, a) if lin["spurious"] == 0 else None
