@@ -79,19 +79,23 @@ LAME = np.array([[3.0, 1.0, 0.0], [1.0, 3.0, 0.0], [0.0, 0.0, 1.0]])  # plane, l
 # the isotropic small-strain tangent of the tests, on [eps_xx, eps_yy, 2 eps_xy]
 
 
-def small_strain_stiffness(element: ElementSpec, rule: Rule, aspect: float) -> np.ndarray:
-    """The small-strain stiffness (2 ns, 2 ns) of one element l_e = aspect, h = 1, under
-    ``rule``, per unit element area, with the tests' tangent :data:`LAME`."""
-    G, _ = _strain_rows(element, rule, aspect)
+def _stiffness(G: np.ndarray) -> np.ndarray:
+    """sum over the points of G_q^T LAME G_q, G the rows of :func:`_strain_rows`."""
     return sum(G[3 * q:3 * q + 3].T @ LAME @ G[3 * q:3 * q + 3] for q in range(G.shape[0] // 3))
 
 
-def _eigen(element: ElementSpec, rule: Rule, aspect: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(mu ascending, V, s): the generalized eigenproblem of the rule's small-strain energy
-    against the exact rule's on the complement of the rigid modes, Jacobi-scaled by s =
-    diag(K_exact)^-1/2; V (2 ns, k) the modes as element dofs."""
-    K_r = small_strain_stiffness(element, rule, aspect)
-    K_e = small_strain_stiffness(element, exact_rule(element), aspect)
+def small_strain_stiffness(element: ElementSpec, rule: Rule, aspect: float) -> np.ndarray:
+    """The small-strain stiffness (2 ns, 2 ns) of one element l_e = aspect, h = 1, under
+    ``rule``, per unit element area, with the tests' tangent :data:`LAME`."""
+    return _stiffness(_strain_rows(element, rule, aspect)[0])
+
+
+def _eigen(element: ElementSpec, G_r: np.ndarray, G_e: np.ndarray, aspect: float
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(mu ascending, V, s): the generalized eigenproblem of the small-strain energy of a
+    rule's strain rows G_r against the exact rule's G_e on the complement of the rigid
+    modes, Jacobi-scaled by s = diag(K_exact)^-1/2; V (2 ns, k) the modes as element dofs."""
+    K_r, K_e = _stiffness(G_r), _stiffness(G_e)
     s = 1.0 / np.sqrt(np.diag(K_e))
     Z = np.linalg.qr(_rigid(element, aspect) / s[:, None], mode="complete")[0][:, 3:]
     S_r, S_e = s[:, None] * K_r * s, s[:, None] * K_e * s
@@ -105,7 +109,8 @@ def softest_modes(element: str | ElementSpec, rule: tuple[int, int] | Rule, aspe
     rule (:func:`rank_test`'s eigenproblem): (mu (count,), modes (2 ns, count) as element
     dofs, q flattened node by node as (ux, uy))."""
     el = get_element(element) if isinstance(element, str) else element
-    mu, modes, _ = _eigen(el, gauss(*rule) if not isinstance(rule, Rule) else rule, aspect)
+    rule = gauss(*rule) if not isinstance(rule, Rule) else rule
+    mu, modes, _ = _eigen(el, _strain_rows(el, rule, aspect)[0], _strain_rows(el, exact_rule(el), aspect)[0], aspect)
     return mu[:count], modes[:, :count]
 
 
@@ -116,9 +121,9 @@ def rank_test(element: str | ElementSpec, rule: tuple[int, int] | Rule, aspect: 
     does not depend on the law."""
     el = get_element(element) if isinstance(element, str) else element
     rule = gauss(*rule) if not isinstance(rule, Rule) else rule
-    mu, _, s = _eigen(el, rule, aspect)
     G_r, _ = _strain_rows(el, rule, aspect)
     G_e, _ = _strain_rows(el, exact_rule(el), aspect)
+    mu, _, s = _eigen(el, G_r, G_e, aspect)
     sv = np.linalg.svd(G_r * s, compute_uv=False)
     sv_e = np.linalg.svd(G_e * s, compute_uv=False)
     rank = int(np.sum(sv > SVD_TOL * sv_e[0]))
