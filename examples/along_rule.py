@@ -1,7 +1,7 @@
 """An experiment, not a remedy (issue 20): HB2n-20xyp with three Gauss points along the beam.
 
 On the slender pendulum, a coarse mesh of HB2n-20xyp is much further from the continuum
-with its default rule [4, 2] than with [3, 2]. This script measures that effect and asks
+with its default rule ([4, 2]; [5, 2] from l_e / h = 15) than with [3, 2]. This script measures that effect and asks
 where it comes from:
 
 1. the pendulums of the work-precision bench (``studies.peers.work_precision``: plane-stress

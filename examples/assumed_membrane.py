@@ -2,13 +2,13 @@
 
 A prototype in numpy; the remedy it found is built in as ``ElementSpec.assumed``
 (ancf/assumed.py) and the element HB2n-20xypm, which tests/test_hb2n_20xypm.py holds
-equal to this prototype. HB2n-20xyp keeps its default rule [4, 2]. Chosen components of
-C = F^T F are taken from three points along the beam: sampled at the 3 Gauss points along
-x at each of the rule's 2 points across, and interpolated (quadratic Lagrange) to the
-rule's 4 points along. Components: "xx", the membrane stretch; "xy", the shear; "yy", the
-thickness stretch. The energy is the harness's law at the modified C,
-W(a, J) with a = tr C and J = sqrt(det C) (``Material.energy_jet``, plane stress). The
-force is its exact gradient. Everything else is the harness's own: the mesh, the mass
+equal to this prototype. HB2n-20xyp keeps its default rule ([4, 2]; [5, 2] from l_e / h =
+15). Chosen components of C = F^T F are taken from three points along the beam: sampled at
+the 3 Gauss points along x at each of the rule's 2 points across, and interpolated
+(quadratic Lagrange) to the rule's points along (4, or 5 from l_e / h = 15). Components:
+"xx", the membrane stretch; "xy", the shear; "yy", the thickness stretch. The energy is
+the harness's law at the modified C, W(a, J) with a = tr C and J = sqrt(det C)
+(``Material.energy_jet``, plane stress). The force is its exact gradient. Everything else is the harness's own: the mesh, the mass
 matrix, the gravity load and the supports of ``ancf.build``, and the generalized-alpha
 coefficients, predictor and update of ``mechanics.alpha_family``. The Newton tangent is
 the force's central difference (the residual test is the harness's, rtol 1e-8, so the
@@ -40,19 +40,22 @@ COMPONENT = {"xx": (0, 0), "yy": (1, 1), "xy": (0, 1)}
 
 class AssumedStrain:
     """Strain energy and force of a model's mesh with the components ``mode`` of C taken
-    from the three-point rows along the beam ("none": the element's plain [4, 2] rule)."""
+    from the three-point rows along the beam ("none": the model's plain rule, [4, 2], or
+    [5, 2] from l_e / h = 15), carried to the model's rule [n, 2] along the beam."""
 
     def __init__(self, model, mode: str):
         m = model.mesh
         self.model, self.material = model, model.material
         self.modes = [] if mode == "none" else [COMPONENT[c] for c in mode.split("+")]
-        r4, r3 = gauss(4, 2), gauss(3, 2)
+        r4, r3 = model.rule, gauss(3, 2)
         vol = m.element_length * m.height * m.width
         _, self.dN4 = m.element.tabulate(r4.xi, r4.eta, m.element_length, m.height)
         _, self.dN3 = m.element.tabulate(r3.xi, r3.eta, m.element_length, m.height)
         self.w = r4.weight * vol
         x3, x4 = np.unique(r3.xi.round(14)), np.unique(r4.xi.round(14))
-        # quadratic Lagrange from the 3 points to the 4 (points are ordered x-major, y fastest)
+        if len(r4.weight) != 2 * len(x4):
+            raise ValueError(f"the model's rule has {len(r4.weight) // len(x4)} points across; the prototype wants 2")
+        # quadratic Lagrange from the 3 points to the rule's (points are ordered x-major, y fastest)
         self.P = np.array([[np.prod([(x - x3[j]) / (x3[i] - x3[j]) for j in range(3) if j != i]) for i in range(3)]
                            for x in x4])
         self.dofs = model._dofs                                      # (ne, 2 ns), local order (a, i)
@@ -72,8 +75,9 @@ class AssumedStrain:
             for a, b in self.modes:
                 rows = C3[:, :, a, b].reshape(len(ue), 3, 2)
                 drows = dC3[:, :, a, b].reshape(len(ue), 3, 2, *dC3.shape[-2:])
-                cbar = np.einsum("pm,emy->epy", self.P, rows).reshape(len(ue), 8)
-                dbar = np.einsum("pm,emy...->epy...", self.P, drows).reshape(len(ue), 8, *dC3.shape[-2:])
+                npts = len(self.w)
+                cbar = np.einsum("pm,emy->epy", self.P, rows).reshape(len(ue), npts)
+                dbar = np.einsum("pm,emy...->epy...", self.P, drows).reshape(len(ue), npts, *dC3.shape[-2:])
                 for i, j in {(a, b), (b, a)}:
                     C[:, :, i, j], dC[:, :, i, j] = cbar, dbar
         det = C[..., 0, 0] * C[..., 1, 1] - C[..., 0, 1] * C[..., 1, 0]
@@ -163,7 +167,7 @@ def cantilever_tip(n: int, mode: str, increments: int = 20, rtol: float = 1e-10)
 
 def main() -> None:
     print(f"{ELEMENT} on the slender pendulum, dt = 2.5 ms: error / L against the continuum, with the")
-    print("components of C taken from the three points along the beam ('none': the plain [4, 2] rule)")
+    print("components of C taken from the three points along the beam ('none': the element's default rule)")
     print("| elements | " + " | ".join(MODES) + " |")
     print("|---|" + "---|" * len(MODES))
     for n in (2, 4):

@@ -13,8 +13,9 @@ off, natural frequencies +0.9 / +3.5 / +8 %). A cubic r_y removes that constrain
 Default rules, chosen by the rank tests of ancf.rank (eigenvalue test at u = 0 and the
 finite-strain test, as for the package's elements): [4, 2] for l_e / h >= 1 (mu_min 0.37 at
 l_e / h = 1, 0.99 at 10; [3, 2] fails at 10 with 0.04), [3, 3] below ([4, 2] fails at
-0.5 with 0.05; [3, 3] passes 0.9 ... 0.01 with >= 0.80), in every formulation. The
-exact rule would be [4, 3].
+0.5 with 0.05; [3, 3] passes 0.9 ... 0.01 with >= 0.80), and [5, 2] from l_e / h = 15
+(HB2n-20xyp's: [4, 2] sees 0.16 of a stretch family at 35, [5, 2] 0.88), in every
+formulation. The exact rule would be [4, 3].
 """
 from ancf.elements import ELEMENTS, ElementSpec, register_element
 
@@ -24,4 +25,5 @@ if "HB2n-20xy" not in ELEMENTS:
         basis=("1", "x", "x^2", "x^3", "y", "x*y", "x^2*y", "x^3*y", "y^2", "x*y^2"),
         nodes=(0.0, 1.0), kinds=("r", "r_x", "r_y", "r_xy", "r_yy"),
         reference="harness example: HB2n-16 with r_xy (cubic r_y along the beam)",
-        quadrature=((False, 1.0, (4, 2)), (False, 0.0, (3, 3)), (True, 1.0, (4, 2)), (True, 0.0, (3, 3)))))
+        quadrature=((False, 15.0, (5, 2)), (False, 1.0, (4, 2)), (False, 0.0, (3, 3)),
+                    (True, 15.0, (5, 2)), (True, 1.0, (4, 2)), (True, 0.0, (3, 3)))))

@@ -56,7 +56,9 @@ HB2n-60p stays the plane-strain element, this one the plane-stress one.
 
 Rules from the rank and finite-strain tests (:mod:`ancf.rank`; the pressure does not enter
 them): [6, 7] down to l_e/h = 0.05 (seen / true strain 0.34 to 0.54; [6, 6] fails
-everywhere, 0.21 at l_e/h = 1), [6, 8] below (0.49; [6, 7] gives 0.25 at 0.025).
+everywhere, 0.21 at l_e/h = 1), [6, 8] below (0.49; [6, 7] gives 0.25 at 0.025), and [8, 7]
+from l_e/h = 15 (HB2n-40p's slender stretch family: [6, 7] 0.35 at 15, 0.15 at 35; [8, 7]
+0.53-0.54 from 15 to 70).
 
     .venv/bin/python -m studies card HB2n-84p --import examples.sextic_section
 """
@@ -74,5 +76,6 @@ if "HB2n-84p" not in ELEMENTS:
         nodes=(0.0, 1.0),
         kinds=tuple(f"r{'_' if (a or b) else ''}{'x' * a}{'y' * b}" for b in range(7) for a in range(3)),
         reference="harness example: quintic Hermite along, sextic across, pressure {1..x^3} x {1, y, y^2} + y^3",
-        quadrature=((False, 0.05, (6, 7)), (False, 0.0, (6, 8)), (True, 0.05, (6, 7)), (True, 0.0, (6, 8))),
+        quadrature=((False, 15.0, (8, 7)), (False, 0.05, (6, 7)), (False, 0.0, (6, 8)),
+                    (True, 15.0, (8, 7)), (True, 0.05, (6, 7)), (True, 0.0, (6, 8))),
         pressure=_tensor(4, 3) + ("x^0*y^3",)))

@@ -21,11 +21,12 @@ def test_the_small_strain_cantilever_converges_to_timoshenko_and_does_not_see_th
 
 
 def test_three_points_along_remove_most_of_the_coarse_pendulums_error():
-    """Measured at dt = 1.25 ms, 4 elements (l_e / h = 17.5): 1.224 % with [4, 2] against
-    0.447 % with [3, 2] (the continuum gold's own estimate: 0.025 % of L)."""
+    """Measured at dt = 1.25 ms, 4 elements (l_e / h = 17.5): 1.240 % with the default [5, 2]
+    (1.224 % with [4, 2]) against 0.447 % with [3, 2] (the continuum gold's own estimate:
+    0.025 % of L)."""
     default, rule = along_rule.pendulum_error("pendulum", 4, None)
     reduced, _ = along_rule.pendulum_error("pendulum", 4, (3, 2))
-    assert rule == [4, 2]
+    assert rule == [5, 2]
     assert default > 1e-2 and reduced < 0.5 * default
 
 
@@ -37,13 +38,13 @@ def test_the_softest_mode_under_three_points_along_is_a_transverse_stretch():
         assert mu < 0.1 and eyy > 0.95
 
 
-def test_the_coarse_meshes_finite_strain_family_is_not_what_the_pendulum_meets():
-    """At l_e / h = 35 and 17.5 (the slender pendulum's 2 and 4 elements) the default [4, 2]
-    passes the eigenvalue test, but its finite-strain ratio is 0.157 at 35 and 0.307 at
-    17.5 (0.51 at 10; passing: 0.3): a finite-strain state that four points along hardly
-    see. [5, 2] sees it (0.88 at 35). The pendulum does not meet that state: under [5, 2]
-    its error does not fall (measured at dt 2.5 ms: 2 elements 7.25 -> 7.42 %, 4 elements
-    1.178 -> 1.196 %)."""
+def test_the_coarse_meshes_default_sees_the_finite_strain_family_and_the_pendulum_hardly_feels_it():
+    """At l_e / h = 35 and 17.5 (the slender pendulum's 2 and 4 elements) [4, 2] passes the
+    eigenvalue test, but its finite-strain ratio is 0.157 at 35 (0.307 at 17.5, 0.51 at 10;
+    passing: 0.3): a stretch family that four points along hardly see. So the element
+    declares [5, 2] from l_e / h = 15 (0.88 at 35). The pendulum does not meet that family:
+    the default's error is [4, 2]'s within 3 % of itself, a little larger (measured at dt
+    2.5 ms: 2 elements 7.42 against 7.25 %, 4 elements 1.196 against 1.178 %)."""
     from ancf import rank
 
     assert rank.rank_test(along_rule.ELEMENT, (4, 2), 35.0)["passes"]
@@ -51,5 +52,5 @@ def test_the_coarse_meshes_finite_strain_family_is_not_what_the_pendulum_meets()
     assert rank.strain_test(along_rule.ELEMENT, (5, 2), 35.0)["passes"]
     for n in (2, 4):
         default, rule = along_rule.pendulum_error("pendulum", n, None, dt=2.5e-3)
-        richer, _ = along_rule.pendulum_error("pendulum", n, (5, 2), dt=2.5e-3)
-        assert rule == [4, 2] and richer > default, (n, default, richer)
+        fewer, _ = along_rule.pendulum_error("pendulum", n, (4, 2), dt=2.5e-3)
+        assert rule == [5, 2] and fewer < default < 1.03 * fewer, (n, default, fewer)

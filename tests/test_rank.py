@@ -87,3 +87,24 @@ def test_a_scene_without_a_rule_gets_the_default_and_a_chosen_rank_deficient_rul
 def test_every_registered_element_has_a_default():
     for el in ELEMENTS.values():
         assert all(n >= 1 for n in default_quadrature(el, False, 1.0))
+
+
+SLENDER = 15.0     # l_e / h from which the elements exact along declare more points along
+LOCK_FREE = ("HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", pytest.param("HB2n-60p", marks=pytest.mark.slow))
+
+
+@pytest.mark.parametrize("name", LOCK_FREE)
+def test_the_slender_rule_sees_the_stretch_family_that_the_rule_below_it_misses(name):
+    """The elements exact along the beam ([n, .] with n - 1 their degree along) declare more
+    points along from l_e / h = 15 on. The rule below passes the finite-strain test up to 15
+    and fails at 35 (the slender pendulum's 2 elements), its ratio halving as l_e / h doubles
+    (a stretch family that tends to zero energy as the element gets slender); the slender
+    rule passes both tests from 15 to 70 (the slender pendulum's single element)."""
+    el = get_element(name)
+    slender, below = default_quadrature(el, False, SLENDER), default_quadrature(el, False, 0.999 * SLENDER)
+    assert slender[0] > below[0] and slender[1] == below[1] and default_quadrature(el, True, SLENDER) == slender
+    for aspect in (SLENDER, 35.0, 70.0):
+        assert rank_test(el, slender, aspect)["passes"] and strain_test(name, slender, aspect)["passes"], aspect
+    assert rank_test(el, below, 0.999 * SLENDER)["passes"] and strain_test(name, below, 0.999 * SLENDER)["passes"]
+    ratio = {a: strain_test(name, below, a)["ratio"] for a in (17.5, 35.0)}
+    assert ratio[35.0] < 0.2 and ratio[17.5] / ratio[35.0] == pytest.approx(2.0, rel=0.1), ratio
