@@ -8,9 +8,10 @@ the 3 Gauss points along x at each of the rule's 2 points across, and interpolat
 (quadratic Lagrange) to the rule's points along (4, or 5 from l_e / h = 15). Components:
 "xx", the membrane stretch; "xy", the shear; "yy", the thickness stretch. The energy is
 the harness's law at the modified C, W(a, J) with a = tr C and J = sqrt(det C)
-(``Material.energy_jet``, plane stress). The force is its exact gradient. Everything else is the harness's own: the mesh, the mass
-matrix, the gravity load and the supports of ``ancf.build``, and the generalized-alpha
-coefficients, predictor and update of ``mechanics.alpha_family``. The Newton tangent is
+(``Material.energy_jet``, plane stress). The force is its exact gradient. Everything else
+is the harness's own: the mesh, the mass matrix, the gravity load and the supports of
+``ancf.build``, and the generalized-alpha coefficients, predictor and update of
+``mechanics.alpha_family``. The Newton tangent is
 the force's central difference (the residual test is the harness's, rtol 1e-8, so the
 answer does not depend on it).
 
@@ -47,17 +48,17 @@ class AssumedStrain:
         m = model.mesh
         self.model, self.material = model, model.material
         self.modes = [] if mode == "none" else [COMPONENT[c] for c in mode.split("+")]
-        r4, r3 = model.rule, gauss(3, 2)
+        rule, r3 = model.rule, gauss(3, 2)
         vol = m.element_length * m.height * m.width
-        _, self.dN4 = m.element.tabulate(r4.xi, r4.eta, m.element_length, m.height)
+        _, self.dN = m.element.tabulate(rule.xi, rule.eta, m.element_length, m.height)
         _, self.dN3 = m.element.tabulate(r3.xi, r3.eta, m.element_length, m.height)
-        self.w = r4.weight * vol
-        x3, x4 = np.unique(r3.xi.round(14)), np.unique(r4.xi.round(14))
-        if len(r4.weight) != 2 * len(x4):
-            raise ValueError(f"the model's rule has {len(r4.weight) // len(x4)} points across; the prototype wants 2")
+        self.w = rule.weight * vol
+        x3, xr = np.unique(r3.xi.round(14)), np.unique(rule.xi.round(14))
+        if len(rule.weight) != 2 * len(xr):
+            raise ValueError(f"the model's rule has {len(rule.weight) // len(xr)} points across; the prototype wants 2")
         # quadratic Lagrange from the 3 points to the rule's (points are ordered x-major, y fastest)
         self.P = np.array([[np.prod([(x - x3[j]) / (x3[i] - x3[j]) for j in range(3) if j != i]) for i in range(3)]
-                           for x in x4])
+                           for x in xr])
         self.dofs = model._dofs                                      # (ne, 2 ns), local order (a, i)
 
     def _C(self, ue, dN):
@@ -69,7 +70,7 @@ class AssumedStrain:
 
     def energy_and_force(self, u: np.ndarray) -> tuple[float, np.ndarray]:
         ue = u[self.dofs].reshape(len(self.dofs), -1, 2)
-        C, dC = self._C(ue, self.dN4)
+        C, dC = self._C(ue, self.dN)
         if self.modes:
             C3, dC3 = self._C(ue, self.dN3)
             for a, b in self.modes:

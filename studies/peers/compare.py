@@ -2,7 +2,7 @@
 ANCF cable pendulum, timed in the same run (``make bench-peers``).
 
     .venv/bin/python -m studies.peers.compare [--dt 1e-3] [--rho-inf 0.8] [--repeats 5]
-                                              [--rounds 3] [--element HB2n-12 --element HB2n-16]
+                                              [--rounds 7] [--element HB2n-12 --element HB2n-16]
 
 Ours: ``scenes/pendulum-yeoh-plane-stress.toml`` (32 x HB2n-12, plane-stress Yeoh,
 generalized-alpha; HB2n-16 by ``--element``) with the given dt and rho_inf; the wall
@@ -289,8 +289,10 @@ def main(argv=None) -> int:
                     "step of the 32 x HB2n-12 pendulum)")
     ap.add_argument("--rho-inf", type=float, default=0.8, help="generalized-alpha spectral radius (default 0.8)")
     ap.add_argument("--repeats", type=int, default=5, help="timed warm runs per solver and round (default 5)")
-    ap.add_argument("--rounds", type=int, default=3, help="rounds, Exudyn and ours in turn; the medians are "
-                    "over all rounds' runs, the verdict over the rounds' ratios (default 3)")
+    ap.add_argument("--rounds", type=int, default=7, help="rounds, Exudyn and ours in turn; the medians are "
+                    "over all rounds' runs, the verdict over the rounds' ratios (default 7: on 2026-11-26 "
+                    "three rounds of one run gave HB2n-12 0.77, 0.39 and 0.86, the machine's speed halving "
+                    "and doubling within seconds)")
     ap.add_argument("--peer-python", type=Path, default=PEER_PYTHON)
     ap.add_argument("--module", choices=("fast", "regular"), default="fast",
                     help="Exudyn's compiled module (default fast: no range checks, AVX2)")
