@@ -9,8 +9,9 @@ were removed (``tests/test_compiled_cache.py`` shows the same with two small mod
 
 So :func:`configure` (called by ``ancf/__init__.py``, before any compiled function is
 defined) points numba at ``<base>/numba-<digest>``, the digest taken over every module
-of the package and of ``mechanics`` (whose step rules the step loop compiles): an edit anywhere starts a fresh cache (one compilation), and an
-unchanged package loads its compiled code as before. ``<base>`` is ``$NUMBA_CACHE_DIR``
+of the package and of ``mechanics`` (whose step rules the step loop compiles): an edit
+anywhere starts a fresh cache (one compilation), and an unchanged package loads its
+compiled code as before. ``<base>`` is ``$NUMBA_CACHE_DIR``
 if set, else the package's ``__pycache__``, else (not writable) ``~/.cache/ancf``.
 numba has one cache directory per process, so other packages' cached functions defined
 after this call are stored there too.

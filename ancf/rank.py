@@ -103,14 +103,21 @@ def _eigen(element: ElementSpec, G_r: np.ndarray, G_e: np.ndarray, aspect: float
     return mu, s[:, None] * (Z @ V), s
 
 
+def _row_pair(element: str | ElementSpec, rule: tuple[int, int] | Rule, aspect: float
+              ) -> tuple[ElementSpec, np.ndarray, np.ndarray]:
+    """(the element, the rule's strain rows, the exact rule's): what the u = 0 tests compare."""
+    el = get_element(element) if isinstance(element, str) else element
+    rule = gauss(*rule) if not isinstance(rule, Rule) else rule
+    return el, _strain_rows(el, rule, aspect)[0], _strain_rows(el, exact_rule(el), aspect)[0]
+
+
 def softest_modes(element: str | ElementSpec, rule: tuple[int, int] | Rule, aspect: float,
                   count: int = 1) -> tuple[np.ndarray, np.ndarray]:
     """The ``count`` deformation modes whose energy ``rule`` sees least against the exact
     rule (:func:`rank_test`'s eigenproblem): (mu (count,), modes (2 ns, count) as element
     dofs, q flattened node by node as (ux, uy))."""
-    el = get_element(element) if isinstance(element, str) else element
-    rule = gauss(*rule) if not isinstance(rule, Rule) else rule
-    mu, modes, _ = _eigen(el, _strain_rows(el, rule, aspect)[0], _strain_rows(el, exact_rule(el), aspect)[0], aspect)
+    el, G_r, G_e = _row_pair(element, rule, aspect)
+    mu, modes, _ = _eigen(el, G_r, G_e, aspect)
     return mu[:count], modes[:, :count]
 
 
@@ -119,10 +126,7 @@ def rank_test(element: str | ElementSpec, rule: tuple[int, int] | Rule, aspect: 
     "mu_min": smallest rule/exact energy ratio of a deformation mode, "passes": bool}.
     Energies are those of an isotropic small-strain tangent (:data:`LAME`); the null space
     does not depend on the law."""
-    el = get_element(element) if isinstance(element, str) else element
-    rule = gauss(*rule) if not isinstance(rule, Rule) else rule
-    G_r, _ = _strain_rows(el, rule, aspect)
-    G_e, _ = _strain_rows(el, exact_rule(el), aspect)
+    el, G_r, G_e = _row_pair(element, rule, aspect)
     mu, _, s = _eigen(el, G_r, G_e, aspect)
     sv = np.linalg.svd(G_r * s, compute_uv=False)
     sv_e = np.linalg.svd(G_e * s, compute_uv=False)

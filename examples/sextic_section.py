@@ -62,7 +62,7 @@ from l_e/h = 15 (HB2n-40p's slender stretch family: [6, 7] 0.35 at 15, 0.15 at 3
 
     .venv/bin/python -m studies card HB2n-84p --import examples.sextic_section
 """
-from ancf.elements import ELEMENTS, ElementSpec, register_element
+from ancf.elements import ELEMENTS, SLENDER, ElementSpec, register_element, rules
 
 
 def _tensor(nx: int, ny: int) -> tuple[str, ...]:
@@ -76,6 +76,5 @@ if "HB2n-84p" not in ELEMENTS:
         nodes=(0.0, 1.0),
         kinds=tuple(f"r{'_' if (a or b) else ''}{'x' * a}{'y' * b}" for b in range(7) for a in range(3)),
         reference="harness example: quintic Hermite along, sextic across, pressure {1..x^3} x {1, y, y^2} + y^3",
-        quadrature=((False, 15.0, (8, 7)), (False, 0.05, (6, 7)), (False, 0.0, (6, 8)),
-                    (True, 15.0, (8, 7)), (True, 0.05, (6, 7)), (True, 0.0, (6, 8))),
+        quadrature=rules((SLENDER, (8, 7)), (0.05, (6, 7)), (0.0, (6, 8))),
         pressure=_tensor(4, 3) + ("x^0*y^3",)))
