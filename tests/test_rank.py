@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from ancf.build import build_material
-from ancf.elements import ELEMENTS, get_element
+from ancf.elements import ELEMENTS, SLENDER, get_element
 from ancf.mesh import Mesh
 from ancf.beam import BeamModel
 from ancf.quadrature import gauss
@@ -89,7 +89,6 @@ def test_every_registered_element_has_a_default():
         assert all(n >= 1 for n in default_quadrature(el, False, 1.0))
 
 
-SLENDER = 15.0     # l_e / h from which the elements exact along declare more points along
 LOCK_FREE = ("HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", pytest.param("HB2n-60p", marks=pytest.mark.slow))
 
 
