@@ -99,19 +99,41 @@ def test_work_precision_keeps_finished_points_and_skips_them_on_a_rerun(tmp_path
         calls.append(args)
         return {"status": "converged", "reason": None, "time_s": 0.01, "cpu_s": 0.01, "tip_history": None}
     monkeypatch.setattr(wp, "ours", lambda element, n, dt, rho, rep, scene: fake("ancf", element, n, dt, scene))
-    monkeypatch.setattr(wp, "exudyn", lambda n, dt, rho, rep, py, scene: fake("exudyn", n, dt, scene))
+    monkeypatch.setattr(wp, "exudyn", lambda n, dt, rho, rep, py, scene, element: fake("exudyn", element, n, dt,
+                                                                                       scene))
     a = SimpleNamespace(out=tmp_path, force=False, counts=[4, 8], steps_per_output=[20], element=["HB2n-12"],
                         rho_inf=0.5, repeats=1, peer_python=None, scene="pendulum")
-    assert len(wp.run(a)) == 4 and len(calls) == 4
-    assert len(wp.run(a)) == 4 and len(calls) == 4          # nothing recomputed
+    # each point: the cable with Newton and with one linear solve per step, then ours
+    assert len(wp.run(a)) == 6 and len(calls) == 6
+    assert [c[1] for c in calls[:3]] == ["ANCFCable2D", "ANCFCable2D-linear", "HB2n-12"]
+    assert len(wp.run(a)) == 6 and len(calls) == 6          # nothing recomputed
     a.force = True
-    assert len(wp.run(a)) == 4 and len(calls) == 8
+    assert len(wp.run(a)) == 6 and len(calls) == 12
     # a second scene: same points, its own records, keyed by scene; --force redoes only its own
     a.scene = "thick"
     recs = wp.run(a)
-    assert len(recs) == 8 and len(calls) == 12 and {r["scene"] for r in recs} == {"pendulum", "thick"}
+    assert len(recs) == 12 and len(calls) == 18 and {r["scene"] for r in recs} == {"pendulum", "thick"}
     assert {r["height"] for r in recs if r["scene"] == "thick"} == {0.020} and calls[-1][-1] == "thick"
-    assert len(wp.run(a)) == 8 and len(calls) == 16 and pr.scenes_of(wp.run(a)) == ["pendulum", "thick"]
+    assert len(wp.run(a)) == 12 and len(calls) == 24 and pr.scenes_of(wp.run(a)) == ["pendulum", "thick"]
+
+
+def test_the_cables_cheapest_run_is_taken_over_both_its_newtons_and_named():
+    """A linear-solve cable run that reaches the accuracy for less time is the cable's
+    cheapest, and the tables say which of its two settings it is."""
+    from studies.peers import anatomy, precision_report as pr
+
+    def rec(solver, element, n, t, e):
+        return {"scene": "pendulum", "solver": solver, "element": element, "elements": n, "dt": 1e-2,
+                "rho_inf": 0.5, "status": "converged", "time_s": t, "time_runs_s": [t], "error": e,
+                "newton_iterations": 50}
+    recs = [rec("ancf", "HB2n-16", 8, 0.01, 0.005), rec("exudyn", "ANCFCable2D", 4, 0.02, 0.004),
+            rec("exudyn", "ANCFCable2D-linear", 4, 0.008, 0.006)]
+    assert pr.cheapest(recs, "exudyn", None, 0.01)["element"] == "ANCFCable2D-linear"
+    assert pr.cheapest(recs, "exudyn", None, 0.005)["element"] == "ANCFCable2D"       # linear misses 0.5 %
+    text = pr.report_markdown(recs)
+    assert "| 1 % | HB2n-16 x 8, dt 10 ms | 0.0100 | 0.500 | 4 elements, linear, dt 10 ms | 0.0080 | 0.600 | 1.25 |" in text
+    assert "| | cable: cable x 4, linear, dt 10 ms | 50 | 50 | 1.00 |" in text
+    assert anatomy.factors(recs[2])["per_step"] == 1.0
 
 
 def test_work_precision_report_has_a_section_per_scene_with_its_ratios():
@@ -148,7 +170,7 @@ def test_work_precision_retimes_the_deciding_points_in_alternating_rounds(tmp_pa
         calls.append(solver)
         return {"time_s": next(times)}
     monkeypatch.setattr(wp, "ours", lambda element, n, dt, rho, rep, scene: fake("ancf"))
-    monkeypatch.setattr(wp, "exudyn", lambda n, dt, rho, rep, py, scene: fake("exudyn"))
+    monkeypatch.setattr(wp, "exudyn", lambda n, dt, rho, rep, py, scene, element: fake("exudyn"))
 
     def rec(solver, element, n, t, e):
         return {"scene": "pendulum", "solver": solver, "element": element, "elements": n, "dt": 1e-3,
@@ -347,3 +369,24 @@ def test_work_precision_asks_whether_an_element_could_meet_a_missed_target():
                          "rounds'.")
     met = [(0.01, best, cable, 0.4, "rounds"), (0.003, best, cable, 7.5, "grid"), (0.001, None, None, None, None)]
     assert anatomy.reach_lines(coarse + [cable], met) == []       # met, no target at 0.3 %, no cable time
+
+
+def test_a_run_whose_tip_leaves_the_pendulum_is_diverged_whatever_its_solver_says():
+    """Exudyn's linear-solve runs on fine meshes at 10 ms report success with tips 1e10 L
+    from the pin: such a run is scored "diverged", with no error, and counts for nothing."""
+    from studies.peers import precision_report as pr, work_precision as wp
+    from studies.pendulum_cases import LENGTH
+
+    def rec(tips):
+        return {"scene": "pendulum", "solver": "exudyn", "element": "ANCFCable2D-linear", "elements": 64,
+                "dt": 1e-2, "rho_inf": 0.5, "status": "converged", "time_s": 0.001, "time_runs_s": [0.001],
+                "tip_history": [{"t": 0.1 * k, "x": x, "y": y} for k, (x, y) in enumerate(tips, 1)]}
+    sane = [(0.9 * LENGTH, -0.3 * LENGTH)] * 5
+    assert wp.left([{"x": x, "y": y} for x, y in sane]) is None
+    ok = wp.score(rec(sane))
+    assert ok["status"] == "converged" and ok["error"] is not None and ok["error"] < 2
+    for bad in ((1e9, 2e12), (float("nan"), 0.0), (2.1 * LENGTH, 0.0)):
+        r = wp.score(rec(sane[:4] + [bad]))
+        assert r["status"] == "diverged" and r["error"] is None and "from the pin" in r["reason"]
+        assert pr.cheapest([r], "exudyn", None, 1.0) is None
+    assert wp.score(rec(sane[:4] + [(1.9 * LENGTH, 0.0)]))["status"] == "converged"     # far off, but in reach

@@ -23,6 +23,8 @@ from __future__ import annotations
 
 from contract import paper
 
+from .precision_grid import cable_mode
+
 TARGET = 0.5                    # issue 20: our cheapest run at most half of Exudyn's time ...
 TARGET_ACCURACIES = (0.01, 0.001)   # ... at 1 % and at 0.1 %
 
@@ -52,7 +54,8 @@ def _run(r: dict | None) -> list[str]:
     if r is None:
         return ["none"] + ["-"] * 5
     f = factors(r)
-    name = f"{r['element']} x {r['elements']}" if r["solver"] == "ancf" else f"cable x {r['elements']}"
+    name = (f"{r['element']} x {r['elements']}" if r["solver"] == "ancf"
+            else f"cable x {r['elements']}{cable_mode(r['element'])}")
     it = f["iterations"]
     return [f"{name}, dt {r['dt'] * 1e3:g} ms", str(f["steps"]), str(it) if it else "-",
             f"{f['per_step']:.2f}" if it else "-", f"{1e6 * f['per_iteration_s']:.1f}" if it else "-",
@@ -181,7 +184,8 @@ def _fewest_elements(recs: list[dict], n: int, steps: list[float]) -> str:
                 and r.get("error") is not None and r.get("time_s")]
         if mine:
             b = min(mine, key=lambda r: r["error"])
-            what = f"{b['element']} x {b['elements']}" if solver == "ancf" else f"{b['elements']} elements"
+            what = (f"{b['element']} x {b['elements']}" if solver == "ancf"
+                    else f"{b['elements']} elements{cable_mode(b['element'])}")
             parts.append(f"{name} {100 * b['error']:.2f} % ({what}, {b['dt'] * 1e3:g} ms, {b['time_s'] * 1e3:.1f} ms)")
     return (f"On {n} elements or fewer at {'these steps' if len(steps) > 1 else 'that step'}, the smallest error of "
             "any run, at any cost: " + "; ".join(parts) + ".") if parts else ""

@@ -91,14 +91,14 @@ def parse_peer_output(stdout: str) -> dict:
 
 
 def peer(dt: float, rho_inf: float, repeats: int = 5, python: Path = PEER_PYTHON,
-         module: str = "fast", elements: int = 32, height: float | None = None) -> dict:
+         module: str = "fast", elements: int = 32, height: float | None = None, newton: str = "modified") -> dict:
     """Run the Exudyn script in .venv-peers (in a scratch directory, so that nothing it
     might write lands in the repository) and return its JSON output."""
     if not Path(python).exists():
         raise SystemExit(f"{python} not found: run `bash tools/setup_peers.sh` first")
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME")}
     cmd = [str(python), str(PEER_SCRIPT), "--dt", repr(dt), "--rho-inf", repr(rho_inf),
-           "--repeats", str(repeats), "--module", module, "--elements", str(elements)]
+           "--repeats", str(repeats), "--module", module, "--elements", str(elements), "--newton", newton]
     if height is not None:
         cmd += ["--height", repr(height)]
     with tempfile.TemporaryDirectory(prefix="exudyn-peer-") as cwd:

@@ -15,7 +15,9 @@ MarkerBodyMass + LoadMassProportional; released from horizontal at rest; 0.5 s w
 fixed step.
 
 Settings ("fastest fair"): generalized-alpha with spectral radius = rho_inf, modified
-Newton, EigenSparse linear solver, fixed step (adaptiveStep off: a failed step stops the
+Newton (``--newton linear``: one linear solve per step instead, Exudyn's
+``newton.active = False``, which takes a fresh Jacobian at each step's predictor; the
+work-precision bench runs both), EigenSparse linear solver, fixed step (adaptiveStep off: a failed step stops the
 run instead of being silently cut), no solution / restart / sensor files, verbose off,
 one thread. The compiled module is Exudyn's `fast` build (no range checks, AVX2) when the
 CPU has AVX2, else the regular one (``--module`` chooses).
@@ -43,10 +45,14 @@ GRAVITY = (0.0, -9.81)                 # m/s^2
 ELEMENTS = 32
 T_END = 0.5                            # s
 OUTPUT_TIMES = (0.1, 0.2, 0.3, 0.4, 0.5)
+NEWTON = ("modified", "linear")        # --newton: Exudyn's Newton, or one linear solve per step
 
 
-def build(exu, dt: float, rho_inf: float, elements: int = ELEMENTS):
-    """A fresh SystemContainer with the assembled pendulum, its settings and the tip sensor."""
+def build(exu, dt: float, rho_inf: float, elements: int = ELEMENTS, newton: str = "modified"):
+    """A fresh SystemContainer with the assembled pendulum, its settings and the tip sensor.
+    ``newton`` (:data:`NEWTON`): "modified", modified Newton to Exudyn's default tolerances;
+    "linear", one linear solve per step (``newton.active = False``: the step's equations
+    linearised at its predictor, no convergence test)."""
     from exudyn.itemInterface import (CoordinateConstraint, LoadMassProportional, MarkerBodyMass,
                                       MarkerNodeCoordinate, NodePoint2DSlope1, NodePointGround,
                                       ObjectANCFCable2D, SensorNode, VCoordinateConstraint,
@@ -80,7 +86,11 @@ def build(exu, dt: float, rho_inf: float, elements: int = ELEMENTS):
     ti.generalizedAlpha.useNewmark = False
     ti.generalizedAlpha.useIndex2Constraints = False
     ti.generalizedAlpha.computeInitialAccelerations = True
-    ti.newton.useModifiedNewton = True
+    # linear: one solve per step with the Jacobian at the step's predictor (newton.active =
+    # False; with modified Newton on, the first step's Jacobian would serve every step and
+    # the run diverges: measured, thick scene, 2 cables, 10 ms)
+    ti.newton.useModifiedNewton = newton != "linear"
+    ti.newton.active = newton != "linear"
     ti.startTime = 0.0
     ti.endTime = T_END
     ti.numberOfSteps = int(round(T_END / dt))
@@ -115,7 +125,7 @@ def settings_summary(exu, s, steps: int, dt: float, elements: int = ELEMENTS) ->
         "computeInitialAccelerations": bool(ti.generalizedAlpha.computeInitialAccelerations),
         "linearSolver": str(s.linearSolver.solverType),
         "reuseAnalyzedPattern": bool(s.linearSolver.reuseAnalyzedPattern),
-        "newton": {"useModifiedNewton": bool(nw.useModifiedNewton),
+        "newton": {"active": bool(nw.active), "useModifiedNewton": bool(nw.useModifiedNewton),
                    "relativeTolerance": nw.relativeTolerance, "absoluteTolerance": nw.absoluteTolerance,
                    "maxIterations": nw.maxIterations,
                    "maxModifiedNewtonIterations": nw.maxModifiedNewtonIterations,
@@ -165,6 +175,9 @@ def main(argv=None) -> int:
     p.add_argument("--elements", type=int, default=ELEMENTS, help=f"cable elements (default {ELEMENTS})")
     p.add_argument("--height", type=float, default=H, help=f"cross-section height h, m (default {H}; the "
                    "work-precision's thick scene: 0.02)")
+    p.add_argument("--newton", choices=NEWTON, default="modified",
+                   help="modified: modified Newton to Exudyn's default tolerances (default); linear: one linear "
+                   "solve per step (newton.active = False)")
     p.add_argument("--module", choices=("fast", "regular"), default="fast",
                    help="Exudyn compiled module: fast (no range checks, AVX2, if the CPU has it) or regular")
     p.add_argument("--kernels", action="store_true", help="time the force and Jacobian calls instead "
@@ -188,7 +201,7 @@ def main(argv=None) -> int:
     tips = None
     for rep in range(a.repeats + 1):               # rep 0: untimed warm-up
         t0 = time.perf_counter()
-        SC, mbs, s, tip = build(exu, a.dt, a.rho_inf, a.elements)
+        SC, mbs, s, tip = build(exu, a.dt, a.rho_inf, a.elements, a.newton)
         t1, c1 = time.perf_counter(), time.process_time()
         ok = mbs.SolveDynamic(s)
         t2, c2 = time.perf_counter(), time.process_time()

@@ -12,7 +12,7 @@ import statistics
 from pathlib import Path
 
 from .anatomy import anatomy_lines, reach_lines, step_error_lines
-from .precision_grid import ACCURACIES, MIN_REPEATS, NAME, SCENE, SCENES
+from .precision_grid import ACCURACIES, MIN_REPEATS, NAME, SCENE, SCENES, cable_mode
 
 
 def read(path: Path) -> list[dict]:
@@ -159,7 +159,7 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = ()) -> lis
         o, p = cheapest(recs, "ancf", None, a), cheapest(recs, "exudyn", None, a)
         fo = (f"{o['element']} x {o['elements']}, dt {o['dt'] * 1e3:g} ms | {o['time_s']:.4f} | "
               f"{100 * o['error']:.3f}") if o else "none | - | -"
-        fp = (f"{p['elements']} elements, dt {p['dt'] * 1e3:g} ms | {p['time_s']:.4f} | "
+        fp = (f"{p['elements']} elements{cable_mode(p['element'])}, dt {p['dt'] * 1e3:g} ms | {p['time_s']:.4f} | "
               f"{100 * p['error']:.3f}") if p else "none | - | -"
         ratio = (f"{o['time_s'] / p['time_s']:.2f} | {ratio_range(o, p)}" if o and p
                  else "- (ours reaches it, the cable does not) | -" if o else "- | -")
@@ -214,7 +214,10 @@ def report_markdown(recs: list[dict], rounds: list[dict] = ()) -> str:
              "t = 0.1 ... 0.5 s of |r - r_ref| / L against the scene's converged continuum plane-stress Yeoh pendulum; "
              "time: median warm solve wall time, both solvers in one run (each point: Exudyn's runs, then ours), "
              "one thread. A run counts for an accuracy only if every finer step of its mesh reaches it too (no "
-             "accuracy by cancellation of step and mesh errors). Ratios below 1: ours is cheaper.",
+             "accuracy by cancellation of step and mesh errors). Ratios below 1: ours is cheaper. The cable runs "
+             "with modified Newton (ANCFCable2D) and with one linear solve per step (ANCFCable2D-linear: Exudyn's "
+             "newton.active = False, no convergence test); its cheapest run at an accuracy is taken over "
+             "both (marked 'linear' where it is the latter).",
              ""]
     for scene in scenes_of(recs):
         lines += scene_markdown([r for r in recs if r.get("scene", SCENE) == scene], scene,
@@ -264,16 +267,18 @@ def make_figure(recs: list[dict], scene: str = SCENE):
     import matplotlib.pyplot as plt
 
     els = list(dict.fromkeys(r["element"] for r in recs if r["solver"] == "ancf"))
+    cables = list(dict.fromkeys(r["element"] for r in recs if r["solver"] == "exudyn"))
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
-    markers = {"ANCFCable2D": "s", **{e: m for e, m in zip(els, itertools.cycle("o^vDpXh*P<>"))}}
-    for solver, element in [("exudyn", "ANCFCable2D")] + [("ancf", e) for e in els]:
+    markers = {**{e: m for e, m in zip(cables, itertools.cycle("sx+"))},
+               **{e: m for e, m in zip(els, itertools.cycle("o^vDpXh*P<>"))}}
+    for solver, element in [("exudyn", e) for e in cables] + [("ancf", e) for e in els]:
         for n in sorted({r["elements"] for r in recs if (r["solver"], r["element"]) == (solver, element)}):
             ser = sorted([r for r in recs if (r["solver"], r["element"], r["elements"]) == (solver, element, n)
                           and r["error"] is not None and r["time_s"]], key=lambda r: -r["dt"])
             if ser:
                 ax.plot([r["time_s"] for r in ser], [r["error"] for r in ser], marker=markers[element], ms=3, lw=0.8,
                         ls="--" if solver == "exudyn" else "-",
-                        label=f"{'Exudyn cable' if solver == 'exudyn' else 'ours ' + element} x {n}")
+                        label=f"{'Exudyn ' + element if solver == 'exudyn' else 'ours ' + element} x {n}")
     for a in ACCURACIES:
         ax.axhline(a, color="grey", lw=0.6, ls=":")
     ax.set_xscale("log")

@@ -8,7 +8,10 @@ work-precision diagram, timed side by side in one run (``make bench-peers``, iss
 Grid: the element counts (2 to 64: at 1 % a run is a few elements, and the cable holds 1 % with
 2 or 4, so the grid starts there for both sides), and the step ladder dt = 0.1 s / k for
 k = 10, 20, 40, 80, 160, 320 (10 ms halving to 0.3125 ms: every step lands on the output
-times 0.1 ... 0.5 s, as Exudyn's fixed step must). Each (solver, element, count, step) is one run: the median of
+times 0.1 ... 0.5 s, as Exudyn's fixed step must). The cable runs twice at each point, as
+two "elements" (:data:`PEER_ELEMENTS`): ``ANCFCable2D``, modified Newton, and
+``ANCFCable2D-linear``, one linear solve per step; its cheapest run at an accuracy is
+taken over both. Each (solver, element, count, step) is one run: the median of
 ``--repeats`` warm runs (ours: ``wall_s`` of :func:`ancf.simulation.run_scene`, the solve
 alone; Exudyn: ``SolveDynamic`` alone, see exudyn_pendulum.py), Exudyn's and ours in
 turn for each point; the runs' times are kept for their spread. Neither side has an
@@ -47,17 +50,19 @@ for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 import argparse
 import importlib
 import json
+import math
 import statistics
 import sys
 import time
 from pathlib import Path
 
 from .compare import PEER_PYTHON, peer
-from .precision_grid import (ACCURACIES, COUNTS, ELEMENTS, ENERGY_GUARD, MIN_REPEATS, NAME, SCENE, SCENES,
-                             STEPS_PER_OUTPUT)
+from .precision_grid import (ACCURACIES, COUNTS, ELEMENTS, ENERGY_GUARD, MIN_REPEATS, NAME, PEER_ELEMENTS, SCENE,
+                             SCENES, STEPS_PER_OUTPUT)
 from .precision_report import cheapest, read, report, round_pair, round_ratios, rounds_of, rounds_path
 
 ROOT = Path(__file__).resolve().parents[2]
+REACH = 2.0     # a pinned pendulum's tip stays within about L (1 + its stretch) of the pin: 2 L is out of it
 
 
 def key(r: dict) -> tuple:
@@ -91,9 +96,12 @@ def ours(element: str, n: int, dt: float, rho_inf: float, repeats: int, scene: s
             "tip_history": last.get("tip_history") if ok else None}
 
 
-def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path, scene: str = SCENE) -> dict:
+def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path, scene: str = SCENE,
+           element: str = "ANCFCable2D") -> dict:
+    """The cable's run of a point; ``element``, a key of :data:`PEER_ELEMENTS`, names its Newton."""
     try:
-        p = peer(dt, rho_inf, repeats, python, elements=n, height=SCENES[scene]["height"])
+        p = peer(dt, rho_inf, repeats, python, elements=n, height=SCENES[scene]["height"],
+                 newton=PEER_ELEMENTS[element])
     except RuntimeError as e:
         return {"status": "failed", "reason": str(e).splitlines()[0][:300], "time_s": None, "cpu_s": None,
                 "tip_history": None}
@@ -140,7 +148,7 @@ def run(a) -> list[dict]:
     for n in a.counts:
         for k in a.steps_per_output:
             dt = 0.1 / k
-            todo = [("exudyn", "ANCFCable2D")] + [("ancf", e) for e in a.element]
+            todo = [("exudyn", e) for e in PEER_ELEMENTS] + [("ancf", e) for e in a.element]
             for solver, element in todo:
                 base = {"solver": solver, "scene": a.scene, "height": SCENES[a.scene]["height"], "element": element, "elements": n, "dt": dt,
                         "rho_inf": a.rho_inf,
@@ -149,12 +157,9 @@ def run(a) -> list[dict]:
                     continue
                 t0 = time.perf_counter()
                 load0 = os.getloadavg()[0]
-                res = (exudyn(n, dt, a.rho_inf, a.repeats, a.peer_python, a.scene) if solver == "exudyn"
+                res = (exudyn(n, dt, a.rho_inf, a.repeats, a.peer_python, a.scene, element) if solver == "exudyn"
                        else ours(element, n, dt, a.rho_inf, a.repeats, a.scene))
-                rec = {**base, **res, "error": error(res.get("tip_history"), a.scene),
-                       "reference_error": reference(a.scene)[1],
-                       "error_by_pin_mm": errors_by_pin(res.get("tip_history"), a.scene), "repeats": a.repeats,
-                       "host_load": [load0, os.getloadavg()[0]]}
+                rec = score({**base, **res, "repeats": a.repeats, "host_load": [load0, os.getloadavg()[0]]})
                 with path.open("a") as f:
                     f.write(json.dumps(rec) + "\n")
                 e = rec["error"]
@@ -183,7 +188,7 @@ def retime(recs: list[dict], a, path: Path) -> list[dict]:
         if have is None or a.force:
             rounds = []
             for _ in range(a.rounds):
-                pe = exudyn(p["elements"], p["dt"], a.rho_inf, a.repeats, a.peer_python, a.scene)
+                pe = exudyn(p["elements"], p["dt"], a.rho_inf, a.repeats, a.peer_python, a.scene, p["element"])
                 ou = ours(o["element"], o["elements"], o["dt"], a.rho_inf, a.repeats, a.scene)
                 rounds.append({"exudyn_s": pe["time_s"], "ours_s": ou["time_s"]})
             have = {"scene": a.scene, "accuracy": acc, **round_pair(o, p), "repeats": a.repeats, "rounds": rounds,
@@ -207,15 +212,38 @@ def errors_by_pin(tips: list[dict] | None, scene: str) -> dict[str, float] | Non
     return {f"{1e3 * pin:g}": max(tip_errors(t, ref).values()) for pin, ref in sorted(pin_references().items())}
 
 
+def left(tips: list[dict] | None) -> float | None:
+    """The tip's largest distance from the pin over the outputs, / L, where it is more than
+    :data:`REACH` (or not finite): the run has left the pendulum whatever its solver says.
+    None: it has not."""
+    from ..pendulum_cases import LENGTH
+
+    d = [math.hypot(h["x"], h["y"]) / LENGTH for h in tips or []]
+    worst = max(d, key=lambda x: x if math.isfinite(x) else math.inf, default=None)
+    return worst if worst is not None and not worst <= REACH else None
+
+
+def score(r: dict) -> dict:
+    """``r`` with its error against its scene's current reference, the reference's estimate
+    and the errors by pin, from its tip history; a run whose tip :func:`left` the pendulum
+    is "diverged" (Exudyn's linear-solve runs on fine meshes at 10 ms report success with
+    tips 1e10 L away), with no error: it counts for no accuracy."""
+    sc = r.get("scene", SCENE)
+    tips = r.get("tip_history")
+    out = left(tips)
+    if out is not None:
+        r.update(status="diverged", reason=f"the tip reached {out:.3g} L from the pin (its solver reported success)",
+                 error=None, error_by_pin_mm=None)
+    else:
+        r.update(error=error(tips, sc), error_by_pin_mm=errors_by_pin(tips, sc))
+    r["reference_error"] = reference(sc)[1]
+    return r
+
+
 def rescore(path: Path) -> list[dict]:
-    """Every record's error (and the reference's estimate) recomputed from its tip history
-    against its scene's current reference; no solver runs (``--rescore``)."""
-    recs = read(path)
-    for r in recs:
-        sc = r.get("scene", SCENE)
-        r["error"] = error(r.get("tip_history"), sc)
-        r["reference_error"] = reference(sc)[1]
-        r["error_by_pin_mm"] = errors_by_pin(r.get("tip_history"), sc)
+    """Every record :func:`score`-d again from its tip history against its scene's current
+    reference; no solver runs (``--rescore``)."""
+    recs = [score(r) for r in read(path)]
     path.write_text("".join(json.dumps(r) + "\n" for r in recs))
     return recs
 
