@@ -103,18 +103,34 @@ def test_work_precision_keeps_finished_points_and_skips_them_on_a_rerun(tmp_path
                                                                                        scene))
     a = SimpleNamespace(out=tmp_path, force=False, counts=[4, 8], steps_per_output=[20], element=["HB2n-12"],
                         rho_inf=0.5, repeats=1, peer_python=None, scene="pendulum")
-    # each point: the cable with Newton and with one linear solve per step, then ours
-    assert len(wp.run(a)) == 6 and len(calls) == 6
-    assert [c[1] for c in calls[:3]] == ["ANCFCable2D", "ANCFCable2D-linear", "HB2n-12"]
-    assert len(wp.run(a)) == 6 and len(calls) == 6          # nothing recomputed
+    # each point: the cable with Newton and with one linear solve per step, then ours at its
+    # defaults and at the loosest Newton tolerance
+    assert len(wp.run(a)) == 8 and len(calls) == 8
+    assert [c[1] for c in calls[:4]] == ["ANCFCable2D", "ANCFCable2D-linear", "HB2n-12", "HB2n-12 (rtol 1e-3)"]
+    assert len(wp.run(a)) == 8 and len(calls) == 8          # nothing recomputed
     a.force = True
-    assert len(wp.run(a)) == 6 and len(calls) == 12
+    assert len(wp.run(a)) == 8 and len(calls) == 16
     # a second scene: same points, its own records, keyed by scene; --force redoes only its own
     a.scene = "thick"
     recs = wp.run(a)
-    assert len(recs) == 12 and len(calls) == 18 and {r["scene"] for r in recs} == {"pendulum", "thick"}
+    assert len(recs) == 16 and len(calls) == 24 and {r["scene"] for r in recs} == {"pendulum", "thick"}
     assert {r["height"] for r in recs if r["scene"] == "thick"} == {0.020} and calls[-1][-1] == "thick"
-    assert len(wp.run(a)) == 12 and len(calls) == 24 and pr.scenes_of(wp.run(a)) == ["pendulum", "thick"]
+    assert len(wp.run(a)) == 16 and len(calls) == 32 and pr.scenes_of(wp.run(a)) == ["pendulum", "thick"]
+
+
+def test_our_settings_label_the_element_and_reach_the_scene():
+    """'HB2n-20xyp (rtol 1e-3)' runs HB2n-20xyp with newton_rtol = 1e-3; the bare name runs
+    the defaults; the scene built from either is valid."""
+    from contract.scene import scene_from_dict
+    from studies.peers import work_precision as wp
+    from studies.peers.precision_grid import our_element
+
+    assert our_element("HB2n-20xyp (rtol 1e-3)") == ("HB2n-20xyp", {"newton_rtol": 1e-3})
+    assert our_element("HB2n-20xyp") == ("HB2n-20xyp", {})
+    loose = scene_from_dict(wp.scene_dict("HB2n-20xyp (rtol 1e-3)", 4, 0.01, 0.5, "thick"))
+    plain = scene_from_dict(wp.scene_dict("HB2n-20xyp", 4, 0.01, 0.5, "thick"))
+    assert loose.analysis.newton_rtol == 1e-3 and plain.analysis.newton_rtol == 1e-8
+    assert loose.ancf.element == plain.ancf.element == "HB2n-20xyp"
 
 
 def test_the_cables_cheapest_run_is_taken_over_both_its_newtons_and_named():

@@ -9,9 +9,11 @@ Grid: the element counts (2 to 64: at 1 % a run is a few elements, and the cable
 2 or 4, so the grid starts there for both sides), and the step ladder dt = 0.1 s / k for
 k = 10, 20, 40, 80, 160, 320 (10 ms halving to 0.3125 ms: every step lands on the output
 times 0.1 ... 0.5 s, as Exudyn's fixed step must). The cable runs twice at each point, as
-two "elements" (:data:`PEER_ELEMENTS`): ``ANCFCable2D``, modified Newton, and
+two "elements" (:data:`CABLE_SETTINGS`): ``ANCFCable2D``, modified Newton, and
 ``ANCFCable2D-linear``, one linear solve per step; its cheapest run at an accuracy is
-taken over both. Each (solver, element, count, step) is one run: the median of
+taken over both. Ours runs twice too (:data:`OUR_SETTINGS`): at its defaults and, as
+``<element> (rtol 1e-3)``, at the loosest Newton tolerance a scene accepts. Each (solver,
+element, count, step) is one run: the median of
 ``--repeats`` warm runs (ours: ``wall_s`` of :func:`ancf.simulation.run_scene`, the solve
 alone; Exudyn: ``SolveDynamic`` alone, see exudyn_pendulum.py), Exudyn's and ours in
 turn for each point; the runs' times are kept for their spread. Neither side has an
@@ -57,8 +59,8 @@ import time
 from pathlib import Path
 
 from .compare import PEER_PYTHON, peer
-from .precision_grid import (ACCURACIES, COUNTS, ELEMENTS, ENERGY_GUARD, MIN_REPEATS, NAME, PEER_ELEMENTS, SCENE,
-                             SCENES, STEPS_PER_OUTPUT)
+from .precision_grid import (ACCURACIES, CABLE_SETTINGS, COUNTS, ELEMENTS, ENERGY_GUARD, MIN_REPEATS, NAME,
+                             OUR_SETTINGS, SCENE, SCENES, STEPS_PER_OUTPUT, our_element)
 from .precision_report import cheapest, read, report, round_pair, round_ratios, rounds_of, rounds_path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -71,12 +73,15 @@ def key(r: dict) -> tuple:
 
 def scene_dict(element: str, n: int, dt: float, rho_inf: float, scene: str = SCENE) -> dict:
     """Our run of a point: the scene's plane-stress Yeoh pendulum on n elements, without
-    the energy guard (Exudyn's run has none: :data:`ENERGY_GUARD`)."""
+    the energy guard (Exudyn's run has none: :data:`ENERGY_GUARD`); ``element`` is a label
+    of :func:`our_element` (an element, and the settings its suffix names)."""
     from ..pendulum_cases import pendulum_dict
 
-    d = pendulum_dict(element, n, "plane-stress", dt, rho_inf=rho_inf)
+    name, settings = our_element(element)
+    d = pendulum_dict(name, n, "plane-stress", dt, rho_inf=rho_inf)
     d["beam"]["height"] = SCENES[scene]["height"]
     d["analysis"]["energy_limit"] = "inf"
+    d["analysis"].update(settings)
     return d
 
 
@@ -98,10 +103,10 @@ def ours(element: str, n: int, dt: float, rho_inf: float, repeats: int, scene: s
 
 def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path, scene: str = SCENE,
            element: str = "ANCFCable2D") -> dict:
-    """The cable's run of a point; ``element``, a key of :data:`PEER_ELEMENTS`, names its Newton."""
+    """The cable's run of a point; ``element``, a key of :data:`CABLE_SETTINGS`, names its Newton."""
     try:
         p = peer(dt, rho_inf, repeats, python, elements=n, height=SCENES[scene]["height"],
-                 newton=PEER_ELEMENTS[element])
+                 newton=CABLE_SETTINGS[element])
     except RuntimeError as e:
         return {"status": "failed", "reason": str(e).splitlines()[0][:300], "time_s": None, "cpu_s": None,
                 "tip_history": None}
@@ -148,7 +153,8 @@ def run(a) -> list[dict]:
     for n in a.counts:
         for k in a.steps_per_output:
             dt = 0.1 / k
-            todo = [("exudyn", e) for e in PEER_ELEMENTS] + [("ancf", e) for e in a.element]
+            todo = ([("exudyn", e) for e in CABLE_SETTINGS]
+                    + [("ancf", e + x) for e in a.element for x in OUR_SETTINGS])
             for solver, element in todo:
                 base = {"solver": solver, "scene": a.scene, "height": SCENES[a.scene]["height"], "element": element, "elements": n, "dt": dt,
                         "rho_inf": a.rho_inf,
