@@ -86,6 +86,7 @@ def test_3d_with_fixed_side_faces_is_the_2d_plane_strain_solution(law):
 
 
 # -- parallel: 1 rank against 2 ranks ----------------------------------------------------------
+@pytest.mark.mpi
 def test_two_ranks_give_the_one_rank_tip_and_one_record(monkeypatch):
     """The same coarse level (16 x 1 x 1, full load path, 63 Newton iterations) in this
     process (1 rank) and as a study case with ``mpi_ranks = 2`` (studies.engine.worker ->

@@ -81,6 +81,7 @@ def test_3d_iterative_tip_is_the_direct_one(monkeypatch):
     assert _rel(it["tip"], direct["tip"]) < TIP_RTOL
 
 
+@pytest.mark.mpi
 def test_3d_iterative_on_two_ranks(monkeypatch):
     """The same coarse case as a study case with mpi_ranks = 2 (mpiexec -n 2): the
     index sets, near-nullspace and Schur block are built from the owned dofs of each

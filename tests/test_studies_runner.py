@@ -242,6 +242,7 @@ def test_timed_cases_run_serially_in_this_process_after_a_warm_up(tmp_path):
     assert "timing" not in p
 
 
+@pytest.mark.mpi
 @pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
 def test_a_tiny_study_runs_through_mpiexec(tmp_path):
     cat, out = _catalog(tmp_path), tmp_path / "out"
