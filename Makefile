@@ -11,8 +11,8 @@ setup:
 
 # two workers (pytest-xdist, Debian's python3-pytest-xdist), each test file on one worker
 # (a file's module-scoped fixtures, e.g. the tiny studies, run once); TEST_WORKERS=0: serial.
-# Then the tests marked mpi, alone: ranks meeting in thousands of collectives starve beside
-# another worker on 2 cores (a 2-rank case of 4 s alone took 50 s to over 120 s beside one).
+# Then the tests marked mpi, alone: ranks that wait on each other at every global sum starve
+# beside another worker on 2 cores (a 2-rank test of 4 s alone took 50 s to over 120 s).
 # Both phases run; the target fails if either did.
 TEST_WORKERS ?= 2
 test: setup
