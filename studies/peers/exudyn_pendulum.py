@@ -19,8 +19,8 @@ Newton (``--newton linear``: one linear solve per step instead, Exudyn's
 ``newton.active = False``, which takes a fresh Jacobian at each step's predictor; the
 work-precision bench runs both), EigenSparse linear solver, fixed step (adaptiveStep off:
 a failed step stops the run instead of being silently cut), no solution / restart /
-sensor files, verbose off, one thread. The compiled module is Exudyn's `fast` build (no range checks, AVX2) when the
-CPU has AVX2, else the regular one (``--module`` chooses).
+sensor files, verbose off, one thread. The compiled module is Exudyn's `fast` build (no
+range checks, AVX2) when the CPU has AVX2, else the regular one (``--module`` chooses).
 
 Output: one JSON object on the LAST line of stdout (anything Exudyn prints comes before
 it): the settings, the build and solve wall times of ``--repeats`` warm repetitions

@@ -19,6 +19,7 @@ SCENES = {"pendulum": {"height": 0.005, "title": "the paper's slender pendulum, 
 # without its guard too (a run that gains energy shows it in its error, not by stopping).
 ENERGY_GUARD = "none"
 MIN_REPEATS = 5
+ELEMENTS = ("HB2n-12", "HB2n-16", "HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", "HB2n-60p")   # the paper's two and the lock-free ones with a pressure field
 # The cable's runs, by the label its records carry as their element -> its Newton
 # (exudyn_pendulum.py --newton). "linear" solves each step's equations linearised at the
 # predictor, once, with no convergence test: Exudyn offers it (newton.active =
@@ -52,5 +53,3 @@ def cable_mode(element: str) -> str:
     mode = CABLE_SETTINGS.get(element, element)
     return "" if mode == "modified" else f", {mode}"
 
-
-ELEMENTS = ("HB2n-12", "HB2n-16", "HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", "HB2n-60p")   # the paper's two and the lock-free ones with a pressure field
