@@ -8,10 +8,11 @@ module has changed, and runs the old code. Measured: after an edit of
 were removed (``tests/test_compiled_cache.py`` shows the same with two small modules).
 
 So :func:`configure` (called by ``ancf/__init__.py``, before any compiled function is
-defined) points numba at ``<base>/numba-<digest>``, the digest taken over every module
-of the package and of ``mechanics`` (whose step rules the step loop compiles): an edit
-anywhere starts a fresh cache (one compilation), and an unchanged package loads its
-compiled code as before. ``<base>`` is ``$NUMBA_CACHE_DIR``
+defined) points numba at ``<base>/numba-<digest>``, the digest taken over the code of
+every module of the package (but its front end: the command line, the compiled-code
+loader, the output writers) and of ``mechanics`` (whose step rules the step loop
+compiles), comments and docstrings left out: an edit of code anywhere starts a fresh
+cache (one compilation), and an unchanged package loads its compiled code as before. ``<base>`` is ``$NUMBA_CACHE_DIR``
 if set, else the package's ``__pycache__``, else (not writable) ``~/.cache/ancf``.
 numba has one cache directory per process, so other packages' cached functions defined
 after this call are stored there too.
@@ -26,17 +27,39 @@ PACKAGE = Path(__file__).resolve().parent
 # the sibling packages whose functions ancf's compiled code compiles or inlines
 # (the time loop's step rules are compiled into the step loop)
 COMPILED_FROM = ("mechanics",)
+# front-end modules that no compiled code imports: an edit of them keeps the cache
+FRONT_END = ("__main__.py", "cli.py", "output.py", "warm.py")
+
+
+def _normalised(source: bytes) -> bytes:
+    """The module's syntax tree without docstrings, comments or line numbers: an edit
+    of those keeps the compiled code (numba's cache still checks each file's time stamp,
+    so a file that changed recompiles its own functions)."""
+    import ast
+
+    tree = ast.parse(source)
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
+            body = node.body
+            if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
+                    and isinstance(body[0].value.value, str):
+                node.body = body[1:] or [ast.Pass()]
+    return ast.dump(tree, include_attributes=False).encode()
 
 
 def source_digest(package: Path = PACKAGE) -> str:
-    """sha256 over the names and bytes of the modules of ``package`` and of its sibling
-    packages named in :data:`COMPILED_FROM` (16 hex digits)."""
+    """sha256 over the names and normalised code of the modules of ``package`` (but its
+    front end, :data:`FRONT_END`) and of its sibling packages named in
+    :data:`COMPILED_FROM` (16 hex digits)."""
     h = hashlib.sha256()
     package = Path(package)
     siblings = [package.parent / name for name in COMPILED_FROM if (package.parent / name).is_dir()]
     for d in [package, *siblings]:
         for p in sorted(Path(d).rglob("*.py")):
-            h.update(d.name.encode() + b"/" + p.relative_to(d).as_posix().encode() + b"\0" + p.read_bytes() + b"\0")
+            if d == package and p.parent == package and p.name in FRONT_END:
+                continue
+            h.update(d.name.encode() + b"/" + p.relative_to(d).as_posix().encode() + b"\0"
+                     + _normalised(p.read_bytes()) + b"\0")
     return h.hexdigest()[:16]
 
 

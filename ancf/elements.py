@@ -159,13 +159,18 @@ class ElementSpec:
 
 
 ELEMENTS: dict[str, ElementSpec] = {}
+# element name -> the module that registered it (what a fresh process imports to have it)
+ORIGIN: dict[str, str] = {}
 
 
 def register_element(spec: ElementSpec) -> ElementSpec:
+    import sys
+
     if spec.name in ELEMENTS:
         raise ValueError(f"element {spec.name!r} is registered already")
     spec.dimensionless(1.0, 1.0)  # fail at registration, not at first use
     ELEMENTS[spec.name] = spec
+    ORIGIN[spec.name] = sys._getframe(1).f_globals.get("__name__", "__main__")
     return spec
 
 
@@ -290,3 +295,6 @@ register_element(ElementSpec(
     "this harness: HB2n-20xyp with an assumed membrane stretch C_xx (3 points along)",
     rules((SLENDER, (5, 2)), (1.0, (4, 2)), (0.0, (3, 3))),
     pressure=("1", "y"), assumed=("xx",)))
+
+# the elements of this package; any other was registered by a user's module
+BUILTIN = frozenset(ELEMENTS)

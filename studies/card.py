@@ -45,7 +45,7 @@ from .engine.case import Case, make_case
 from .grid import DEFAULT, cantilever_case
 from .pendulum_cases import pendulum_dict
 from .engine.scheduler import run_cases
-from .engine.solvers import source_hash
+from .engine import fingerprint as fp
 from .engine.store import store_for
 
 PAPER_ELEMENTS = ("HB2n-12", "HB3n-12", "HB2n-16", "LB2n-12")
@@ -85,10 +85,27 @@ def import_modules(modules) -> None:
         importlib.import_module(m)
 
 
-def cases(element: str, tiny: bool = False, imports=()) -> list[Case]:
+def element_imports(element: str) -> list[str]:
+    """The module a fresh process imports to have ``element``: none for a built-in one,
+    else the module that registered it (a case is what it runs: other modules imported
+    beside it do not enter its cases)."""
+    from ancf.elements import BUILTIN, ORIGIN, get_element
+
+    get_element(element)
+    origin = ORIGIN.get(element, "__main__")
+    if element in BUILTIN:
+        return []
+    if origin == "__main__":
+        raise ValueError(f"card {element}: registered by a script; register it in an importable module "
+                         "and name that with --import")
+    return [origin]
+
+
+def cases(element: str, tiny: bool = False) -> list[Case]:
     """Parts 4 to 8 as cases (tiny: the CI grid)."""
     g, study = grid_for(tiny), f"card-{element}"
-    opts = {"imports": list(imports)} if imports else {}
+    imports = element_imports(element)
+    opts = {"imports": imports} if imports else {}
     out = []
     for form in g["formulations"]:
         for law in g["laws"]:
@@ -171,7 +188,7 @@ def measure_checks(element: str, tiny: bool = False) -> dict:
         row["default_tests"] = {k: tests(tuple(r), a) for k, r in row["default"].items()}
         rank.append(row)
     patch = [{"aspect": a, **checks.patch(spec, length=a * 0.005 * 3)} for a in g["patch_aspects"]]
-    return {"element": element, "definition": repr(spec), "source": source_hash("ancf"),
+    return {"element": element, "definition": repr(spec), "source": checks_source(),
             "nodality": checks.nodality(spec), "reference_state": checks.reference_state(spec),
             "mass": checks.mass(spec), "formulations": forms, "patch": patch,
             "conformity": checks.conformity(spec), "rank": rank, "slender_strains": slender_strains(element, g),
@@ -197,6 +214,13 @@ def slender_strains(element: str, g: dict) -> list[dict]:
     return rows
 
 
+def checks_source() -> str:
+    """The fingerprint of what :func:`measure_checks` runs (its code, normalised, and the
+    packages it uses): a checks record is measured again when it changes."""
+    f = fp.fingerprint((fp.entry(measure_checks),))
+    return fp.digest(f)
+
+
 def checks_path(out: Path, element: str) -> Path:
     return Path(out) / "data" / f"card-{slug(element)}-checks.json"
 
@@ -210,7 +234,7 @@ def checks_record(element: str, out: Path, tiny: bool = False, force: bool = Fal
     if path.exists() and not force:
         rec = json.loads(path.read_text())
         if (rec.get("definition"), rec.get("source"), rec.get("tiny")) == (
-                repr(get_element(element)), source_hash("ancf"), tiny):
+                repr(get_element(element)), checks_source(), tiny):
             return rec
     rec = measure_checks(element, tiny)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -238,13 +262,13 @@ def run_cards(elements: list[str], out: Path, tiny: bool = False, imports=(), wo
     for el in elements:
         get_element(el)                                  # an unknown name fails here, with the list
     for el in elements:
-        cs = cases(el, tiny, imports)
+        cs = cases(el, tiny)
         s = run_cases(f"card-{el}", cs, store_for(out, f"card-{slug(el)}"), None, workers,
                       force=force, progress=progress)
         log(f"card {el}: {s.cases} cases, {s.reused} reused, {s.computed} computed, {s.failed} failed, "
             f"{s.seconds:.1f} s")
         checks_record(el, out, tiny, force)
-    paths = [render(el, out, tiny, imports) for el in elements]
+    paths = [render(el, out, tiny) for el in elements]
     # every other card's cost figure draws these elements' runs: rendered again with them
     # (but a card whose cases have changed since its runs: its own `studies card` redoes it)
     stale: list[str] = []
@@ -258,14 +282,12 @@ def run_cards(elements: list[str], out: Path, tiny: bool = False, imports=(), wo
     return paths
 
 
-def recorded_cards(out: Path, stale: list | None = None) -> list[tuple[str, bool, list[str]]]:
-    """(element, tiny, imports) of every card whose records are in ``out``/data: the
-    element and grid from its checks record; the modules that register it from its cases'
-    options (an example element's cases name them): of the module lists its records name,
-    the one whose cases the store holds most of (older records may name a module that has
-    gone, or none where one is needed now). A card none of whose cases has a run
-    (stale: its cases changed) raises LookupError, or, given a ``stale`` list, is appended
-    to it and left out."""
+def recorded_cards(out: Path, stale: list | None = None) -> list[tuple[str, bool]]:
+    """(element, tiny) of every card whose records are in ``out``/data: the element and
+    grid from its checks record; a user's element is registered by importing the module
+    its runs name (their ``imports`` option). A card none of whose cases has a run
+    (stale: its cases changed, or its module is gone) raises LookupError, or, given a
+    ``stale`` list, is appended to it and left out."""
     from contract.errors import SceneError
 
     found = []
@@ -273,23 +295,20 @@ def recorded_cards(out: Path, stale: list | None = None) -> list[tuple[str, bool
         chk = json.loads(path.read_text())
         element, tiny = chk["element"], bool(chk["tiny"])
         have = store_for(out, f"card-{slug(element)}").read()
-        named = {tuple((r.get("case", {}).get("options") or {}).get("imports") or ()) for r in have.values()}
-        held = {}
-        for imports in sorted(named | {()}):
-            try:
-                import_modules(imports)
-                held[imports] = sum(c.id in have for c in cases(element, tiny, imports))
-            except (ImportError, SceneError):
-                continue
-        best = max(held, key=held.get, default=None)
-        if best is None or not held[best]:
+        named = sorted({m for r in have.values() for m in (r.get("case", {}).get("options") or {}).get("imports") or ()})
+        try:
+            import_modules(named)
+            held = sum(c.id in have for c in cases(element, tiny))
+        except (ImportError, SceneError, ValueError):
+            held = 0
+        if not held:
             if stale is not None:
                 stale.append(element)
                 continue
             raise LookupError(f"card {element}: no runs of it in {path.parent} match its cases with the modules "
-                              f"its records name ({', '.join(map(str, sorted(named))) or 'none'}; each must import "
-                              "and register the element)")
-        found.append((element, tiny, list(best)))
+                              f"its records name ({', '.join(named) or 'none'}; one must import and register "
+                              "the element)")
+        found.append((element, tiny))
     return found
 
 
@@ -299,12 +318,7 @@ def render_recorded(out: Path, skip=(), stale: list | None = None) -> list[Path]
     committed cards); ``stale``: see :func:`recorded_cards`."""
     from .card_report import render
 
-    paths = []
-    for element, tiny, imports in recorded_cards(out, stale):
-        if element not in skip:
-            import_modules(imports)
-            paths.append(render(element, out, tiny, imports))
-    return paths
+    return [render(element, out, tiny) for element, tiny in recorded_cards(out, stale) if element not in skip]
 
 
 def clamp_probe(element: str, g: dict) -> dict | None:

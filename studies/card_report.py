@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .card import beam_theory, cases, checks_path, grid_for, slug
+from .card import beam_theory, cases, checks_path, element_imports, grid_for, slug
 from .pendulum_cases import FEM_GOLD, continuum_pendulum, describe_dynamic, tip_errors
 from .reference import MATCHING, gold_references, short
 from .engine.report import FIGURE_DATA, figure, mm, vec_error, write_figure_data
@@ -26,9 +26,9 @@ def _yes(ok) -> str:
     return "pass" if ok else "**fail**"
 
 
-def _records(element: str, out: Path, tiny: bool, imports) -> list[dict]:
+def _records(element: str, out: Path, tiny: bool) -> list[dict]:
     have = store_for(out, f"card-{slug(element)}").read()
-    return [have[c.id] for c in cases(element, tiny, imports) if c.id in have]
+    return [have[c.id] for c in cases(element, tiny) if c.id in have]
 
 
 def _static(recs):
@@ -432,13 +432,14 @@ def _stability(recs) -> list[str]:
             + [f"- unstable: {b}" for b in bad] + [f"- not converged: {f}" for f in failed] + [""])
 
 
-def render(element: str, out: Path, tiny: bool = False, imports=()) -> Path:
+def render(element: str, out: Path, tiny: bool = False) -> Path:
     out = Path(out)
     cards = out / "cards"
     cards.mkdir(parents=True, exist_ok=True)
     name = slug(element)
     chk = json.loads(checks_path(out, element).read_text())
-    recs = _records(element, out, tiny, imports)
+    recs = _records(element, out, tiny)
+    imports = element_imports(element)
     refs = gold_references(FEM_STATIC)
     conv = _convergence(recs, refs, cards, name)
     laws = grid_for(tiny)["laws"]

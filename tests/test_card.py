@@ -13,7 +13,12 @@ SECTIONS = ["## 1. Contract checks", "## 2. Rank tests", "## 3. Conformity", "##
             "## 5. Locking", "## 6. Pendulum", "## 7. Cost", "## 8. Stability"]
 
 
+def _tree(folder: Path) -> dict:
+    return {p: (p.stat().st_size, p.stat().st_mtime_ns) for p in folder.rglob("*") if p.is_file()}
+
+
 def test_a_user_elements_card_regenerates_from_its_records(tmp_path):
+    reports = _tree(ROOT / "reports")
     cmd = [sys.executable, "-m", "studies", "card", "HB2n-20", "--import", "examples.transversely_cubic",
            "--tiny", "--out", str(tmp_path), "--no-progress", "--workers", "2"]
     run = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=300)
@@ -35,6 +40,7 @@ def test_a_user_elements_card_regenerates_from_its_records(tmp_path):
     assert again.returncode == 0 and f"{len(recs)} reused, 0 computed" in again.stdout
     assert (tmp_path / "cards" / "HB2n-20.md").read_text() == card
     assert "### Shear locking" in card and "No shear locking" in card
+    assert _tree(ROOT / "reports") == reports        # written with --out: reports/ untouched
     # records whose cases have changed since (another solver version: other case ids): the
     # audit's route refuses the card, the re-rendering after another card's runs passes it by
     from studies.card import recorded_cards
@@ -44,6 +50,20 @@ def test_a_user_elements_card_regenerates_from_its_records(tmp_path):
         recorded_cards(tmp_path)
     stale = []
     assert recorded_cards(tmp_path, stale) == [] and stale == ["HB2n-20"]
+
+
+def test_a_cards_cases_are_what_they_run_whatever_else_is_imported():
+    """A built-in element's cases name no module (its records are reused whatever a
+    command imports beside it); a user's element's name the module that registers it."""
+    import importlib
+
+    from studies.card import cases
+    before = [c.id for c in cases("HB2n-12", tiny=True)]
+    importlib.import_module("examples.transversely_cubic")
+    importlib.import_module("examples.cubic_slope")
+    after = cases("HB2n-12", tiny=True)
+    assert [c.id for c in after] == before and not any("imports" in c.options for c in after)
+    assert all(c.options["imports"] == ["examples.transversely_cubic"] for c in cases("HB2n-20", tiny=True))
 
 
 def test_an_unknown_element_is_refused_with_the_list(tmp_path):

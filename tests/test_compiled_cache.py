@@ -61,7 +61,9 @@ def test_a_compiled_caller_sees_an_edited_callee(tmp_path, monkeypatch):
     assert results[False] == (11, 11)
 
 
-def test_the_digest_covers_every_module_and_names_the_cache(tmp_path):
+def test_the_digest_covers_the_code_of_every_module_and_names_the_cache(tmp_path):
+    """An edit of code in any module (the front end's aside) starts a new cache; a
+    comment, a docstring or a blank line does not."""
     copy = tmp_path / "ancf"
     for name in ("ancf", *compiled_cache.COMPILED_FROM):
         shutil.copytree(compiled_cache.PACKAGE.parent / name, tmp_path / name,
@@ -72,8 +74,11 @@ def test_the_digest_covers_every_module_and_names_the_cache(tmp_path):
     assert any(p.parent.name == "mechanics" for p in modules)
     for p in modules:
         text = p.read_text()
-        p.write_text(text + "\n")
-        assert compiled_cache.source_digest(copy) != d0, p.name
+        p.write_text(text + "\n# a comment\n\n")
+        assert compiled_cache.source_digest(copy) == d0, p.name
+        p.write_text(text + "\n_EDITED = 1\n")
+        front = p.parent.name == "ancf" and p.name in compiled_cache.FRONT_END
+        assert (compiled_cache.source_digest(copy) == d0) == front, p.name
         p.write_text(text)
     assert compiled_cache.source_digest(copy) == d0
     assert numba.config.CACHE_DIR == str(compiled_cache.cache_dir())

@@ -42,7 +42,7 @@ def fake_solver(monkeypatch):
         fake.calls += 1
         return fake.behaviour(scene)
 
-    monkeypatch.setitem(solvers.SOLVERS, "fake", solvers.Solver("fake", (), run, lambda scene: None))
+    monkeypatch.setitem(solvers.SOLVERS, "fake", solvers.Solver("fake", run, lambda scene: None))
     return fake
 
 
@@ -86,7 +86,7 @@ def test_case_id_changes_with_scene_options_and_solver_source(monkeypatch):
     from studies.engine import case as case_mod
     before = a.id
     case_mod.case_id.cache_clear()
-    monkeypatch.setattr(case_mod, "source_hash", lambda name: "other source")
+    monkeypatch.setattr(case_mod, "solver_fingerprint", lambda *a: {"code": "other source", "packages": {}})
     assert small_cases(counts=(2,))[0].id != before
     assert a.id == before and a.sources_changed()     # a made case keeps the id it was made with
     monkeypatch.undo()
@@ -101,7 +101,7 @@ def test_a_source_edit_during_a_run_loses_no_record_and_the_next_run_redoes_them
     from studies.engine import case as case_mod
     store = RecordStore(tmp_path / "t.jsonl")
     cases = small_cases(counts=(2, 3))
-    monkeypatch.setattr(case_mod, "source_hash", lambda name: "edited while running")
+    monkeypatch.setattr(case_mod, "solver_fingerprint", lambda *a: {"code": "edited while running", "packages": {}})
     s = run_cases("t", cases, store, executor="serial", progress=False)
     recs = store.read()
     assert s.computed == 2 and set(recs) == {c.id for c in cases}
@@ -113,7 +113,7 @@ def test_a_source_edit_during_a_run_loses_no_record_and_the_next_run_redoes_them
 
 
 def test_unknown_solver_names_the_valid_ones():
-    with pytest.raises(ValueError, match="allowed: ancf, ancf-cold, ancf-effects, fenicsx"):
+    with pytest.raises(ValueError, match="allowed: ancf, ancf-cold, ancf-effects, fenicsx, mms"):
         make_case("t", "abaqus", small_cases()[0].scene)
 
 
@@ -284,19 +284,64 @@ def test_a_run_beyond_the_time_limit_is_stopped_and_recorded(tmp_path, fake_solv
     assert s.computed == 1 and store.read()[case.id]["status"] == "converged"
 
 
-def test_a_case_id_follows_the_source_of_the_module_it_imports(tmp_path, monkeypatch):
-    """A user's element module is part of what a record depends on: edit it, and the case
-    is a new one (the study reruns it) rather than a stale record reused."""
+def test_a_user_element_is_identified_by_its_specification(tmp_path, monkeypatch):
+    """A user's element is part of what a record depends on: edit its specification and
+    the case is a new one (the study reruns it) rather than a stale record reused; edit
+    the module elsewhere, or import another module beside it, and the records stand."""
     import sys
+    from ancf import elements
     from studies.engine import case as case_mod
 
-    mod = tmp_path / "my_user_element.py"
-    mod.write_text("X = 1\n")
+    def register(rule: str, comment: str) -> None:
+        (tmp_path / "my_user_element.py").write_text(
+            f"# {comment}\nfrom ancf.elements import ElementSpec, register_element, rules\n"
+            "register_element(ElementSpec('HB2n-user', ('1', 'x', 'y', 'x*y', 'x^2', 'x^3'), (0.0, 1.0), "
+            f"('r', 'r_x', 'r_y'), quadrature=rules((0.0, {rule}))))\n")
+        elements.ELEMENTS.pop("HB2n-user", None)
+        sys.modules.pop("my_user_element", None)
+        __import__("my_user_element")
+
     monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setattr(elements, "ELEMENTS", dict(elements.ELEMENTS))
     scene = small_cases()[0].scene
-    a = case_mod._fresh_id("ancf", json.dumps(scene), json.dumps({"imports": ["my_user_element"]}))
-    mod.write_text("X = 2\n")
-    b = case_mod._fresh_id("ancf", json.dumps(scene), json.dumps({"imports": ["my_user_element"]}))
-    c = case_mod._fresh_id("ancf", json.dumps(scene), json.dumps({}))
-    assert a != b and c not in (a, b)
+    scene["ancf"]["element"] = "HB2n-user"
+    ident = lambda opts: case_mod._fresh_id("ancf", json.dumps(scene), json.dumps(opts))
+    register("(3, 2)", "first")
+    a = ident({"imports": ["my_user_element"]})
+    assert ident({"imports": ["my_user_element", "examples.cubic_slope"]}) == a   # an unrelated import
+    register("(3, 2)", "an edit of a comment")
+    assert ident({"imports": ["my_user_element"]}) == a
+    register("(4, 2)", "an edit of the default rule")
+    assert ident({"imports": ["my_user_element"]}) != a
     sys.modules.pop("my_user_element", None)
+
+
+def test_a_user_law_is_identified_by_the_code_of_its_module(tmp_path, monkeypatch):
+    """A user's law is code: an edit of its energy recomputes, a comment does not."""
+    import sys
+    from mechanics import laws
+    from studies.engine import case as case_mod
+    from studies.engine import fingerprint as fp
+
+    def register(energy: str, comment: str) -> None:
+        (tmp_path / "my_user_law.py").write_text(
+            f"# {comment}\nfrom mechanics.laws import MATH, Law, register_law\n"
+            f"register_law(Law('law-user', ('C10',), lambda I1, I2, c, m=MATH: {energy}))\n")
+        laws.LAWS.pop("law-user", None)
+        sys.modules.pop("my_user_law", None)
+        fp.clear_caches()
+        __import__("my_user_law")
+
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setattr(laws, "LAWS", dict(laws.LAWS))
+    scene = small_cases()[0].scene
+    scene["material"] = {"law": "law-user", "formulation": "plane-stress", "density": 2150.0, "C10": 0.5e6}
+    ident = lambda: case_mod._fresh_id("ancf", json.dumps(scene), json.dumps({"imports": ["my_user_law"]}))
+    register("c['C10'] * (I1 - 3.0)", "first")
+    a = ident()
+    register("c['C10'] * (I1 - 3.0)", "a comment edited")
+    assert ident() == a
+    register("c['C10'] * (I1 - 3.0) * 1.01", "the energy edited")
+    assert ident() != a
+    sys.modules.pop("my_user_law", None)
+    fp.clear_caches()

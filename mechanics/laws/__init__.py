@@ -159,3 +159,5 @@ def _discover() -> None:
 
 
 _discover()
+# the laws of this package; any other was registered by a user's module
+BUILTIN = frozenset(LAWS)

@@ -3,11 +3,15 @@
 A :class:`Case` is frozen and hashable: (study, solver, scene, options), the scene and
 the options held as canonical JSON. Its :attr:`Case.id` is a hash of
 
-- the canonical scene JSON and the options (a ``timing`` option changes what is measured),
-- the solver's source hash (:func:`studies.engine.solvers.source_hash`: the .py files of the
-  package that solves it),
-- the numpy / numba / dolfinx versions (:func:`versions`),
-- with an ``imports`` option (a user's element or law), those modules' source files,
+- the canonical scene JSON and the options (a ``timing`` option changes what is measured;
+  ``imports``, the modules a worker imports to register a user's element, does not: the
+  element itself counts, below);
+- the solver's fingerprint (:mod:`studies.engine.fingerprint`): the normalised code the
+  solver runs (comments and docstrings do not count) and the versions of the packages that
+  code imports, per continuum backend;
+- for a scene that names a user's element or law (one not built in), that element's
+  specification and the code of the law's module, so that an edit of either recomputes
+  and an unrelated import does not,
 
 so that a record can be reused exactly while none of these changed. The study name is
 not part of the id: the records of each study live in their own file.
@@ -18,30 +22,12 @@ import hashlib
 import json
 from dataclasses import dataclass, field
 from functools import lru_cache
-from importlib import metadata
-from pathlib import Path
 from typing import Any, Mapping
 
-from .solvers import SOLVERS, get_solver, source_hash
+from .solvers import SOLVERS, get_solver
 
-# Distribution names whose versions enter every case id (dolfinx is "fenics-dolfinx").
-VERSIONED = {"numpy": "numpy", "numba": "numba", "dolfinx": "fenics-dolfinx"}
-
-
-@lru_cache(maxsize=None)
-def _versions() -> tuple[tuple[str, str | None], ...]:
-    out = []
-    for name, dist in VERSIONED.items():
-        try:
-            out.append((name, metadata.version(dist)))
-        except metadata.PackageNotFoundError:
-            out.append((name, None))
-    return tuple(out)
-
-
-def versions() -> dict[str, str | None]:
-    """{numpy, numba, dolfinx: version or None}, read from package metadata (no import)."""
-    return dict(_versions())
+# options that say how to run a case, not what it is: left out of its identity
+TRANSPORT = ("imports",)
 
 
 def canonical(obj: Any) -> str:
@@ -91,31 +77,54 @@ class Case:
                 "name": self.name, "options": self.options}
 
 
-def _imports_hash(modules) -> str | None:
-    """sha256 over the source files of the modules a case imports (a user's element or
-    law): a record depends on them as on the solver's own sources. None without any."""
-    if not modules:
-        return None
-    import importlib.util
+def user_definitions(scene: Mapping) -> dict:
+    """What a scene takes from a user's module (empty for built-in ones): the element's
+    specification as plain data (its free-text reference left out), and the normalised
+    code of the module that defines the law's energy (a law is code, an element data)."""
+    import dataclasses
 
-    h = hashlib.sha256()
-    for m in sorted(modules):
-        spec = importlib.util.find_spec(m)
-        origin = Path(spec.origin) if spec and spec.origin else None
-        h.update(m.encode() + b"\0" + (origin.read_bytes() if origin and origin.exists() else b"?") + b"\0")
-    return h.hexdigest()
+    out = {}
+    element = (scene.get("ancf") or {}).get("element")
+    from ancf.elements import BUILTIN, ELEMENTS
+    if isinstance(element, str) and element not in BUILTIN and element in ELEMENTS:
+        spec = dataclasses.asdict(ELEMENTS[element])
+        spec.pop("reference", None)
+        out["element_spec"] = spec
+    law = (scene.get("material") or {}).get("law")
+    from mechanics.laws import BUILTIN as BUILTIN_LAWS, LAWS
+    if isinstance(law, str) and law not in BUILTIN_LAWS and law in LAWS:
+        from .fingerprint import fingerprint
+        out["law_code"] = fingerprint((LAWS[law].energy.__module__,))["code"]
+    return out
+
+
+def solver_fingerprint(solver: str, scene: dict, options: dict) -> dict:
+    """{"code", "packages"} of what the solver runs for this scene
+    (:meth:`studies.engine.solvers.Solver.fingerprint`)."""
+    return get_solver(solver).fingerprint(scene, options)
+
+
+def identity(solver: str, scene: dict, options: dict) -> dict:
+    """What a case's id is a hash of (see the module doc)."""
+    fp = solver_fingerprint(solver, scene, options)
+    ident = {"solver": solver, "scene": scene,
+             "options": {k: v for k, v in options.items() if k not in TRANSPORT},
+             "code": fp["code"], "packages": fp["packages"]}
+    ident.update(user_definitions(scene))
+    return ident
 
 
 def _fresh_id(solver: str, scene_json: str, options_json: str) -> str:
-    options = json.loads(options_json)
-    ident = {"solver": solver, "scene": json.loads(scene_json), "options": options,
-             "source": source_hash(solver), "versions": versions()}
-    if options.get("imports"):
-        ident["imports_source"] = _imports_hash(options["imports"])
+    ident = identity(solver, json.loads(scene_json), json.loads(options_json))
     return hashlib.sha256(canonical(ident).encode()).hexdigest()[:20]
 
 
 case_id = lru_cache(maxsize=None)(_fresh_id)   # sources are read once per process
+
+
+def packages(case: "Case") -> dict:
+    """{package: version} the case's solver uses (the record's ``versions``)."""
+    return solver_fingerprint(case.solver, case.scene, case.options)["packages"]
 
 
 def make_case(study: str, solver: str, scene: Mapping, options: Mapping | None = None) -> Case:
@@ -125,4 +134,4 @@ def make_case(study: str, solver: str, scene: Mapping, options: Mapping | None =
     return Case(study, solver, canonical(scene), canonical(dict(options or {})))
 
 
-__all__ = ["Case", "make_case", "case_id", "versions", "canonical", "SOLVERS"]
+__all__ = ["Case", "make_case", "case_id", "packages", "canonical", "SOLVERS"]

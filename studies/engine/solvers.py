@@ -1,28 +1,31 @@
-"""The solvers a case can name: how to check a scene, run it, and hash the source.
+"""The solvers a case can name: how to check a scene, run it, and what a record of it
+depends on.
 
 Each solver is one entry of :data:`SOLVERS`; ``run(scene_dict) -> record`` returns the
 solver's record (``contract.record`` schema, SI units) and ``check(scene_dict)`` raises a
-SceneError for a scene it cannot run. The source hash covers the .py files the solver
-runs, so a change there invalidates its cases:
+SceneError for a scene it cannot run. What a record depends on is the solver's
+fingerprint (:meth:`Solver.fingerprint`, :mod:`studies.engine.fingerprint`): the code
+its run function reaches, normalised, and the packages that code imports:
 
-- ``ancf``: every module of ``ancf/``, ``mechanics/`` and ``contract/`` (scenes, records);
+- ``ancf``: the ANCF solver (``ancf/``, and what it imports of ``mechanics/`` and
+  ``contract/``);
 - ``ancf-effects``: the ANCF solver, then the cost of each effect's assembly (the study
-  ``effects``); its sources and this file;
+  ``effects``);
 - ``ancf-cold``: the ANCF solver in a fresh process with an empty numba cache (Table 4's
-  first-run cost, compiling included); its sources and this file;
-- ``fenicsx``: every module of ``reference_fem/`` (its backends included), ``mechanics/``
-  and ``contract/``, and ``ancf/integrators.py`` (the integrators' coefficients, until
-  they move to ``mechanics``).
+  first-run cost, compiling included);
+- ``fenicsx``: the continuum reference, with the backend its scene names (DOLFINx or
+  FElupe; not the other one);
+- ``mms``: the manufactured solutions of one continuum code.
 
 Adding a solver (e.g. a dynamic integrator living in another package) is one entry here.
 """
 from __future__ import annotations
 
-import hashlib
 from dataclasses import dataclass
-from functools import lru_cache
 from pathlib import Path
 from typing import Callable
+
+from . import fingerprint as fp
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -122,12 +125,35 @@ def _check_fenicsx(scene: dict) -> None:
     check(scene_from_dict(scene))
 
 
+def _fem_backend(scene: dict) -> str:
+    return (scene.get("fem") or {}).get("backend", "dolfinx")
+
+
+def _mms_code(scene: dict) -> str:
+    return (scene.get("mms") or {}).get("code", "dolfinx")
+
+
 @dataclass(frozen=True)
 class Solver:
     name: str
-    sources: tuple[str, ...]     # globs relative to the repository root
     run: Callable[[dict], dict]  # scene dict -> record
     check: Callable[[dict], None]
+    # modules the run reaches without importing them (code run in a fresh process)
+    also: tuple[str, ...] = ()
+    # the continuum backend a scene names, for a solver that has several
+    backend: Callable[[dict], str] | None = None
+
+    def fingerprint(self, scene: dict, options: dict | None = None) -> dict:
+        """{"code": hash, "packages": {name: version}} of what a run of ``scene`` executes:
+        the run function and what it reaches, the backend's package for a continuum scene,
+        and for a case launched on MPI ranks the launcher and the command line it runs."""
+        backend = self.backend(scene) if self.backend else None
+        entries = [fp.entry(self.run), *self.also]
+        if backend in fp.BACKENDS:
+            entries.append(fp.BACKENDS[backend])
+        if (options or {}).get("mpi_ranks"):
+            entries += ["studies.engine.worker:_run_launched", "reference_fem.__main__"]
+        return fp.fingerprint(entries, backend)
 
 
 _COLD_RUN = ("import json, sys, time; t0 = time.perf_counter(); "
@@ -174,15 +200,11 @@ def _check_mms(scene: dict) -> None:
 
 SOLVERS: dict[str, Solver] = {
     s.name: s for s in (
-        Solver("ancf", ("ancf/*.py", "mechanics/**/*.py", "contract/*.py"), _run_ancf, _check_ancf),
-        Solver("ancf-effects", ("ancf/*.py", "mechanics/**/*.py", "contract/*.py", "studies/engine/solvers.py"),
-               _run_ancf_effects, _check_ancf),
-        Solver("fenicsx", ("reference_fem/**/*.py", "mechanics/**/*.py", "contract/*.py"),
-               _run_fenicsx, _check_fenicsx),
-        Solver("ancf-cold", ("ancf/*.py", "mechanics/**/*.py", "contract/*.py", "studies/engine/solvers.py"),
-               _run_ancf_cold, _check_ancf),
-        Solver("mms", ("reference_fem/**/*.py", "mechanics/**/*.py", "contract/*.py", "studies/mms.py"),
-               _run_mms, _check_mms),
+        Solver("ancf", _run_ancf, _check_ancf),
+        Solver("ancf-effects", _run_ancf_effects, _check_ancf),
+        Solver("fenicsx", _run_fenicsx, _check_fenicsx, backend=_fem_backend),
+        Solver("ancf-cold", _run_ancf_cold, _check_ancf, also=("ancf.simulation", "contract.scene")),
+        Solver("mms", _run_mms, _check_mms, backend=_mms_code),
     )
 }
 
@@ -192,13 +214,3 @@ def get_solver(name: str) -> Solver:
         return SOLVERS[name]
     except KeyError:
         raise ValueError(f"solver: unknown {name!r}; allowed: {', '.join(sorted(SOLVERS))}") from None
-
-
-@lru_cache(maxsize=None)
-def source_hash(name: str) -> str:
-    """sha256 over the solver's source files (relative path and content, sorted)."""
-    h = hashlib.sha256()
-    files = sorted({p for g in get_solver(name).sources for p in ROOT.glob(g)})
-    for p in files:
-        h.update(str(p.relative_to(ROOT)).encode() + b"\0" + p.read_bytes() + b"\0")
-    return h.hexdigest()

@@ -1,7 +1,7 @@
 """Running one case: the worker function (any process) and the serial timed run.
 
 :func:`execute` runs a case once and returns its record: the solver's record plus
-``case_id``, ``case`` and ``versions``. A case whose options name ``imports`` (modules that register a
+``case_id``, ``case`` and ``versions`` (of the packages its solver uses). A case whose options name ``imports`` (modules that register a
 user's element or law) imports them first, in whatever process runs it. A case that raises is recorded, not lost:
 status "failed" and the exception as the reason (:func:`contract.record.sanitize` later
 turns any NaN into null).
@@ -31,7 +31,7 @@ import traceback
 
 from contract.record import new_record
 
-from .case import Case, versions
+from .case import Case, packages
 from .solvers import get_solver
 
 DEFAULT_REPEATS = 3
@@ -95,7 +95,7 @@ def annotate(rec: dict, case: Case, started: float) -> dict:
         rec["note"] = "the solver's sources changed while this case ran; the next run recomputes it"
     rec["case_id"] = case.id
     rec["case"] = case.to_dict()
-    rec["versions"] = versions()
+    rec["versions"] = packages(case)
     rec["elapsed_s"] = time.perf_counter() - started
     rec["pid"] = os.getpid()
     return rec

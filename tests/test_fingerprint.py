@@ -1,0 +1,90 @@
+"""The record fingerprint: what a record depends on is the code its solver runs, with
+comments and docstrings left out, and the packages that code uses, per continuum backend."""
+import sys
+import textwrap
+
+import pytest
+
+from studies.engine import fingerprint as fp
+from studies.engine.solvers import SOLVERS
+
+
+@pytest.fixture
+def probe(tmp_path, monkeypatch):
+    """Two modules of a user's, outside the repository: ``fp_probe`` imports ``fp_dep``
+    inside a function; ``write(name, text)`` rewrites one and forgets what was read."""
+    monkeypatch.syspath_prepend(str(tmp_path))
+
+    def write(name: str, text: str) -> dict:
+        (tmp_path / f"{name}.py").write_text(textwrap.dedent(text))
+        fp.clear_caches()
+        return fp.fingerprint(("fp_probe",))
+
+    write("fp_dep", "K = 2.0\n")
+    yield write
+    fp.clear_caches()
+    for m in ("fp_probe", "fp_dep"):
+        sys.modules.pop(m, None)
+
+
+PROBE = '''
+"""A module."""
+import numpy as np
+
+
+def f(x):
+    """Twice x."""
+    from fp_dep import K   # the factor
+    return K * np.asarray(x)
+'''
+
+
+def test_comments_docstrings_and_wrapping_do_not_count_and_code_does(probe):
+    base = probe("fp_probe", PROBE)
+    assert probe("fp_probe", PROBE.replace('"""Twice x."""', '"""Twice x, as an array."""')
+                 .replace("# the factor", "# K from the other module")) == base
+    assert probe("fp_probe", PROBE.replace("return K * np.asarray(x)", "return (K\n            * np.asarray(x))")) == base
+    assert probe("fp_probe", PROBE.replace("K * ", "K + "))["code"] != base["code"]
+
+
+def test_a_module_imported_inside_a_function_counts(probe):
+    base = probe("fp_probe", PROBE)
+    assert probe("fp_dep", "K = 3.0\n")["code"] != base["code"]
+    assert probe("fp_dep", "# a comment\nK = 2.0\n") == base
+
+
+def test_the_packages_are_those_the_code_imports(probe):
+    f = probe("fp_probe", PROBE)
+    assert set(f["packages"]) == {"numpy", "python"}
+
+
+def _modules(solver: str, scene: dict) -> list[str]:
+    s = SOLVERS[solver]
+    entries = [fp.entry(s.run), *s.also] + ([fp.BACKENDS[s.backend(scene)]] if s.backend else [])
+    return fp.modules(entries, s.backend(scene) if s.backend else None)
+
+
+def test_each_backend_counts_its_own_code_and_packages():
+    dolfinx, felupe = {"fem": {"backend": "dolfinx"}}, {"fem": {"backend": "felupe"}}
+    md, mf = _modules("fenicsx", dolfinx), _modules("fenicsx", felupe)
+    assert any(m.startswith("reference_fem.dolfinx_backend") for m in md)
+    assert not any(m.startswith("reference_fem.felupe_backend") for m in md)
+    assert any(m.startswith("reference_fem.felupe_backend") for m in mf)
+    assert not any(m.startswith("reference_fem.dolfinx_backend") for m in mf)
+    pd, pf = (SOLVERS["fenicsx"].fingerprint(s)["packages"] for s in (dolfinx, felupe))
+    assert "fenics-dolfinx" in pd and "felupe" not in pd and "tensortrax" not in pd
+    assert "felupe" in pf and "tensortrax" in pf and "fenics-dolfinx" not in pf
+    mms_d = _modules("mms", {"mms": {"code": "dolfinx"}})
+    assert "reference_fem.dolfinx_backend.mms" in mms_d and "reference_fem.felupe_backend.mms" not in mms_d
+
+
+def test_ancf_records_depend_on_no_continuum_code_and_no_report_code():
+    for solver in ("ancf", "ancf-effects", "ancf-cold"):
+        ms = _modules(solver, {})
+        assert "ancf.simulation" in ms and "mechanics.laws.gent" in ms     # the laws' folder, found by name
+        assert not any(m.startswith("reference_fem") for m in ms)
+        # of the study engine, only the run function and the names it uses
+        assert all(":" in m for m in ms if m.startswith("studies")), ms
+        assert not any("report" in m for m in ms), ms
+    pk = SOLVERS["ancf"].fingerprint({})["packages"]
+    assert {"numpy", "numba", "scipy"} <= set(pk) and "fenics-dolfinx" not in pk
