@@ -14,6 +14,9 @@
   naming file and line of each mismatch; never runs a solver;
 - ``diff OLD NEW``: the records of two output directories compared case by case
   (:mod:`studies.engine.diff`): which results changed, and by how much;
+- ``verify --sample N [--seed S] [--budget S] [--max-case-s S]``: N randomly drawn committed
+  records recomputed with today's code and compared field by field
+  (:mod:`studies.engine.verify`); exits 1 naming record and field of each mismatch;
 - ``card NAME [NAME ...] [--import MODULE]``: the element report card (:mod:`studies.card`),
   ``paper`` for the four paper elements; written to ``<out>/cards/``.
 
@@ -95,6 +98,35 @@ def _audit(args) -> int:
     return 0 if res.ok else 1
 
 
+def _verify(args) -> int:
+    from .engine.pipeline import REPORTS
+    from .engine.verify import verify
+
+    reports = Path(args.reports) if args.reports else REPORTS
+    t0 = time.perf_counter()
+    res = verify(reports, args.sample, args.seed, args.budget, args.max_case_s, args.workers)
+    print(f"verify: seed {res.seed}; {res.candidates} records reusable today ({res.stale} not: their code or "
+          f"scene changed), skipped: {', '.join(f'{v} {k}' for k, v in sorted(res.skipped.items())) or 'none'}")
+    for p in res.problems:
+        print(p)
+    print(f"verify: {len(res.checked)} recomputed in {time.perf_counter() - t0:.0f} s"
+          + (f", {res.not_started} not started (budget {args.budget:g} s)" if res.not_started else "")
+          + (": OK" if res.ok else f": {len(res.problems)} mismatch(es)"))
+    return 0 if res.ok else 1
+
+
+def _positive(kind):
+    def parse(text: str):
+        try:
+            v = kind(text)
+        except ValueError:
+            v = None
+        if v is None or not v > 0:
+            raise argparse.ArgumentTypeError(f"must be a {'whole ' if kind is int else ''}number > 0, got {text!r}")
+        return v
+    return parse
+
+
 def _gold(args) -> int:
     from .engine.regression import check_gold, refresh_gold
 
@@ -120,8 +152,15 @@ def _card(args) -> int:
     return 0
 
 
+class _Parser(argparse.ArgumentParser):
+    """A bad command line is one line: the command and what is wrong (``-h`` shows usage)."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: {message} (-h: usage)\n")
+
+
 def main(argv: list[str] | None = None) -> int:
-    p = argparse.ArgumentParser(prog="python -m studies", description=__doc__.split("\n\n")[0])
+    p = _Parser(prog="python -m studies", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="command", required=True)
     ls = sub.add_parser("list", help="name the studies")
     ls.add_argument("--tiny", action="store_true")
@@ -151,6 +190,15 @@ def main(argv: list[str] | None = None) -> int:
     g = sub.add_parser("gold", help="tiny-mode golden values: check, or --refresh")
     g.add_argument("--refresh", action="store_true", help="rewrite tests/gold/studies_tiny.json")
     g.add_argument("--out", help="directory for the tiny run (default: a temp dir)")
+    v = sub.add_parser("verify", help="recompute N randomly drawn committed records and compare every result field")
+    v.add_argument("--sample", type=_positive(int), required=True, metavar="N", help="how many records")
+    v.add_argument("--seed", type=int, help="the draw's seed (default: a new one, printed)")
+    v.add_argument("--budget", type=_positive(float), default=600.0, metavar="SECONDS",
+                   help="start no case after this many seconds (default %(default)g)")
+    v.add_argument("--max-case-s", type=_positive(float), default=60.0, metavar="SECONDS",
+                   help="draw only records whose run took at most this long (default %(default)g)")
+    v.add_argument("--reports", help="the reports directory (default reports/)")
+    v.add_argument("--workers", type=_positive(int), default=2)
     c = sub.add_parser("card", help="element report cards (NAME ..., or paper)")
     c.add_argument("names", nargs="+", metavar="NAME")
     c.add_argument("--import", dest="imports", action="append", default=[], metavar="MODULE",
@@ -164,7 +212,7 @@ def main(argv: list[str] | None = None) -> int:
         sp.add_argument("--catalog", type=Path, default=CASES_TOML, help="the case list (default studies/cases.toml)")
     args = p.parse_args(argv)
     run = {"list": _list, "run": _run, "report": _report, "gold": _gold, "diff": _diff, "card": _card,
-           "audit": _audit}[args.command]
+           "audit": _audit, "verify": _verify}[args.command]
     return command("studies", lambda: run(args), errors=(ValueError, ImportError),
                    interrupt_note=" (every finished record is kept; a rerun does the rest)")
 
