@@ -1,0 +1,130 @@
+"""The compiled code a scene needs, loaded (or compiled) before its run and timed apart.
+
+numba compiles the element loops, the static Newton loop and the step loop on their
+first call, or loads them from its disk cache (:mod:`ancf.compiled_cache`). The first
+call is therefore not the solve's cost: :func:`load` runs a tiny copy of the scene
+(:func:`tiny`: the same element, law, formulation, rule, supports, loads, analysis and
+integrator on two elements, two time steps) so that every compiled function the scene's
+run calls is in memory before it starts; ``ancf run`` prints and records that time as
+``load_s``, apart from the solve.
+
+:func:`warm` does this for every shipped scene and for the variants the tests and the
+studies run (:data:`VARIANTS`): the set-up (``tools/setup.sh``, ``ancf warm``) calls it
+once per clone, so that a user's first ``ancf run`` loads compiled code from the cache
+instead of compiling it. Nothing here is imported by the solver itself.
+"""
+from __future__ import annotations
+
+import sys
+import time
+from dataclasses import replace
+from pathlib import Path
+
+from contract.scene import Analysis, Scene, load_scene, scene_from_dict
+
+ROOT = Path(__file__).resolve().parent.parent
+SCENES = ROOT / "scenes"
+
+
+def tiny(scene: Scene) -> Scene:
+    """The scene on two elements and, for a dynamic one, two steps with no output times
+    and no wall-time limit (a dynamic run still checks its energy, as the scene does)."""
+    a = scene.analysis
+    if a.kind == "dynamic":
+        a = replace(a, t_end=2 * a.dt, output_times=None, wall_time=None)
+    else:
+        a = replace(a, wall_time=None)
+    return replace(scene, ancf=replace(scene.ancf, elements=min(2, scene.ancf.elements)), analysis=a)
+
+
+def compiled_signatures() -> int:
+    """How many compiled specialisations the ANCF solver's modules hold in memory."""
+    from numba.core.registry import CPUDispatcher
+
+    n = 0
+    for name, mod in list(sys.modules.items()):
+        if mod is None or not name.startswith(("ancf.", "mechanics.")):
+            continue
+        for v in vars(mod).values():
+            if isinstance(v, CPUDispatcher):
+                n += len(v.signatures)
+    return n
+
+
+def load(scene: Scene) -> float:
+    """Load (or compile) the compiled code ``scene`` runs; return the wall time it took."""
+    from .simulation import run_scene
+
+    t0 = time.perf_counter()
+    run_scene(tiny(scene))
+    return time.perf_counter() - t0
+
+
+# Beside the shipped scenes, what the studies and tests run: each integrator and Newton
+# variant of the step loop, and the elements whose kernels differ (a pressure field, an
+# assumed strain), each in a penalised and a plane-stress formulation.
+VARIANTS = (
+    {"integrator": "generalized-alpha", "newton": "chord"},
+    {"integrator": "generalized-alpha", "newton": "full"},
+    {"integrator": "generalized-alpha", "newton": "modified"},
+    {"integrator": "newmark", "newton": "chord"},
+    {"integrator": "discrete-gradient"},
+)
+ELEMENTS = ("HB2n-12", "HB2n-20xyp", "HB2n-20xypm")
+
+
+def variants() -> list[Scene]:
+    """The scenes :func:`warm` loads besides the shipped ones."""
+    from contract import paper
+
+    from .elements import get_element
+
+    out = []
+    for element in ELEMENTS:
+        for form in ("plane-stress", "plane-strain"):
+            out.append(scene_from_dict(paper.cantilever_scene("yeoh", form, element, 2, quadrature=None)))
+            for v in VARIANTS:
+                if v["integrator"] == "discrete-gradient" and get_element(element).assumed:
+                    continue                       # an assumed strain has no discrete gradient
+                d = paper.pendulum_scene("yeoh", form, 1e-3, element, 2, t_end=2e-3, **v)
+                out.append(scene_from_dict(d))
+    return out
+
+
+def shipped() -> list[Scene]:
+    """The shipped scenes that ANCF runs (those with an [ancf] table)."""
+    out = []
+    for p in sorted(SCENES.glob("*.toml")):
+        s = load_scene(p)
+        if s.ancf is not None:
+            out.append(s)
+    return out
+
+
+def prune() -> list[Path]:
+    """Remove the caches of earlier versions of the code (``numba-<digest>`` beside the
+    current one, 25 MB each); return what was removed."""
+    import shutil
+
+    from .compiled_cache import cache_dir
+
+    current = cache_dir()
+    gone = [d for d in current.parent.glob("numba-*") if d.is_dir() and d != current]
+    for d in gone:
+        shutil.rmtree(d, ignore_errors=True)
+    return gone
+
+
+def warm(log=print) -> float:
+    """Load or compile what every shipped scene and every variant runs (and remove the
+    caches of earlier code); the time taken."""
+    from .compiled_cache import cache_dir
+
+    t0 = time.perf_counter()
+    gone = prune()
+    for s in shipped() + variants():
+        load(s)
+    dt = time.perf_counter() - t0
+    log(f"ancf: compiled code ready in {cache_dir()} ({dt:.1f} s"
+        + (f"; {len(gone)} cache(s) of earlier code removed)" if gone else ")"))
+    return dt
