@@ -59,6 +59,19 @@ def test_timings_and_round_off_are_not_mismatches():
     assert compare(a, b, 1e-7) == ["tip_history.1.y: -0.8 -> -0.9 (|diff| 0.1 > 1e-07 x 1)"]
 
 
+def test_an_energy_is_compared_above_its_round_off_floor():
+    """The slender probe's potential energy (1.46e-10 J, the linear regime) moved by
+    1.1e-16 J between two processes: round-off of energies computed from I1 - 3."""
+    from studies.card import slender_scene
+    from studies.engine.verify import energy_floor
+    rec = {"scene": slender_scene("HB2n-12", 35.0, 8), "potential_energy": -1.4584609850303182e-10}
+    floor = energy_floor(rec)
+    assert 1e-15 < floor < 1e-11
+    moved = {**rec, "potential_energy": -1.4584621121961868e-10}
+    assert compare(rec, moved, 1e-7, floor=floor) == []
+    assert compare(rec, {**rec, "potential_energy": -1.47e-10}, 1e-7, floor=floor)   # 1.2e-12 J
+
+
 @pytest.mark.parametrize("args, says", [
     (["--sample", "0"], "--sample: must be a whole number > 0, got '0'"),
     (["--sample", "x"], "--sample: must be a whole number > 0, got 'x'"),
