@@ -26,9 +26,8 @@ test-slow: setup
 
 study: setup
 	$(PY) -m studies run all
-	$(PY) -m studies card paper HB2n-20xyp HB2n-20xypm HB2n-40p HB2n-60p HB2n-20 --import examples.transversely_cubic
-	$(PY) -m studies card HB2n-20xy --import examples.cubic_slope
-	$(PY) -m studies card HB2n-84p --import examples.sextic_section
+	$(PY) -m studies card paper HB2n-20xyp HB2n-20xypm HB2n-40p HB2n-60p HB2n-20 HB2n-20xy HB2n-84p \
+		--import examples.transversely_cubic --import examples.cubic_slope --import examples.sextic_section
 	$(PY) -m studies audit
 
 # every report rebuilt from its records and compared (no solver runs; tests/test_audit.py

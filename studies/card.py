@@ -188,7 +188,7 @@ def measure_checks(element: str, tiny: bool = False) -> dict:
         row["default_tests"] = {k: tests(tuple(r), a) for k, r in row["default"].items()}
         rank.append(row)
     patch = [{"aspect": a, **checks.patch(spec, length=a * 0.005 * 3)} for a in g["patch_aspects"]]
-    return {"element": element, "definition": repr(spec), "source": checks_source(),
+    return {"element": element, "definition": repr(spec),
             "nodality": checks.nodality(spec), "reference_state": checks.reference_state(spec),
             "mass": checks.mass(spec), "formulations": forms, "patch": patch,
             "conformity": checks.conformity(spec), "rank": rank, "slender_strains": slender_strains(element, g),
@@ -237,6 +237,7 @@ def checks_record(element: str, out: Path, tiny: bool = False, force: bool = Fal
                 repr(get_element(element)), checks_source(), tiny):
             return rec
     rec = measure_checks(element, tiny)
+    rec = {"element": rec.pop("element"), "definition": rec.pop("definition"), "source": checks_source(), **rec}
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_suffix(".tmp")
     tmp.write_text(json.dumps(rec, indent=1, default=_plain))
@@ -268,6 +269,11 @@ def run_cards(elements: list[str], out: Path, tiny: bool = False, imports=(), wo
         log(f"card {el}: {s.cases} cases, {s.reused} reused, {s.computed} computed, {s.failed} failed, "
             f"{s.seconds:.1f} s")
         checks_record(el, out, tiny, force)
+    from .engine import stamp
+    if stamp.current(out):
+        log("cards: as the last full audit stamped them (records, report code and every card unchanged); "
+            "not rendered again")
+        return [Path(out) / "cards" / f"{slug(el)}.md" for el in elements]
     paths = [render(el, out, tiny) for el in elements]
     # every other card's cost figure draws these elements' runs: rendered again with them
     # (but a card whose cases have changed since its runs: its own `studies card` redoes it)

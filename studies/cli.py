@@ -9,9 +9,11 @@
 - ``report``: rebuild tables, figures and README from the records only;
 - ``gold [--refresh]``: run every study in tiny mode and compare its named values with
   tests/gold/studies_tiny.json (``--refresh`` rewrites that file instead);
-- ``audit [--reports DIR]``: every report of DIR (default reports/) rebuilt from DIR/data
-  in a temporary directory and compared line by line (:mod:`studies.engine.audit`); exits 1
-  naming file and line of each mismatch; never runs a solver;
+- ``audit [--reports DIR] [--full]``: every report of DIR (default reports/) rebuilt from
+  DIR/data in a temporary directory and compared line by line (:mod:`studies.engine.audit`);
+  exits 1 naming file and line of each mismatch; never runs a solver; a pass stamps the
+  inputs and the reports (:mod:`studies.engine.stamp`), and while both are unchanged the
+  next audit says so without rebuilding (``--full``: rebuild anyway);
 - ``diff OLD NEW``: the records of two output directories compared case by case
   (:mod:`studies.engine.diff`): which results changed, and by how much;
 - ``verify --sample N [--seed S] [--budget S] [--max-case-s S]``: N randomly drawn committed
@@ -87,7 +89,13 @@ def _audit(args) -> int:
     from .engine.audit import audit
     from .engine.pipeline import REPORTS
 
+    from .engine import stamp
+
     reports = Path(args.reports) if args.reports else REPORTS
+    if not args.full and stamp.current(reports):
+        print(f"audit: {reports}: the records, the report code and every report file are as the last full "
+              f"audit stamped them ({stamp.path(reports).name}); OK (--full rebuilds anyway)")
+        return 0
     res = audit(reports, args.catalog, args.tiny)
     for p in res.problems:
         print(p)
@@ -95,6 +103,8 @@ def _audit(args) -> int:
         print(f"not audited (no study writes them): {', '.join(res.not_audited)}")
     print(f"audit: {len(res.checked)} files rebuilt from the records of {reports / 'data'}; "
           + ("OK" if res.ok else f"{len(res.problems)} mismatch(es)"))
+    if res.ok:
+        stamp.write(reports)
     return 0 if res.ok else 1
 
 
@@ -187,6 +197,8 @@ def main(argv: list[str] | None = None) -> int:
     au = sub.add_parser("audit", help="rebuild every report from its records and compare, naming file and line")
     au.add_argument("--reports", help="the reports directory (default reports/)")
     au.add_argument("--tiny", action="store_true", help="the reports of a tiny run")
+    au.add_argument("--full", action="store_true", help="rebuild and compare even when the stamp of the last "
+                                                        "full audit matches")
     g = sub.add_parser("gold", help="tiny-mode golden values: check, or --refresh")
     g.add_argument("--refresh", action="store_true", help="rewrite tests/gold/studies_tiny.json")
     g.add_argument("--out", help="directory for the tiny run (default: a temp dir)")

@@ -58,10 +58,8 @@ def test_the_packages_are_those_the_code_imports(probe):
     assert set(f["packages"]) == {"numpy", "python"}
 
 
-def _modules(solver: str, scene: dict) -> list[str]:
-    s = SOLVERS[solver]
-    entries = [fp.entry(s.run), *s.also] + ([fp.BACKENDS[s.backend(scene)]] if s.backend else [])
-    return fp.modules(entries, s.backend(scene) if s.backend else None)
+def _modules(solver: str, scene: dict, options: dict | None = None) -> list[str]:
+    return fp.modules(*SOLVERS[solver].entries(scene, options))
 
 
 def test_each_backend_counts_its_own_code_and_packages():
@@ -88,3 +86,13 @@ def test_ancf_records_depend_on_no_continuum_code_and_no_report_code():
         assert not any("report" in m for m in ms), ms
     pk = SOLVERS["ancf"].fingerprint({})["packages"]
     assert {"numpy", "numba", "scipy"} <= set(pk) and "fenics-dolfinx" not in pk
+
+
+def test_no_record_depends_on_the_engine_that_keys_it():
+    """Editing the fingerprint, the case or the catalog code recomputes nothing: no
+    solver's fingerprint reaches them (a type in a signature runs nothing)."""
+    engine = ("studies.engine.fingerprint", "studies.engine.case", "studies.engine.catalog", "studies.engine.report")
+    for name in SOLVERS:
+        for scene, options in (({}, {}), ({"fem": {"backend": "felupe"}}, {}), ({}, {"mpi_ranks": 2})):
+            ms = _modules(name, scene, options)
+            assert not [m for m in ms if m.split(":")[0] in engine], (name, options)

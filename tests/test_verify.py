@@ -55,6 +55,8 @@ def test_timings_and_round_off_are_not_mismatches():
     b = {"tip": {"ux": 1.0 + 1e-12, "uy": -2.0}, "wall_s": 9.0, "timing": {"median_s": 1.0},
          "tip_history": [{"t": 0.0, "x": 1.0, "y": 1e-13}, {"t": 0.1, "x": 0.5, "y": -0.8}]}
     assert compare(a, b, 1e-7) == []
+    assert compare({"tip": {"ux": 0.1, "uy": -0.2}, "tip_uz": -8.5e-17}, {"tip": {"ux": 0.1, "uy": -0.2},
+                   "tip_uz": 6.6e-17}, 1e-7) == []           # zero by symmetry: at the tip's scale
     b["tip_history"][1]["y"] = -0.9
     assert compare(a, b, 1e-7) == ["tip_history.1.y: -0.8 -> -0.9 (|diff| 0.1 > 1e-07 x 1)"]
 

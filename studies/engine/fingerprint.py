@@ -30,6 +30,7 @@ Three rules keep it to what runs:
 from __future__ import annotations
 
 import ast
+import copy
 import hashlib
 import importlib.util
 import sys
@@ -157,6 +158,7 @@ class _Reader:
     exclude: tuple[str, ...]
     code: dict                 # key -> normalised text
     third_party: set
+    by_name: tuple[str, ...] = BY_NAME_PACKAGES
 
     def module(self, module: str) -> None:
         """A module imported whole: its parents, its normalised source, its imports. A
@@ -169,7 +171,7 @@ class _Reader:
             if top not in sys.stdlib_module_names and top != "__future__":
                 self.third_party.add(top)
             return
-        if _in(module, BY_NAME_PACKAGES):
+        if _in(module, self.by_name):
             return
         for parent in _parents(module):
             if _path(parent) is not None:
@@ -192,13 +194,13 @@ class _Reader:
     def name(self, module: str, name: str) -> None:
         """A top-level name of a module, with what it uses (a whole module outside the
         by-name packages)."""
-        if _path(module) is None or not _in(module, BY_NAME_PACKAGES):
+        if _path(module) is None or not _in(module, self.by_name):
             self.module(module)
             return
         key = f"{module}:{name}"
         if key in self.code or _in(module, self.exclude):
             return
-        defs = [s for s in _tree(_path(module)).body if _binds(s, name)]
+        defs = [_unannotated(s) for s in _tree(_path(module)).body if _binds(s, name)]
         self.code[key] = "\n".join(normalised(ast.unparse(s)) for s in defs)
         for s in defs:
             self._statement(module, s)
@@ -220,7 +222,7 @@ class _Reader:
                 kind, target, nm = tops.get(node.value.id, (None, None, None))
                 if bound is None and kind == "import" and nm is None:
                     bound = target
-                if bound and _in(bound, BY_NAME_PACKAGES):
+                if bound and _in(bound, self.by_name):
                     self.name(bound, node.attr)
             if isinstance(node, ast.Name) and node.id in tops:
                 kind, target, nm = tops[node.id]
@@ -230,6 +232,20 @@ class _Reader:
                     self.name(target, nm)
                 else:
                     self.module(target)
+
+
+def _unannotated(stmt: ast.AST) -> ast.AST:
+    """A function's definition without the annotations of its arguments and result (a
+    type named in a signature runs nothing); other statements as they are."""
+    if not isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        return stmt
+    stmt = copy.deepcopy(stmt)
+    for node in ast.walk(stmt):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            node.returns = None
+        elif isinstance(node, ast.arg):
+            node.annotation = None
+    return stmt
 
 
 def _binds(stmt: ast.AST, name: str) -> bool:
@@ -317,8 +333,8 @@ def packages(top_level: Iterable[str]) -> dict[str, str | None]:
 
 # -- the fingerprint --------------------------------------------------------------------
 
-def _read(entries: tuple[str, ...], exclude: tuple[str, ...]) -> _Reader:
-    r = _Reader(exclude, {}, set())
+def _read(entries: tuple[str, ...], exclude: tuple[str, ...], whole: bool = False) -> _Reader:
+    r = _Reader(exclude, {}, set(), () if whole else BY_NAME_PACKAGES)
     for e in entries:
         module, _, name = e.partition(":")
         r.name(module, name) if name else r.module(module)
@@ -326,8 +342,8 @@ def _read(entries: tuple[str, ...], exclude: tuple[str, ...]) -> _Reader:
 
 
 @lru_cache(maxsize=None)
-def _fingerprint(entries: tuple[str, ...], exclude: tuple[str, ...]) -> tuple[str, tuple]:
-    r = _read(entries, exclude)
+def _fingerprint(entries: tuple[str, ...], exclude: tuple[str, ...], whole: bool = False) -> tuple[str, tuple]:
+    r = _read(entries, exclude, whole)
     h = hashlib.sha256()
     for key in sorted(r.code):
         h.update(key.encode() + b"\0" + r.code[key].encode() + b"\0")
@@ -339,12 +355,13 @@ def entry(fn: Callable) -> str:
     return f"{fn.__module__}:{fn.__qualname__}"
 
 
-def fingerprint(entries: Iterable[str], backend: str | None = None) -> dict:
+def fingerprint(entries: Iterable[str], backend: str | None = None, whole: bool = False) -> dict:
     """{"code": sha256 of the normalised code reachable from ``entries`` (``module`` or
     ``module:name``), "packages": {distribution: version}}; with ``backend``, the other
-    continuum backends are left out (see the module doc)."""
+    continuum backends are left out (see the module doc); ``whole``: every module reached
+    counts whole, ``studies`` too (what report code reaches)."""
     exclude = tuple(sorted(p for b, p in BACKENDS.items() if backend is not None and b != backend))
-    code, pkgs = _fingerprint(tuple(entries), exclude)
+    code, pkgs = _fingerprint(tuple(entries), exclude, whole)
     return {"code": code, "packages": dict(pkgs)}
 
 

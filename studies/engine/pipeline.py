@@ -49,7 +49,12 @@ def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = F
         for f in s.failures[:20]:
             log(f"  failed: {f}")
     t0 = time.perf_counter()
-    build_reports(out, tiny, log, catalog_path)
+    from . import stamp
+    if stamp.current(out):
+        log("reports: as the last full audit stamped them (records, report code and every report file "
+            "unchanged); not rebuilt")
+    else:
+        build_reports(out, tiny, log, catalog_path)
     times["(reports)"] = time.perf_counter() - t0
     return times
 

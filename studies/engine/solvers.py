@@ -143,17 +143,22 @@ class Solver:
     # the continuum backend a scene names, for a solver that has several
     backend: Callable[[dict], str] | None = None
 
-    def fingerprint(self, scene: dict, options: dict | None = None) -> dict:
-        """{"code": hash, "packages": {name: version}} of what a run of ``scene`` executes:
-        the run function and what it reaches, the backend's package for a continuum scene,
-        and for a case launched on MPI ranks the launcher and the command line it runs."""
+    def entries(self, scene: dict, options: dict | None = None) -> tuple[list[str], str | None]:
+        """(where a run of ``scene`` starts, the continuum backend it uses): the run
+        function, the backend's package for a continuum scene, and for a case launched on
+        MPI ranks the launcher and the command line it runs."""
         backend = self.backend(scene) if self.backend else None
         entries = [fp.entry(self.run), *self.also]
         if backend in fp.BACKENDS:
             entries.append(fp.BACKENDS[backend])
         if (options or {}).get("mpi_ranks"):
             entries += ["studies.engine.worker:_run_launched", "reference_fem.__main__"]
-        return fp.fingerprint(entries, backend)
+        return entries, backend
+
+    def fingerprint(self, scene: dict, options: dict | None = None) -> dict:
+        """{"code": hash, "packages": {name: version}} of what a run of ``scene`` executes
+        (:meth:`entries`, :func:`studies.engine.fingerprint.fingerprint`)."""
+        return fp.fingerprint(*self.entries(scene, options))
 
 
 _COLD_RUN = ("import json, sys, time; t0 = time.perf_counter(); "

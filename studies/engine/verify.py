@@ -12,7 +12,8 @@ studies run), and compares every result field of the new record with the stored 
   tolerance, from its scene; 1e-8 when it names none): a rerun of the same code differs
   from its record by round-off, which each Newton solve leaves far below the tolerance it
   stops at; the scale of a number inside a history (a tip path, an energy history) is the
-  largest magnitude of that history, of a single number its own magnitude;
+  largest magnitude of that history, of a tip component (``tip``, and the 3D model's
+  ``tip_uz``, zero by symmetry) the tip's largest, of any other number its own magnitude;
 - two fields whose round-off is larger, each by its own rule. ``newton_iterations``
   within one iteration per Newton solve (each solve stops where its residual crosses the
   tolerance, and round-off, e.g. another CPU's fused multiply-adds in the compiled
@@ -190,6 +191,9 @@ def compare(old, new, rtol: float, where: str = "", scale: float | None = None, 
             elif k == "lowest_eigenvalue" and isinstance(a, float) and isinstance(b, float):
                 if (a > 0) != (b > 0) or abs(a - b) > EIGEN_RTOL * max(abs(a), abs(b)):
                     out.append(f"{where}{k}: {a!r} -> {b!r} (sign, or beyond {EIGEN_RTOL:g} relative)")
+            elif k in ("tip", "tip_uz") and scale is None:     # components at the scale of the tip vector
+                s = max(_scale(old.get("tip")), _scale(new.get("tip")), _scale(a), _scale(b))
+                out += compare(a, b, rtol, f"{where}{k}.", s, atol, floor)
             else:
                 out += compare(a, b, rtol, f"{where}{k}.", scale, floor if k in ENERGIES else atol, floor)
         return out
