@@ -4,46 +4,69 @@ PY := .venv/bin/python
 export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 
-.PHONY: setup test test-slow study study-full audit bench bench-penalty bench-peers clean-venv
+.PHONY: setup test test-full test-slow study study-full audit loops bench bench-penalty bench-peers clean-venv
 
 setup:
 	@bash tools/setup.sh
 
-# two workers (pytest-xdist, Debian's python3-pytest-xdist), each test file on one worker
-# (a file's module-scoped fixtures, e.g. the tiny studies, run once); TEST_WORKERS=0: serial.
-# Then the tests marked mpi, alone: ranks that wait on each other at every global sum starve
-# beside another worker on 2 cores (a 2-rank test of 4 s alone took 50 s to over 120 s).
-# Both phases run; the target fails if either did.
+# The quick tier: two workers (pytest-xdist, Debian's python3-pytest-xdist), each test file on
+# one worker (a file's module-scoped fixtures run once); TEST_WORKERS=0: serially. Then the
+# tests marked mpi, alone: ranks that wait on each other at every global sum starve beside
+# another worker on 2 cores. Both phases run; the target fails if either did.
+# Every test marked slow names the quick test that guards its property in this tier
+# (tests/conftest.py refuses a slow test without one); `make test-full` runs the slow ones.
 TEST_WORKERS ?= 2
+XDIST = $(if $(filter 0,$(TEST_WORKERS)),,-n $(TEST_WORKERS) --dist loadfile)
 test: setup
 	@status=0; \
-	$(PY) -m pytest -q -m "not slow and not mpi" $(if $(filter 0,$(TEST_WORKERS)),,-n $(TEST_WORKERS) --dist loadfile) tests || status=$$?; \
+	$(PY) -m pytest -q -m "not slow and not mpi" $(XDIST) tests || status=$$?; \
 	$(PY) -m pytest -q -m "mpi and not slow" tests || status=$$?; \
 	exit $$status
 
-test-slow: setup
-	$(PY) -m pytest -q -m slow tests
+# The full tier: what make test leaves out (fuzz at 10 to 25 times the budget, every element
+# and law of the contract cases, the studies' tiny runs, the examples' claims, cold compiles).
+# (pytest's exit 5, "no tests collected", is not a failure of the mpi phase when no slow
+# test launches ranks.)
+test-full: setup
+	@status=0; \
+	$(PY) -m pytest -q -m "slow and not mpi" $(XDIST) tests || status=$$?; \
+	$(PY) -m pytest -q -m "slow and mpi" tests || [ $$? -eq 5 ] || status=1; \
+	exit $$status
 
+test-slow: test-full
+
+# The main job: the paper's tables and figures and the studies that answer the three demands
+# (accuracy against cost, hard cases, effects); every finished record reused. Its cold time
+# (no records) and its time with every record reused are in the record of `make loops`.
 study: setup
 	$(PY) -m studies run all
-	$(PY) -m studies card paper HB2n-20xyp HB2n-20xypm HB2n-40p HB2n-60p HB2n-20 HB2n-20xy HB2n-84p \
-		--import examples.transversely_cubic --import examples.cubic_slope --import examples.sextic_section
 	$(PY) -m studies audit
 
-# every report rebuilt from its records and compared (no solver runs; tests/test_audit.py
-# runs it on the committed reports in `make test`)
+# every report rebuilt from its records and compared (no solver runs; the stamp of the last
+# full audit answers at once while records, report code and reports are unchanged)
 audit: setup
 	$(PY) -m studies audit
 
-# make study, then the heavy 3D levels (issue 11): the converged 3D cantilever of the
-# three laws (graded 16x1x1 ... 64x4x4, 2 to 4 min per law here) into reports/data/solid3d
-# (RANKS=N runs it under mpiexec on N ranks; README, "The real beam in 3D"), and the
-# study pendulum-3d (three 3D pendulum levels, about 19 min here; not in `make study`)
+# The rest, after the main job: the studies marked full (the paper's sensitivity and Yeoh
+# hypotheses, the fixed quadrature rules' cost, the formulation comparison, the 3D width map,
+# the law card, the two continuum codes' agreement, the manufactured solutions, the cold
+# first run, the 3D pendulum), every element's card (the built-in ones and the examples'), and
+# the converged 3D cantilever gold (2 to 4 min per law; RANKS=N: on N MPI ranks).
 RANKS ?= 1
 MPIEXEC := mpiexec --oversubscribe --allow-run-as-root -x PYTHONPATH -x OMP_NUM_THREADS -x OPENBLAS_NUM_THREADS
+CARDS = paper HB2n-20xyp HB2n-20xypm HB2n-40p HB2n-60p HB2n-20 HB2n-20xy HB2n-84p
+CARD_IMPORTS = --import examples.transversely_cubic --import examples.cubic_slope --import examples.sextic_section
 study-full: study
+	$(PY) -m studies run full
+	$(PY) -m studies card $(CARDS) $(CARD_IMPORTS)
 	$(if $(filter 1,$(RANKS)),,$(MPIEXEC) -n $(RANKS)) $(PY) -m reference_fem gold --3d --out reports/data/solid3d
-	$(PY) -m studies run pendulum-3d
+	$(PY) -m studies audit
+
+# The five loops a user waits on, in a fresh clone of the committed tree (set-up, first
+# run, make test, verify, make study cold and with every record reused; about 25 min):
+# reports/data/loops.json, quoted in README.md
+loops: setup
+	$(PY) -m studies.loops
 
 bench: setup
 	$(PY) -m studies.bench table3

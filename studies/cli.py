@@ -1,8 +1,8 @@
 """``python -m studies``: list, run and report the studies of studies/cases.toml.
 
 - ``list``: the studies, their case counts and what each needs;
-- ``run NAME [NAME ...] | all``: run the studies (and those they need; ``all``: every one but
-  the ``full = true`` ones, which ``make study-full`` names), reusing finished
+- ``run NAME [NAME ...] | all | full``: run the studies (and those they need; ``all``: every
+  one but the ``full = true`` ones; ``full``: those, as ``make study-full`` runs them), reusing finished
   records; ``--force`` recomputes the named ones; ``--tiny`` runs the CI grids into
   ``--out DIR`` (default: a new temporary directory, never reports/); then rebuilds
   every table, figure and the README from the records; prints the time per study;
@@ -49,7 +49,7 @@ def _list(args) -> int:
 def _run(args) -> int:
     out = resolve_out(args.out, args.tiny)
     catalog = load_catalog(args.tiny, args.catalog)
-    if args.names != ["all"]:
+    if args.names not in (["all"], ["full"]):
         for n in args.names:
             get_study(catalog, n)
     print(f"output: {out}")
@@ -92,6 +92,13 @@ def _audit(args) -> int:
     from .engine import stamp
 
     reports = Path(args.reports) if args.reports else REPORTS
+    if not args.reports:      # the README's quote of the loops record, checked at every audit
+        from .loops import readme_problems
+        quote = readme_problems(REPORTS.parent / "README.md")
+        for p in quote:
+            print(p)
+        if quote:
+            return 1
     if not args.full and stamp.current(reports):
         print(f"audit: {reports}: the records, the report code and every report file are as the last full "
               f"audit stamped them ({stamp.path(reports).name}); OK (--full rebuilds anyway)")
@@ -174,7 +181,7 @@ def main(argv: list[str] | None = None) -> int:
     sub = p.add_subparsers(dest="command", required=True)
     ls = sub.add_parser("list", help="name the studies")
     ls.add_argument("--tiny", action="store_true")
-    r = sub.add_parser("run", help="run studies (NAME ... or all)")
+    r = sub.add_parser("run", help="run studies (NAME ..., all: the main job's, full: the others)")
     r.add_argument("names", nargs="+", metavar="NAME")
     r.add_argument("--tiny", action="store_true", help="CI grids (few elements, coarse meshes)")
     r.add_argument("--out", help="output directory (default reports/, or a temp dir with --tiny)")

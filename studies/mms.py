@@ -42,6 +42,7 @@ STUDY = {
     "tiny": {"cases": [["plane-strain", "neo-hookean"], ["plane-strain-penalty", "yeoh"],
                        ["plane-stress", "mooney-rivlin"], ["3d", "neo-hookean"]],
              "levels_2d": [2, 4], "levels_3d": [2, 3]},
+    "full": True,
 }
 
 SOLVER = "mms"

@@ -16,38 +16,22 @@ from __future__ import annotations
 
 from contract import paper
 
-from .engine.case import make_case
-from .pendulum_cases import LADDER, converged_rung, describe_dynamic, gold_tips, ladder, pendulum_case, \
-    pendulum_dict
+from .pendulum_cases import LADDER, converged_rung, describe_dynamic, gold_tips, ladder, pendulum_case
 from .engine.report import Section, Table, figure
 
 DT0, TOL = LADDER["dt0"], LADDER["tol"]
 
 
-COLD = "ancf-cold"
-
-
 def cases(grid: dict, tiny: bool) -> list:
     opts = {"timing": dict(grid["timing"])}
-    out = [pendulum_case("table4", el, n, f, dt, rho_inf=grid["rho_inf"], t_end=grid["t_end"], options=opts)
-           for f in grid["formulations"] for el in grid["elements"] for n in grid["counts"]
-           for dt in ladder(grid.get("dt0", DT0), last=grid.get("dt_last"))]
-    c = grid.get("cold")
-    if c:   # the first run after installing: a fresh process, an empty numba cache (twice, serially)
-        out += [make_case("table4", COLD, pendulum_dict(el, c["count"], c["formulation"], c["dt"],
-                                                       rho_inf=grid["rho_inf"], t_end=grid["t_end"]),
-                          {"timing": {"repeats": 1, "budget_s": 0.0}})
-                for el in grid["elements"]]
-    return out
-
-
-def _cold(rec: dict) -> bool:
-    return (rec.get("case") or {}).get("solver") == COLD
+    return [pendulum_case("table4", el, n, f, dt, rho_inf=grid["rho_inf"], t_end=grid["t_end"], options=opts)
+            for f in grid["formulations"] for el in grid["elements"] for n in grid["counts"]
+            for dt in ladder(grid.get("dt0", DT0), last=grid.get("dt_last"))]
 
 
 def ladder_records(records: list[dict]) -> list[dict]:
-    """Table 4's step-ladder records (the timed warm runs), without its cold-start runs."""
-    return [r for r in records if not _cold(r)]
+    """Table 4's step-ladder records (the timed warm runs)."""
+    return list(records)
 
 
 def selected(ctx) -> list[dict]:
@@ -74,7 +58,7 @@ def report(ctx) -> Section:
                   f"Time of the pendulum ({paper.PENDULUM_LAW}, {g['t_end']:g} s; generalized-alpha, rho_inf = {g['rho_inf']}) per "
                   f"element and count, each at its converged step (largest dt of the ladder {DT0 * 1e3:g} ms, halving, "
                   f"whose tip positions are within {TOL * 1e3:g} mm of the dt/2 run); wall time = median of serial warm "
-                  f"runs in one process and one thread (compile time and warm-up apart; the first run of the process, shown beside it, loads the compiled code from the numba cache and does not include compiling it; the first run after installing, compiling included, is the cold-start table). The paper's CPU time is from an "
+                  f"runs in one process and one thread (compile time and warm-up apart; the first run of the process, shown beside it, loads the compiled code from the numba cache and does not include compiling it; the first run after installing, compiling included, is the study table4-cold). The paper's CPU time is from an "
                   "Intel i5-5200U laptop.")
     rows, plot = [], {}
     for s in sel:
@@ -95,22 +79,6 @@ def report(ctx) -> Section:
                          {4: "g", 5: ".4f", 8: ".3f", 9: ".2f", 10: ".2f", 11: ".0f"}),
               "Table 4 beside the paper's: our median serial warm wall time of the pendulum at each case's converged "
               "step, with the steps, Newton iterations and ndof of that run, and the ratio of the paper's CPU time to ours.")
-    cold = [r for r in ctx.records() if _cold(r)]
-    if cold:
-        crow = []
-        for r in sorted(cold, key=lambda r: r["scene"]["ancf"]["element"]):
-            t, d = r.get("timing") or {}, describe_dynamic(r)
-            crow.append([d["element"], d["elements"], d["formulation"], 1e3 * d["dt"], d["status"],
-                         t.get("warmup_s"), t.get("median_s"), (r.get("cold") or {}).get("import_build_solve_s"),
-                         r.get("wall_s")])
-        sec.table(ctx, Table("table4_cold", ["element", "n", "formulation", "dt (ms)", "status",
-                                             "first cold process s", "second cold process s",
-                                             "of which imports + compile + build + solve s", "solve s"], crow,
-                             {3: "g", 5: ".1f", 6: ".1f", 7: ".1f", 8: ".3f"}),
-                  "The first run after installing: the pendulum in a fresh Python process with an empty numba "
-                  "cache (a new NUMBA_CACHE_DIR), so the compiled loops are compiled, run twice in turn after the "
-                  "study's pool has finished; the whole process's wall time, the part from the first import on "
-                  "(of the second run), and the solve alone.")
     long = []
     for s in sel:
         for d in s["rungs"]:

@@ -1,3 +1,5 @@
+from typing import Callable
+
 import numpy as np
 import pytest
 
@@ -37,3 +39,50 @@ def contract_rule(element: str):
     return None if ELEMENTS[element].pressure else (3, 2)
 ALL_LAWS = sorted(LAWS)
 ALL_FORMULATIONS = sorted(FORMULATIONS)
+
+
+# -- the two tiers -----------------------------------------------------------------------
+# `make test` runs what is not marked slow; `make test-full` (which .ci/run runs too) runs
+# the slow ones. A slow test guards a property that must keep a quick test in `make test`:
+# it names that test, `@pytest.mark.slow(guard="test_name")` (a test of the same file, or
+# "test_file.py::test_name"; a parametrized test's quick cases guard its slow ones by its
+# own name). Collection fails on a slow test without a guard, or with one that is not a
+# collected quick test.
+
+def tiered(params, slow: Callable[..., bool], guard: str) -> list:
+    """Parameter sets for parametrize, those for which ``slow(*values)`` holds marked slow
+    with ``guard`` (the same test's quick cases, by its name)."""
+    out = []
+    for p in params:
+        values = p if isinstance(p, tuple) else (p,)
+        out.append(pytest.param(*values, marks=pytest.mark.slow(guard=guard)) if slow(*values) else p)
+    return out
+
+
+# the elements whose contract cases cost most (quartic sections, the sextic example)
+HEAVY_ELEMENTS = ("HB2n-40p", "HB2n-60p", "HB2n-84p")
+
+
+def _base(nodeid: str) -> str:
+    return nodeid.split("[")[0]
+
+
+@pytest.hookimpl(tryfirst=True)          # before -m deselects either tier
+def pytest_collection_modifyitems(session, config, items):
+    files = {i.nodeid.split("::")[0] for i in items}
+    quick = {_base(i.nodeid) for i in items if i.get_closest_marker("slow") is None}
+    bad = []
+    for item in items:
+        mark = item.get_closest_marker("slow")
+        if mark is None:
+            continue
+        guard = mark.kwargs.get("guard")
+        if not guard:
+            bad.append(f"{item.nodeid}: marked slow without a guard (slow(guard=\"a quick test of the same property\"))")
+            continue
+        want = guard if "::" in guard else f"{item.nodeid.split('::')[0]}::{guard}"
+        want = want if want.startswith("tests/") else f"tests/{want}"
+        if want.split("::")[0] in files and _base(want) not in quick:
+            bad.append(f"{item.nodeid}: its guard {guard!r} is not a quick test")
+    if bad:
+        raise pytest.UsageError("\n".join(bad))

@@ -32,6 +32,7 @@ def _tamper(path: Path, old: str, new: str) -> int:
     raise AssertionError(f"{old!r} not in {path}")
 
 
+@pytest.mark.slow(guard="test_a_tampered_report_is_named_by_file_and_line")
 @pytest.mark.skipif(not (REPORTS / "data").is_dir(), reason="no committed records")
 def test_committed_reports_pass_and_a_tampered_copy_fails(tmp_path):
     """One rebuild of the committed reports' copy with four changes: a number in a
@@ -126,3 +127,21 @@ def test_the_cheapest_rule_recheck_names_a_cell_on_cancellation(tmp_path):
     cells.write_text("".join(lines))
     problems = accuracy_cost.audit(ctx)
     assert len(problems) == 1 and problems[0].startswith(f"accuracy_cost.csv:{i + 1}: ") and "warned" in problems[0]
+
+
+def test_a_tampered_report_is_named_by_file_and_line(tmp_path):
+    """The quick guard of the committed reports' audit: Table 3 and the continuum rebuilt
+    from their committed records alone, a number of Table 3 changed; the audit names that
+    file and line and nothing of Table 3 else."""
+    copy = tmp_path / "r"
+    (copy / "data").mkdir(parents=True)
+    for name in ("table3.jsonl", "continuum.jsonl"):
+        shutil.copy(REPORTS / "data" / name, copy / "data")
+    for f in REPORTS.glob("table3*"):
+        shutil.copy(f, copy / f.name)
+    table = copy / "table3.md"
+    row = next(ln for ln in table.read_text().splitlines() if ln.startswith("| HB2n-12 `paper`"))
+    cell = row.split("|")[3].strip()
+    line = _tamper(table, f"| {cell} |", f"| {float(cell) + 0.01:.2f} |")
+    res = audit(copy)
+    assert [p.split(": ")[0] for p in res.problems if p.startswith(str(copy / "table3"))] == [f"{table}:{line}"]

@@ -17,6 +17,7 @@ def _tree(folder: Path) -> dict:
     return {p: (p.stat().st_size, p.stat().st_mtime_ns) for p in folder.rglob("*") if p.is_file()}
 
 
+@pytest.mark.slow(guard="test_a_committed_card_renders_again_from_its_records")
 def test_a_user_elements_card_regenerates_from_its_records(tmp_path):
     reports = _tree(ROOT / "reports")
     cmd = [sys.executable, "-m", "studies", "card", "HB2n-20", "--import", "examples.transversely_cubic",
@@ -171,3 +172,16 @@ def test_a_card_names_why_a_pendulum_run_has_no_result():
     lines = _pendulum([rec])
     assert "| 8 | 0.5 | failed | - | - | 0.01 |" in lines
     assert "- n = 8, dt = 0.5 ms: failed: step below dt_min at t = 0 s: det F <= 0" in lines
+
+
+def test_a_committed_card_renders_again_from_its_records(tmp_path):
+    """The quick guard of the card runs: HB2n-12's committed card rendered again from
+    the committed records alone (no solver run) is the committed card, line for line."""
+    import shutil
+
+    from studies.card_report import render
+    (tmp_path / "data").mkdir()
+    for f in (ROOT / "reports" / "data").glob("card-*"):
+        shutil.copy(f, tmp_path / "data" / f.name)
+    card = render("HB2n-12", tmp_path)
+    assert card.read_text() == (ROOT / "reports" / "cards" / "HB2n-12.md").read_text()

@@ -104,6 +104,7 @@ def cubic_element():
     del ELEMENTS[spec.name]
 
 
+@pytest.mark.slow(guard="test_examples.py::test_the_example_element_passes_the_contract_checks")
 def test_a_user_defined_element_runs_in_a_scene(cubic_element):
     """Registered by name, used by name: the transversely cubic element solves the
     small-load cantilever (plane stress) within 5e-3 of Euler-Bernoulli + Timoshenko

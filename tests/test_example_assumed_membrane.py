@@ -18,6 +18,7 @@ def harness_error(n: int, dt: float = 2.5e-3, element: str = ELEMENT) -> float:
     return error(rec["tip_history"])
 
 
+@pytest.mark.slow(guard="test_an_assumed_membrane_stretch_leaves_the_small_strain_stiffness_and_the_shear_does_not")
 def test_the_prototype_without_an_assumed_strain_is_the_harness():
     """A second route: numpy energy, exact force, finite-difference tangent and its own
     step loop against the compiled run. Both solve each step to rtol 1e-8, so they agree
@@ -25,6 +26,7 @@ def test_the_prototype_without_an_assumed_strain_is_the_harness():
     assert pendulum_error(2, "none") == pytest.approx(harness_error(2), rel=1e-7)
 
 
+@pytest.mark.slow(guard="test_hb2n_20xypm.py::test_the_assumed_stretch_relieves_the_slender_pendulums_coarse_meshes")
 def test_an_assumed_membrane_stretch_removes_most_of_the_four_element_error():
     """Measured at dt = 2.5 ms (l_e / h = 17.5, the rule [5, 2]): 1.196 % plain, 0.454 % with
     C_xx from the three points, 1.282 % with C_yy from them ([4, 2]: 1.178 / 0.447 / 1.277 %)."""

@@ -4,6 +4,7 @@ is below HB2n-60p's (quartic section) and below 0.01 % of the converged continuu
 quartic section cannot reach (README "An element for incompressible rubber"); in penalised
 plane strain its error against the incompressible continuum falls as the penalty stiffens
 (with the richer pressure {1..x^3} x {1..y^4} it grew)."""
+import pytest
 import json
 import math
 from pathlib import Path
@@ -17,6 +18,7 @@ ELEMENT = "HB2n-84p"
 GOLD = json.loads((Path(__file__).parent / "gold" / "fem_cantilever.json").read_text())["cases"]
 
 
+@pytest.mark.slow(guard="test_the_pendulum_starts")
 def test_the_declared_rules_pass_the_rank_tests_and_the_cheaper_ones_fail():
     from ancf.rank import rank_test, strain_test
 
@@ -40,6 +42,7 @@ def _plane_stress_error(element: str, n: int) -> float:
     return _tip_error(rec, GOLD["yeoh/plane-stress"]["tip"])
 
 
+@pytest.mark.slow(guard="test_the_pendulum_starts")
 def test_the_sextic_section_lowers_the_plane_stress_plateau_below_a_hundredth_of_a_percent():
     """At 256 elements both elements are converged along the beam (HB2n-60p moves by 1e-9 m
     from 256 to 512); measured: HB2n-60p 0.0106 %, HB2n-84p 0.0047 %."""
@@ -56,6 +59,7 @@ def _plane_strain_error(n: int, k: float) -> float:
     return _tip_error(rec, GOLD["yeoh/plane-strain"]["tip"])
 
 
+@pytest.mark.slow(guard="test_the_pendulum_starts")
 def test_the_plane_strain_error_falls_as_the_penalty_stiffens():
     """The stiff end of the card's sweep (64 elements): from k = 1e4 to 1e5 C10 the
     penalty's own softness (about 0.010 % and 0.001 % of the tip, Yeoh) leaves, and the error

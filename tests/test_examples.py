@@ -1,6 +1,7 @@
 """The example element the harness found (examples/cubic_slope.py, HB2n-20xy: HB2n-16 with
 r_xy, a cubic cross-section field r_y): it passes the contract checks, and it removes the
 coarse-mesh bending stiffness that keeps 8 HB2n-16 elements 2 % off on the pendulum."""
+import pytest
 import numpy as np
 
 import examples.cubic_slope  # noqa: F401  (registers HB2n-20xy)
@@ -36,6 +37,7 @@ def test_eight_elements_reach_a_tenth_of_a_percent_on_the_pendulum():
     assert errs[ELEMENT] < 1e-3 < 1e-2 < errs["HB2n-16"]
 
 
+@pytest.mark.slow(guard="test_rank.py::test_each_declared_default_passes_the_u0_test_where_it_is_declared")
 def test_the_declared_rules_pass_the_rank_tests_and_the_cheaper_ones_fail():
     from ancf.rank import rank_test, strain_test
 

@@ -9,6 +9,8 @@ from pathlib import Path
 
 import pytest
 
+from .conftest import tiered
+
 from contract.errors import SceneError
 from contract.scene import load_scene, scene_from_dict
 from reference_fem.gold_cantilever import VARIANTS, base_settings, cantilever
@@ -33,7 +35,7 @@ def _close(tip, ref, rtol=RTOL):
     return math.hypot(tip["ux"] - ref["ux"], tip["uy"] - ref["uy"]) <= rtol * math.hypot(ref["ux"], ref["uy"])
 
 
-@pytest.mark.parametrize("key", sorted(CASES))
+@pytest.mark.parametrize("key", tiered(sorted(CASES), lambda k: not k.startswith("yeoh"), "test_same_mesh_same_tip_as_dolfinx_gold_2d"))
 def test_same_mesh_same_tip_as_dolfinx_gold_2d(key):
     """16 x 1 Q2 (Q2/Q1) cells: FElupe's tip equals DOLFINx's committed level 0."""
     law, variant = key.split("/")
@@ -48,6 +50,7 @@ def test_same_mesh_same_tip_as_dolfinx_gold_2d(key):
     assert _close(rec["tip"], level["tip"]), (rec["tip"], level["tip"])
 
 
+@pytest.mark.slow(guard="test_same_mesh_same_tip_as_dolfinx_gold_2d")
 @pytest.mark.parametrize("inc", ["mixed", "penalty"])
 def test_same_mesh_same_tip_as_dolfinx_gold_3d(inc):
     """The real beam, 16 x 1 x 1 graded Q2/Q1 hexahedra (Yeoh): DOLFINx's committed
@@ -155,6 +158,7 @@ def _committed(name: str) -> dict:
     return next(r for r in recs if r["scene"]["name"] == name)
 
 
+@pytest.mark.slow(guard="test_same_mesh_same_tip_as_dolfinx_gold_2d")
 def test_felupe_sequence_reproduces_its_committed_levels_and_richardson():
     """The CI-sized case of FElupe's own refinement (Yeoh, plane stress, 12 x 1 ... 96 x 8,
     about 3 s): every level reproduces the committed record of the continuum-agreement

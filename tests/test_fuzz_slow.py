@@ -18,9 +18,9 @@ from hypothesis import strategies as st
 from . import test_hostile as quick
 from .test_hostile import KEYS, fuzz, small_scenes, values
 
-pytestmark = pytest.mark.slow
 
 
+@pytest.mark.slow(guard="test_hostile.py::test_fuzz_one_wrong_value")
 @fuzz(4000)
 @given(st.sampled_from([(t, k) for t, ks in KEYS.items() for k in ks]), values)
 def test_fuzz_one_wrong_value_many(place, value):
@@ -31,6 +31,7 @@ def test_fuzz_one_wrong_value_many(place, value):
 @given(st.dictionaries(st.sampled_from(KEYS[""]),
                        st.one_of(values, st.dictionaries(st.sampled_from(sum(KEYS.values(), [])), values,
                                                          max_size=8)), max_size=9))
+@pytest.mark.slow(guard="test_hostile.py::test_fuzz_random_documents")
 def test_fuzz_random_documents_many(d):
     quick._check_both(d)
 
@@ -45,6 +46,7 @@ mutated_scenes = st.lists(st.one_of(st.sampled_from(_LINES), _snippets, st.text(
                           min_size=1, max_size=len(_LINES) + 5)
 
 
+@pytest.mark.slow(guard="test_hostile.py::test_fuzz_random_documents")
 @fuzz(1500)
 @given(mutated_scenes)
 def test_fuzz_mutated_scene_text(lines):
@@ -55,12 +57,14 @@ def test_fuzz_mutated_scene_text(lines):
         pass
 
 
+@pytest.mark.slow(guard="test_hostile.py::test_fuzz_random_bytes")
 @fuzz(2000)
 @given(st.binary(max_size=2000))
 def test_fuzz_random_bytes_many(tmp_path_factory, data):
     quick.test_fuzz_random_bytes.hypothesis.inner_test(tmp_path_factory, data)
 
 
+@pytest.mark.slow(guard="test_hostile.py::test_fuzz_small_random_runs_end_with_a_status")
 @fuzz(150)
 @given(small_scenes)
 def test_fuzz_small_random_runs_many(p):
@@ -98,6 +102,7 @@ tokens = st.sampled_from(["run", "list", "report", "diff", "card", "gold", "conv
 @given(st.sampled_from(["ancf", "reference_fem", "studies"]), st.lists(st.one_of(tokens, st.text(max_size=8)),
                                                                         max_size=6),
        st.binary(max_size=300))
+@pytest.mark.slow(guard="test_hostile.py::test_files_that_are_not_scenes_are_one_line")
 def test_fuzz_command_lines(tmp_path_factory, capsys, module, argv, content):
     """Random arguments and a random file ("FILE") and folder ("DIR") where a path goes.
     Commands that would start real work on a valid input (a study run, a gold refresh, a
@@ -119,6 +124,7 @@ def test_fuzz_command_lines(tmp_path_factory, capsys, module, argv, content):
 @given(st.lists(st.one_of(st.binary(max_size=80).map(lambda b: b.decode("latin-1")),
                           st.builds(json.dumps, st.dictionaries(st.sampled_from(["case_id", "status", "tip", "case"]),
                                                                 values, max_size=4))), max_size=6))
+@pytest.mark.slow(guard="test_hostile.py::test_studies_diff_of_garbage_records_is_one_line_or_a_table")
 def test_fuzz_studies_diff_of_garbage_records(tmp_path_factory, capsys, lines):
     """``studies diff OLD NEW`` on record files with garbage lines."""
     old, new = tmp_path_factory.mktemp("old"), tmp_path_factory.mktemp("new")

@@ -12,7 +12,6 @@ from studies.hard_loads import rows_of
 from studies.engine.pipeline import run_studies
 from studies.engine.report import Context
 
-pytestmark = pytest.mark.slow
 
 # The formulation study puts the converged plane-stress ANCF elements within 0.5 % of the
 # continuum at 1 g; at 32 elements / 64 x 4 cells the discretisation adds about as much.
@@ -27,6 +26,7 @@ def rows(tmp_path_factory):
     return rows_of(Context(catalog["hard-loads"], out, catalog)), catalog["hard-loads"].grid
 
 
+@pytest.mark.slow(guard="test_hostile.py::test_loads_that_looped_end_with_a_status_in_bounded_time")
 def test_every_run_ends_with_a_status_and_a_reason_when_failed(rows):
     rows, grid = rows
     n = len(grid["laws"]) * len(grid["elements"]) * (len(grid["gravity_factors"]) + len(grid["tip_forces"]))
@@ -38,6 +38,7 @@ def test_every_run_ends_with_a_status_and_a_reason_when_failed(rows):
             assert r["status"] != "converged" or r["tip"] is not None
 
 
+@pytest.mark.slow(guard="test_hostile.py::test_the_20_newton_tip_force_agrees_with_the_continuum")
 def test_where_both_converge_the_higher_order_elements_agree_with_the_continuum(rows):
     rows, grid = rows
     hard = [x for x in rows if x["distance"] is not None and x["element"] not in grid["low_order"]

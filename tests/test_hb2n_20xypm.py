@@ -52,6 +52,7 @@ def test_a_bad_assumed_component_is_refused_with_the_allowed_ones():
         ElementSpec("bad", ("1", "x"), (0.0, 1.0), ("r",), assumed=("zz",))
 
 
+@pytest.mark.slow(guard="test_the_small_strain_stiffness_is_hb2n_20xyps")
 def test_the_element_is_the_prototype():
     """The force at a bent, stretched state (ancf.checks.bent_state with noise 1e-3): the
     compiled kernel against the prototype's numpy einsum (round-off), and the 2-element
@@ -82,6 +83,7 @@ def test_the_assumed_stretch_relieves_the_slender_pendulums_coarse_meshes():
     assert e4 < 0.5 * b4 and e2 < 0.8 * b2
 
 
+@pytest.mark.slow(guard="test_the_sampling_interpolates_along_and_keeps_the_other_components")
 def test_the_finite_strain_rank_test_sees_the_assumed_strain():
     """ancf.rank's finite-strain test reads E_bar = (C_bar - I) / 2 at the rule's points for
     an element with an assumed strain. Second route: the numpy reference's C_bar

@@ -232,6 +232,7 @@ def test_tracing_rejects_what_it_cannot_compile():
         a ** J
 
 
+@pytest.mark.slow(guard="test_a_user_law_with_a_log_reaches_both_solvers_through_one_table")
 def test_a_user_law_given_by_import_runs_in_both_solvers(tmp_path):
     """A law of the user's own (a module registering it, given with --import) runs in
     ANCF and in the continuum from the same scene file: one table, no solver edited.

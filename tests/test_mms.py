@@ -10,6 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from .conftest import tiered
+
 from contract import paper
 from contract.errors import SceneError, UnknownName
 from reference_fem.mms import EXPECTED_ORDER, MODELS, manufactured, observed_orders
@@ -44,8 +46,9 @@ def _tensortrax_stress(ms, X: np.ndarray) -> np.ndarray:
     return mat.evaluate(x, False)[0][:dim, :dim, :, 0]
 
 
-@pytest.mark.parametrize("law", LAWS)
-@pytest.mark.parametrize("model", list(MODELS))
+@pytest.mark.parametrize("law, model", tiered([(law, m) for m in MODELS for law in LAWS],
+                                               lambda law, m: m == "3d" or law != "yeoh",
+                                               "test_body_force_is_minus_the_divergence_of_the_backends_stress"))
 def test_body_force_is_minus_the_divergence_of_the_backends_stress(law, model):
     pytest.importorskip("felupe")
     ms = problem(law, model)
@@ -113,7 +116,7 @@ def _orders(solve, model):
     return res
 
 
-@pytest.mark.parametrize("model", list(SMALL))
+@pytest.mark.parametrize("model", tiered(list(SMALL), lambda m: m in ("3d", "plane-strain-penalty"), "test_felupe_orders"))
 def test_felupe_orders(model):
     pytest.importorskip("felupe")
     from reference_fem.felupe_backend.mms import solve

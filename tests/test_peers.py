@@ -275,6 +275,7 @@ def test_the_verdict_takes_each_rounds_ratio_when_the_machine_changes_speed():
         compare.round_ratios(ours, peer[:9], 2)
 
 
+@pytest.mark.slow(guard="test_audit.py::test_a_tampered_report_is_named_by_file_and_line")
 def test_the_peer_reports_are_audited_against_their_records(tmp_path):
     """The audit's peer rule redraws peers.md and peers_work_precision.md from their
     records (their own plain functions) and names a tampered line."""

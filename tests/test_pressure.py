@@ -176,7 +176,7 @@ def test_the_quintic_pressure_element_reaches_the_plane_stress_target():
         assert rec["status"] == "converged" and err < 5e-4, (law, err)
 
 
-@pytest.mark.slow
+@pytest.mark.slow(guard="test_rank.py::test_each_declared_default_passes_the_u0_test_where_it_is_declared")
 def test_the_quintic_pressure_elements_rules_pass_the_rank_tests_and_the_cheaper_ones_fail():
     """The rules HB2n-60p declares (about 2 s per finite-strain test)."""
     from ancf.rank import rank_test, strain_test

@@ -5,6 +5,8 @@ from pathlib import Path
 
 import pytest
 
+from .conftest import tiered
+
 from contract import paper
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
@@ -41,12 +43,12 @@ def _check_refinement(law, variant, levels):
     assert st["order"] >= 1.0
 
 
-@pytest.mark.parametrize("law, variant", FAST)
+@pytest.mark.parametrize("law, variant", tiered(FAST, lambda law, v: law == "yeoh", "test_refinement_order_and_richardson_bound"))
 def test_refinement_order_and_richardson_bound(law, variant):
     _check_refinement(law, variant, 4)  # 16 x 1 ... 128 x 8
 
 
-@pytest.mark.slow
+@pytest.mark.slow(guard="test_refinement_order_and_richardson_bound")
 @pytest.mark.parametrize("law, variant", ALL)
 def test_refinement_order_and_richardson_bound_all(law, variant):
     _check_refinement(law, variant, 5)  # 16 x 1 ... 256 x 16

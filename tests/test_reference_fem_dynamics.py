@@ -8,6 +8,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+
+from .conftest import tiered
 from scipy.integrate import solve_ivp
 
 from contract import paper
@@ -131,7 +133,7 @@ def _toml(d) -> str:
 
 
 @pytest.mark.dolfinx
-@pytest.mark.parametrize("model", ["plane-stress", "plane-strain"])
+@pytest.mark.parametrize("model", tiered(["plane-stress", "plane-strain"], lambda m: m == "plane-strain", "test_energy_bound_on_a_short_conservative_run"))
 def test_energy_bound_on_a_short_conservative_run(model):
     """Bound stated before measuring (the issue's): |E(t) - E(0)| <= 1e-3 m g L / 2
     at every step of 0.1 s with Newmark (no numerical dissipation) on the coarse mesh,
@@ -156,6 +158,7 @@ def test_energy_bound_on_a_short_conservative_run(model):
     assert 2.5 < drifts[0] / drifts[1] < 6, drifts
 
 
+@pytest.mark.slow(guard="test_coarse_pendulum_runs_and_writes_the_record")
 @pytest.mark.dolfinx
 def test_stiff_pendulum_follows_the_rigid_compound_pendulum():
     """Constants x 1e6: the tip angle follows the rigid body pinned at the centre of its
@@ -224,8 +227,8 @@ def test_point_pin_holds_the_origin_and_lets_the_face_rotate():
 
 
 # -- slow: gold regression and hard cases ----------------------------------------------------------------
+@pytest.mark.slow(guard="test_coarse_pendulum_runs_and_writes_the_record")
 @pytest.mark.dolfinx
-@pytest.mark.slow
 def test_gold_base_run_is_reproduced():
     """A fresh run of the stored Yeoh plane stress base case reproduces the gold tip
     history to 1e-7 m (Newton tolerance 1e-8 and platform round-off)."""
@@ -237,8 +240,8 @@ def test_gold_base_run_is_reproduced():
         assert math.hypot(a["x"] - b["x"], a["y"] - b["y"]) < 1e-7, (a, b)
 
 
+@pytest.mark.slow(guard="test_energy_bound_on_a_short_conservative_run")
 @pytest.mark.dolfinx
-@pytest.mark.slow
 @pytest.mark.parametrize("rho_inf,dt", [(0.0, 1e-3), (1.0, 1e-3), (0.8, 1e-2)])
 def test_hard_cases_do_not_blow_up(rho_inf, dt):
     """rho_inf = 0 and 1, and a step ten times the converged one, over the full 0.5 s

@@ -21,6 +21,8 @@ from pathlib import Path
 
 import pytest
 
+from .conftest import tiered
+
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
 from contract import paper
@@ -58,6 +60,7 @@ def test_linear_solver_setting_is_validated_recorded_and_kept_by_refinement():
 
 
 # -- 3D: iterative = direct ----------------------------------------------------------------------
+@pytest.mark.slow(guard="test_2d_plane_strain_iterative_tip_is_the_direct_one")
 def test_3d_iterative_tip_is_the_direct_one(monkeypatch):
     from reference_fem.dolfinx_backend import fem as backend
     from reference_fem.simulation import run_scene
@@ -81,6 +84,7 @@ def test_3d_iterative_tip_is_the_direct_one(monkeypatch):
     assert _rel(it["tip"], direct["tip"]) < TIP_RTOL
 
 
+@pytest.mark.slow(guard="test_reference_fem_3d.py::test_two_ranks_give_the_one_rank_tip_and_one_record")
 @pytest.mark.mpi
 def test_3d_iterative_on_two_ranks(monkeypatch):
     """The same coarse case as a study case with mpi_ranks = 2 (mpiexec -n 2): the
@@ -102,7 +106,7 @@ def test_3d_iterative_on_two_ranks(monkeypatch):
 
 
 # -- 2D plane strain: mixed (the augmented-Lagrangian preconditioner), penalty (GAMG) -------------
-@pytest.mark.parametrize("incompressibility", ["mixed", "penalty"])
+@pytest.mark.parametrize("incompressibility", tiered(["mixed", "penalty"], lambda i: i == "penalty", "test_2d_plane_strain_iterative_tip_is_the_direct_one"))
 def test_2d_plane_strain_iterative_tip_is_the_direct_one(incompressibility):
     from reference_fem.simulation import run_scene
 

@@ -167,6 +167,7 @@ def test_a_runner_waits_while_another_holds_the_study_and_says_so(tmp_path):
     assert f"{CASES} cases, 0 reused, {CASES} computed" in stdout
 
 
+@pytest.mark.slow(guard="test_a_runner_waits_while_another_holds_the_study_and_says_so")
 def test_two_runners_at_once_compute_each_case_once(tmp_path):
     out = tmp_path / "out"
     a, data = _start(tmp_path, count=8, out=out, executor="serial")
@@ -213,7 +214,8 @@ def _assert_clean_interrupt(p: subprocess.Popen, err: str, data: Path) -> None:
         (r.get("case_id"), r.get("pid"), r.get("run")) for r in map(json.loads, data.read_text().splitlines())]
 
 
-@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("target", [pytest.param(t, marks=pytest.mark.slow(guard="test_ctrl_c_while_the_pool_starts_ends_the_run"))
+                                    if t == "group" else t for t in TARGETS])
 def test_ctrl_c_while_the_pool_starts_ends_the_run(tmp_path, target):
     """Early: the study's lock is held (the runner is in the scheduler) and the pool's
     workers are being spawned; once this was ignored and the run went on to the end."""
@@ -225,7 +227,8 @@ def test_ctrl_c_while_the_pool_starts_ends_the_run(tmp_path, target):
     assert _records(data) < CASES
 
 
-@pytest.mark.parametrize("target", [pytest.param("group", marks=pytest.mark.slow), "runner"])
+@pytest.mark.slow(guard="test_ctrl_c_while_the_pool_starts_ends_the_run")
+@pytest.mark.parametrize("target", ["group", "runner"])
 def test_ctrl_c_while_cases_run_keeps_every_finished_record_and_leaves_no_worker(tmp_path, target):
     """Late: records are on disk and both workers are in a case; the command returns 130
     with every finished record on disk and no worker alive, and nothing writes afterwards."""

@@ -37,6 +37,7 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
+@pytest.mark.slow(guard="test_converged_rung_needs_both_runs_converged_and_the_tolerance")
 def test_table4_picks_the_step_of_bench_converged_step(tiny):
     out, cat = tiny
     sel = table4.selected(ctx(out, cat, "table4"))

@@ -204,6 +204,7 @@ settings = {{ paper = {{ quadrature = [2, 2], clamp = "all" }}, plane-strain = {
     return p
 
 
+@pytest.mark.slow(guard="test_runner_faults.py::test_kill_9_of_the_runner_takes_its_workers_and_the_resource_tracker_with_it")
 def test_a_killed_run_loses_no_finished_record(tmp_path):
     """SIGKILL the whole run (main process and pool workers) once records exist; every
     line on disk is whole or skipped, and the rerun computes only what is missing."""
@@ -242,6 +243,7 @@ def test_timed_cases_run_serially_in_this_process_after_a_warm_up(tmp_path):
     assert "timing" not in p
 
 
+@pytest.mark.slow(guard="test_reference_fem_3d.py::test_two_ranks_give_the_one_rank_tip_and_one_record")
 @pytest.mark.mpi
 @pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
 def test_a_tiny_study_runs_through_mpiexec(tmp_path):

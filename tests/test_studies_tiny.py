@@ -27,6 +27,46 @@ def tiny(tmp_path_factory):
     return out, log
 
 
+# the quick tier's tiny run: a static table, with the continuum it needs
+FEW = ["table3"]
+
+
+@pytest.fixture(scope="module")
+def few(tmp_path_factory):
+    out = tmp_path_factory.mktemp("studies-few")
+    log = []
+    run_studies(FEW, out, tiny=True, executor="serial", progress=False, log=log.append)
+    return out, log
+
+
+def test_a_few_studies_leave_a_record_per_case_reports_from_records_and_their_gold_values(few, monkeypatch):
+    """The quick tier's guard of the four tests on every study below: records per case,
+    reports from records only, a warm rerun that computes nothing, the gold values."""
+    out, _ = few
+    catalog = load_catalog(tiny=True)
+    ran = [s for s in catalog.values() if store_for(out, s.name).path.exists()]
+    assert {s.name for s in ran} == {"continuum", *FEW}
+    readme = (out / "README.md").read_text()
+    for study in ran:
+        assert {c.id for c in study.cases()} == set(store_for(out, study.name).read()), study.name
+        assert study.title in readme
+    log = []
+    run_studies(FEW, out, tiny=True, executor="serial", progress=False, log=log.append)
+    assert all(", 0 computed," in x for x in log if " cases, " in x)
+
+    def refuse(scene):
+        raise AssertionError("a report called a solver")
+
+    for name, s in list(solvers.SOLVERS.items()):
+        monkeypatch.setitem(solvers.SOLVERS, name, dataclasses.replace(s, run=refuse))
+    build_reports(out, tiny=True)
+    assert (out / "README.md").read_text() == readme
+    gold = {k: v for k, v in load_gold().items() if k.split("/")[0] in {s.name for s in ran}}
+    values = collect(out)
+    assert gold and not compare({k: v for k, v in values.items() if k.split("/")[0] in {s.name for s in ran}}, gold)
+
+
+@pytest.mark.slow(guard="test_a_few_studies_leave_a_record_per_case_reports_from_records_and_their_gold_values")
 def test_every_study_leaves_a_record_per_case_and_its_report(tiny):
     out, _ = tiny
     catalog = load_catalog(tiny=True)
@@ -46,6 +86,7 @@ def test_every_study_leaves_a_record_per_case_and_its_report(tiny):
     assert not str(out).startswith(str(REPORTS))
 
 
+@pytest.mark.slow(guard="test_felupe_backend.py::test_same_mesh_same_tip_as_dolfinx_gold_2d")
 def test_the_two_continuum_codes_agree_within_their_bars(tiny):
     """continuum-agreement's check on the tiny meshes: every row within its bar."""
     out, _ = tiny
@@ -54,6 +95,7 @@ def test_the_two_continuum_codes_agree_within_their_bars(tiny):
     assert section.split("\n## ")[0].count("Check: **PASS**") == 1
 
 
+@pytest.mark.slow(guard="test_a_few_studies_leave_a_record_per_case_reports_from_records_and_their_gold_values")
 def test_timed_cases_carry_serial_warm_timings(tiny):
     out, _ = tiny
     recs = store_for(out, "accuracy-cost").read().values()
@@ -62,6 +104,7 @@ def test_timed_cases_carry_serial_warm_timings(tiny):
     assert ok and all(r["timing"]["median_s"] > 0 and r["timing"]["warmup_s"] > 0 for r in ok)
 
 
+@pytest.mark.slow(guard="test_a_few_studies_leave_a_record_per_case_reports_from_records_and_their_gold_values")
 def test_reports_read_records_only(tiny, monkeypatch):
     out, _ = tiny
     before = (out / "README.md").read_text()
@@ -75,6 +118,7 @@ def test_reports_read_records_only(tiny, monkeypatch):
     assert (out / "README.md").read_text() == before
 
 
+@pytest.mark.slow(guard="test_a_few_studies_leave_a_record_per_case_reports_from_records_and_their_gold_values")
 def test_a_warm_rerun_computes_nothing(tiny):
     out, _ = tiny
     log = []
@@ -84,6 +128,7 @@ def test_a_warm_rerun_computes_nothing(tiny):
     assert all(", 0 computed," in x for x in summaries), summaries
 
 
+@pytest.mark.slow(guard="test_a_few_studies_leave_a_record_per_case_reports_from_records_and_their_gold_values")
 def test_tiny_values_match_the_gold_file(tiny):
     out, _ = tiny
     problems = compare(collect(out), load_gold())
@@ -109,15 +154,14 @@ def test_the_gold_file_has_named_values_with_tolerances():
     assert all(0 < v["tolerance"] < 1e-3 * abs(v["value"]) + 1e-8 for v in vals.values())
 
 
-def test_cli_lists_the_studies_and_tiny_output_defaults_to_a_temp_dir():
-    r = subprocess.run([sys.executable, "-m", "studies", "list"], cwd=ROOT, capture_output=True, text=True,
-                       timeout=60)
-    assert r.returncode == 0, r.stderr
+def test_cli_lists_the_studies_and_tiny_output_defaults_to_a_temp_dir(capsys):
+    from studies.cli import main
+    assert main(["list"]) == 0
+    listed = capsys.readouterr().out
     for name in load_catalog():
-        assert name in r.stdout
+        assert name in listed
     tmp = resolve_out(None, tiny=True)
     assert tmp.is_dir() and not str(tmp).startswith(str(REPORTS))
     tmp.rmdir()
-    r = subprocess.run([sys.executable, "-m", "studies", "run", "no-such-study", "--tiny"], cwd=ROOT,
-                       capture_output=True, text=True, timeout=60)
-    assert r.returncode == 2 and "allowed: continuum, table3" in r.stderr
+    assert main(["run", "no-such-study", "--tiny"]) == 2
+    assert "allowed: continuum, table3" in capsys.readouterr().err

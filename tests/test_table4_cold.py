@@ -1,6 +1,6 @@
 """Table 4's cold start (solver ancf-cold): the first run after installing, in a fresh process
-with an empty numba cache. Its cases are in the full grid only (each compiles the loops), and
-the step-ladder tables and the accuracy-cost pendulum never read them."""
+with an empty numba cache. Its cases are a study of their own (table4-cold, in `make
+study-full`: each compiles the loops), none in tiny mode, and Table 4's step ladder holds none."""
 from __future__ import annotations
 
 import json
@@ -9,23 +9,21 @@ import pytest
 
 from studies.engine.catalog import load_catalog
 from studies.engine.solvers import get_solver
-from studies.table4 import COLD, ladder_records
+from studies.table4_cold import COLD
 
 
 def test_one_cold_case_per_element_in_the_full_grid_none_in_tiny():
-    full = load_catalog(tiny=False)["table4"]
-    cold = [c for c in full.cases() if c.solver == COLD]
+    catalog = load_catalog(tiny=False)
+    full = catalog["table4-cold"]
+    cold = full.cases()
+    assert all(c.solver == COLD for c in cold) and full.full and not full.in_all
     assert sorted(json.loads(c.scene_json)["ancf"]["element"] for c in cold) == sorted(full.grid["elements"])
     assert all(c.timing == {"repeats": 1, "budget_s": 0.0} for c in cold)      # run serially, twice
-    assert not [c for c in load_catalog(tiny=True)["table4"].cases() if c.solver == COLD]
+    assert not load_catalog(tiny=True)["table4-cold"].cases()
+    assert not [c for c in catalog["table4"].cases() if c.solver == COLD]
 
 
-def test_the_ladder_leaves_the_cold_records_out():
-    recs = [{"case": {"solver": "ancf"}, "n": 1}, {"case": {"solver": COLD}, "n": 2}]
-    assert [r["n"] for r in ladder_records(recs)] == [1]
-
-
-@pytest.mark.slow
+@pytest.mark.slow(guard="test_one_cold_case_per_element_in_the_full_grid_none_in_tiny")
 def test_a_cold_run_returns_the_solvers_record_and_its_process_times():
     """About 17 s: the solver's own record, with the process's times beside it (measured,
     never compared here)."""

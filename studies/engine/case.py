@@ -3,7 +3,8 @@
 A :class:`Case` is frozen and hashable: (study, solver, scene, options), the scene and
 the options held as canonical JSON. Its :attr:`Case.id` is a hash of
 
-- the canonical scene JSON and the options (a ``timing`` option changes what is measured;
+- the canonical scene JSON and the options (a ``timing`` option changes what is measured,
+  and so does how its runs are warmed, :func:`studies.engine.worker.execute_timed`;
   ``imports``, the modules a worker imports to register a user's element, does not: the
   element itself counts, below);
 - the solver's fingerprint (:mod:`studies.engine.fingerprint`): the normalised code the
@@ -110,6 +111,8 @@ def identity(solver: str, scene: dict, options: dict) -> dict:
     ident = {"solver": solver, "scene": scene,
              "options": {k: v for k, v in options.items() if k not in TRANSPORT},
              "code": fp["code"], "packages": fp["packages"]}
+    if "timing" in options and get_solver(solver).warm is not None:
+        ident["warmup"] = "compiled code loaded by a two-element copy"   # how a timed run is warmed
     ident.update(user_definitions(scene))
     return ident
 

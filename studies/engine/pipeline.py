@@ -28,7 +28,7 @@ def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = F
                 executor: str | None = None, workers: int = 2, progress: bool = True,
                 log=print, catalog_path: Path = CASES_TOML, timeout_s: float | None = None) -> dict[str, float]:
     """Run the named studies (``["all"]``: every one but the ``full`` ones outside tiny
-    mode) and their needs into ``out``,
+    mode; ``["full"]``: the ``full`` ones) and their needs into ``out``,
     then rebuild the reports; return {study: seconds}."""
     from .scheduler import run_cases
     from .store import store_for
@@ -36,7 +36,8 @@ def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = F
     for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
         os.environ.setdefault(var, "1")  # one thread per worker process
     catalog = load_catalog(tiny, catalog_path)
-    explicit = [n for n, s in catalog.items() if s.in_all] if names == ["all"] else names
+    explicit = ([n for n, s in catalog.items() if s.in_all] if names == ["all"]
+                else [n for n, s in catalog.items() if s.full] if names == ["full"] else names)
     times = {}
     for study in with_needs(catalog, explicit):
         cases = study.cases()

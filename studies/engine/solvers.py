@@ -111,6 +111,13 @@ def _run_fenicsx(scene: dict) -> dict:
     return run_scene(scene_from_dict(scene))
 
 
+def _warm_ancf(scene: dict) -> None:
+    from ancf.warm import load
+    from contract.scene import scene_from_dict
+
+    load(scene_from_dict(scene))
+
+
 def _check_ancf(scene: dict) -> None:
     from ancf.build import capacity
     from contract.scene import scene_from_dict
@@ -142,6 +149,9 @@ class Solver:
     also: tuple[str, ...] = ()
     # the continuum backend a scene names, for a solver that has several
     backend: Callable[[dict], str] | None = None
+    # the warm-up of a timed case (scene dict -> None): load what its runs need without a
+    # full run (None: a full run warms)
+    warm: Callable[[dict], None] | None = None
 
     def entries(self, scene: dict, options: dict | None = None) -> tuple[list[str], str | None]:
         """(where a run of ``scene`` starts, the continuum backend it uses): the run
@@ -205,7 +215,7 @@ def _check_mms(scene: dict) -> None:
 
 SOLVERS: dict[str, Solver] = {
     s.name: s for s in (
-        Solver("ancf", _run_ancf, _check_ancf),
+        Solver("ancf", _run_ancf, _check_ancf, warm=_warm_ancf),
         Solver("ancf-effects", _run_ancf_effects, _check_ancf),
         Solver("fenicsx", _run_fenicsx, _check_fenicsx, backend=_fem_backend),
         Solver("ancf-cold", _run_ancf_cold, _check_ancf, also=("ancf.simulation", "contract.scene")),

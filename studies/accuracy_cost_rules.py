@@ -1,0 +1,21 @@
+"""Accuracy against cost, the fixed rules: the paper's four elements with the quadrature
+rules [2, 2] (the paper's), [3, 2] and [5, 3] on the static cantilever, timed as the study
+accuracy-cost times the defaults. Its records are drawn in accuracy-cost's diagram and
+tables beside the defaults (:func:`studies.accuracy_cost.points`); it has no report of its
+own. Heavy (a rule that misses modes takes thousands of Newton iterations at 640
+elements), so ``make study-full`` runs it.
+"""
+from __future__ import annotations
+
+from .accuracy_cost import cases as _cases
+from .engine.report import Section
+
+
+def cases(grid: dict, tiny: bool) -> list:
+    return _cases(grid, tiny, "accuracy-cost-rules")
+
+
+def report(ctx) -> Section:
+    n = len(ctx.records())
+    return Section(ctx.study.title, f"{n} runs, drawn in the accuracy-cost diagram and its tables beside each "
+                                    "element's default rule.")
