@@ -397,12 +397,18 @@ class BeamModel:
         return np.bincount(self.mesh.element_dofs.ravel(), fe.ravel(), minlength=m.n_dof)
 
     def tip_force(self, force) -> np.ndarray:
-        """A dead load (N) at the free-end centre line r(L, 0)."""
+        """The end load (N) as :mod:`contract.loads` defines it: the uniform dead traction
+        F / (h w) on the free end face, its nodal forces the exact virtual work
+        int N(L, y)^T t w dy (Gauss across the thickness, exact for the basis in y)."""
+        from contract.loads import end_traction
+
         m = self.mesh
-        N, _ = m.element.tabulate([1.0], [0.0], m.element_length, m.height)
+        rule = exact_for(0, m.element.degree()[1])
+        N, _ = m.element.tabulate(np.ones_like(rule.eta), rule.eta, m.element_length, m.height)
+        t = end_traction(force, m.height, m.width)
+        face = m.height * m.width * (rule.weight / rule.weight.sum()) @ N    # int N w dy, (ns,)
         f = np.zeros(m.n_dof)
-        dofs = m.element_dofs[-1]                                        # (ns, 2)
-        np.add.at(f, dofs, N[0][:, None] * np.asarray(force, float)[None, :])
+        np.add.at(f, m.element_dofs[-1], face[:, None] * t[None, :])
         return f
 
     def mass_matrix(self) -> Banded:

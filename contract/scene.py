@@ -22,7 +22,7 @@ from typing import Any, Collection, Mapping
 
 from .errors import SceneError, UnknownName
 
-SUPPORTS = ("clamp", "pin")
+SUPPORTS = ("clamp", "pin", "slide")   # what each is: contract.loads.SUPPORTS
 CLAMPS = ("face", "all")
 ANALYSES = ("static", "dynamic")
 STATIC_KEYS = ("kind", "load_steps", "newton_rtol", "max_iterations", "wall_time")
@@ -294,10 +294,10 @@ def _ancf(t) -> AncfSettings:
 def _supports(t) -> Supports:
     _keys("supports", t, required={"left"}, optional={"clamp"})
     left = _choice("supports.left", t["left"], SUPPORTS)
-    if left == "pin":
+    if left != "clamp":
         if "clamp" in t:
             raise SceneError("supports.clamp: only with left = \"clamp\"")
-        return Supports("pin")
+        return Supports(left)
     return Supports("clamp", _choice("supports.clamp", t.get("clamp", "face"), CLAMPS))
 
 

@@ -87,3 +87,18 @@ def geometry_for(model: str) -> Geometry:
     """The geometry of a continuum model ("plane-strain", "plane-stress": :data:`PLANE`;
     "3d": :data:`BOX`)."""
     return BOX if model == "3d" else PLANE
+
+
+def check_support(left: str, geometry: Geometry, settings) -> None:
+    """A support this continuum can apply (:data:`contract.loads.SUPPORTS`), or a
+    SceneError naming what it cannot: ``pin`` and ``slide`` hold the face centre's node,
+    so the mesh needs an even number of cells across; the 3D model offers ``clamp`` and
+    ``pin`` only."""
+    from contract.errors import SceneError
+
+    if left == "slide" and geometry.gdim == 3:
+        raise SceneError("supports.left: \"slide\" is not offered by the 3D continuum model "
+                         "(fem.model = \"3d\"); allowed there: clamp, pin")
+    if left in ("pin", "slide") and settings.cells_height % 2:
+        raise SceneError(f"fem.cells_height: supports.left = \"{left}\" holds the node at the centre of the "
+                         "left face; needs an even number of cells across")

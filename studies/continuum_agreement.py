@@ -75,12 +75,16 @@ def solid_scene(law: str, cells) -> dict:
 
 
 def hard_load_scenes(hard: dict) -> list[tuple[str, str, dict, dict]]:
-    """[(law, load label, DOLFINx scene, FElupe scene)] of the hard-loads study's continuum runs."""
+    """[(law, load label, DOLFINx scene, FElupe scene)] of the hard-loads study's continuum
+    runs (the label names the formulation where the study has several)."""
     out = []
-    for law in hard["laws"]:
-        for label, _, load in hard_loads(hard):
-            d = hard_scene(hard, law, label, load, None)
-            out.append((law, label, d, _on_felupe(json.loads(json.dumps(d)))))
+    forms = list(hard["formulations"])
+    for form in forms:
+        for law in hard["laws"]:
+            for label, _, load in hard_loads(hard):
+                d = hard_scene(hard, law, form, label, load, None)
+                tag = f"{label} ({form})" if len(forms) > 1 else label
+                out.append((law, tag, d, _on_felupe(json.loads(json.dumps(d)))))
     return out
 
 

@@ -1,12 +1,20 @@
 """The static hard-load sweep: the cantilever under a tip force up to 200 N and gravity up
-to 1000 g, every law and element, ANCF and the continuum side by side.
+to 1000 g, every law, every built-in element, in plane stress and in (penalised) plane
+strain, ANCF and the continuum side by side.
 
 What it shows: every run ends, converged or failed with a reason (each run carries a
 ``wall_time`` bound, so a run that would hang fails with "wall time" instead), and where
 both models converge, how far apart they are; the 1 g row of each element is the
 distance the formulation table reports at the paper's load, the baseline the hard loads
-are read against. Both models use the same 2D assumption (``formulation``: ANCF's
-consistent one against the continuum's).
+are read against. Both models use the same 2D assumption (ANCF's plane stress against the
+continuum's; ANCF's penalised plane strain against the continuum with the same penalty).
+The end load is a uniform traction on the end face in both (:mod:`contract.loads`).
+
+The continuum: one mesh here (``continuum_cells``); the study hard-loads-reference
+(``make study-full``) adds the meshes a refinement needs (``reference_levels``, each
+halving the cells), and where all its levels converged the reference is their Richardson
+value (:func:`reference_fem.convergence.richardson`) with its error estimate, else this
+study's own mesh, said so in the table.
 """
 from __future__ import annotations
 
@@ -18,6 +26,7 @@ from .engine.report import verdict
 from .engine.report import Section, Table, mm, pct, vec_error
 
 G = paper.GRAVITY
+REFERENCE = "hard-loads-reference"
 
 
 def loads(grid: dict) -> list[tuple[str, float, dict]]:
@@ -27,53 +36,91 @@ def loads(grid: dict) -> list[tuple[str, float, dict]]:
     return out
 
 
-def _scene(grid: dict, law: str, label: str, load: dict, element: str | None) -> dict:
-    f = grid["formulation"]
+def _scene(grid: dict, law: str, form: str, label: str, load: dict, element: str | None,
+           cells: list | None = None) -> dict:
     tag = label.replace(" ", "")
     if element is None:
-        c = grid["continuum_cells"]
+        c = cells or grid["continuum_cells"]
         fem = {"cells_length": int(c[0]), "cells_height": int(c[1]), "cell": "quadrilateral", "degree": 2,
                "quadrature_degree": 4}
-        s = paper.cantilever_scene(law, f, fem=fem, name=f"hard-{law}-{f}-{tag}-fem{c[0]}x{c[1]}",
+        if form == "plane-strain":
+            fem["incompressibility"] = "penalty"      # the ANCF penalty (MATCHING: plane-strain-penalty)
+        s = paper.cantilever_scene(law, form, fem=fem, name=f"hard-{law}-{form}-{tag}-fem{c[0]}x{c[1]}",
                                    wall_time=float(grid["wall_time"]))
     else:
         n = int(grid["count"])
-        s = paper.cantilever_scene(law, f, element, n, name=f"hard-{law}-{f}-{tag}-{element}-{n}",
-                                   wall_time=float(grid["wall_time"]))
+        s = paper.cantilever_scene(law, form, element, n, quadrature=None,
+                                   name=f"hard-{law}-{form}-{tag}-{element}-{n}", wall_time=float(grid["wall_time"]))
     s["loads"] = load
     return s
 
 
+def _forms(grid: dict) -> list[str]:
+    return list(grid["formulations"])
+
+
 def cases(grid: dict, tiny: bool) -> list:
     out = []
-    for law in grid["laws"]:
-        for label, _, load in loads(grid):
-            out.append(make_case("hard-loads", "fenicsx", _scene(grid, law, label, load, None)))
-            out += [make_case("hard-loads", "ancf", _scene(grid, law, label, load, el)) for el in grid["elements"]]
+    for form in _forms(grid):
+        for law in grid["laws"]:
+            for label, _, load in loads(grid):
+                out.append(make_case("hard-loads", "fenicsx", _scene(grid, law, form, label, load, None)))
+                out += [make_case("hard-loads", "ancf", _scene(grid, law, form, label, load, el))
+                        for el in grid["elements"]]
     return out
 
 
+def reference_cases(grid: dict, tiny: bool) -> list:
+    """The continuum refinement of every (formulation, law, load): the meshes of
+    ``reference_levels`` that hard-loads does not run itself."""
+    return [make_case(REFERENCE, "fenicsx", _scene(grid, law, form, label, load, None, cells))
+            for form in _forms(grid) for law in grid["laws"] for label, _, load in loads(grid)
+            for cells in grid["reference_levels"] if list(cells) != list(grid["continuum_cells"])]
+
+
 def _by_name(ctx) -> dict:
-    return {r["scene"]["name"]: r for r in ctx.records()}
+    return {r["scene"]["name"]: r for r in ctx.records() + ctx.records(REFERENCE)}
+
+
+def continuum_reference(grid: dict, recs: dict, law: str, form: str, label: str, load: dict) -> dict:
+    """{"tip": (ux, uy) or None, "error": its estimate (m) or None, "how": text, "record"}:
+    the Richardson value of the refinement levels where all converged and the order is
+    trusted, else the study's own mesh."""
+    from reference_fem.convergence import richardson
+
+    own = recs.get(_scene(grid, law, form, label, load, None)["name"])
+    levels = [recs.get(_scene(grid, law, form, label, load, None, c)["name"]) for c in grid["reference_levels"]]
+    if len(levels) >= 3 and all(r and r["status"] == "converged" for r in levels):
+        tips = [(r["tip"]["ux"], r["tip"]["uy"]) for r in levels[-3:]]
+        rich = richardson(*tips)
+        if rich.value is not None:
+            c = grid["reference_levels"][-1]
+            return {"tip": rich.value, "error": rich.error_estimate, "record": own,
+                    "how": f"Richardson of {' / '.join(f'{a}x{b}' for a, b in grid['reference_levels'][-3:])} "
+                           f"(order {rich.order:.2f}), finest {c[0]}x{c[1]}"}
+    ok = own is not None and own["status"] == "converged"
+    c = grid["continuum_cells"]
+    return {"tip": (own["tip"]["ux"], own["tip"]["uy"]) if ok else None, "error": None, "record": own,
+            "how": f"{c[0]}x{c[1]} cells (no refinement recorded)"}
 
 
 def rows_of(ctx) -> list[dict]:
     g = ctx.study.grid
     recs = _by_name(ctx)
     out = []
-    for law in g["laws"]:
-        for label, size, load in loads(g):
-            cont = recs.get(_scene(g, law, label, load, None)["name"])
-            ctip = (cont or {}).get("tip")
-            ref = (ctip["ux"], ctip["uy"]) if ctip and cont["status"] == "converged" else None
-            for el in g["elements"]:
-                r = recs.get(_scene(g, law, label, load, el)["name"])
-                if r is None:
-                    continue
-                ok = r["status"] == "converged"
-                out.append({"law": law, "load": label, "size": size, "kind": next(iter(load)), "element": el,
-                            "ancf": r, "continuum": cont,
-                            "distance": vec_error(r.get("tip"), ref) if ok else None})
+    for form in _forms(g):
+        for law in g["laws"]:
+            for label, size, load in loads(g):
+                ref = continuum_reference(g, recs, law, form, label, load)
+                for el in g["elements"]:
+                    r = recs.get(_scene(g, law, form, label, load, el)["name"])
+                    if r is None:
+                        continue
+                    ok = r["status"] == "converged"
+                    out.append({"law": law, "formulation": form, "load": label, "size": size,
+                                "kind": next(iter(load)), "element": el, "ancf": r, "continuum": ref["record"],
+                                "reference": ref,
+                                "distance": vec_error(r.get("tip"), ref["tip"]) if ok else None})
     return out
 
 
@@ -90,34 +137,39 @@ def report(ctx) -> Section:
     rows = rows_of(ctx)
     c = g["continuum_cells"]
     sec = Section(ctx.study.title,
-                  f"The cantilever, `{g['formulation']}` in both models, under gravity x {g['gravity_factors']} and a "
-                  f"downward tip force of {g['tip_forces']} N; ANCF {g['count']} elements of each kind (default "
-                  f"quadrature), the continuum {c[0]} x {c[1]} Q2 cells. Every run is bounded by wall_time = "
-                  f"{g['wall_time']:g} s. Distance: |u_ANCF - u_continuum| / |u_continuum| over (ux, uy); the 1 g row "
-                  "is the paper's load.")
+                  f"The cantilever in {' and '.join(f'`{f}`' for f in _forms(g))} (both models the same 2D "
+                  f"assumption; plane strain with the paper's penalty in both), under gravity x {g['gravity_factors']} "
+                  f"and a downward end load of {g['tip_forces']} N (a uniform traction on the end face); ANCF "
+                  f"{g['count']} elements of each kind (default quadrature), the continuum {c[0]} x {c[1]} Q2 cells, and "
+                  "its Richardson value where the refinement of hard-loads-reference is recorded. Every run is bounded "
+                  f"by wall_time = {g['wall_time']:g} s. Distance: |u_ANCF - u_ref| / |u_ref| over (ux, uy); the 1 g "
+                  "row is the paper's load.")
     table = []
     for x in rows:
-        a, cont = x["ancf"], x["continuum"]
+        a, cont, ref = x["ancf"], x["continuum"], x["reference"]
         tip = a.get("tip") or {}
-        ctip = (cont or {}).get("tip") or {}
-        table.append([short(x["law"]), x["load"], x["element"], _status(a), verdict(a) if a.get("status") else None,
-                      mm(tip.get("ux")), mm(tip.get("uy")), _status(cont), mm(ctip.get("ux")), mm(ctip.get("uy")),
-                      pct(x["distance"]), a.get("load_steps"), a.get("rejected_steps"), a.get("wall_s")])
-    sec.table(ctx, Table("hard_loads", ["law", "load", "element", "ANCF status", "verdict", "ANCF ux (mm)",
-                                        "ANCF uy (mm)", "continuum status", "continuum ux (mm)", "continuum uy (mm)",
-                                        "distance (%)", "increments", "cut", "ANCF wall s"], table,
-                         {5: ".2f", 6: ".2f", 8: ".2f", 9: ".2f", 10: ".2f", 13: ".3f"}),
-              "Every law x load x element: the status of both models (a failure with its reason), the tips, and "
-              "their distance.")
+        rtip = ref["tip"] or (None, None)
+        table.append([short(x["law"]), x["formulation"], x["load"], x["element"], _status(a),
+                      verdict(a) if a.get("status") else None, mm(tip.get("ux")), mm(tip.get("uy")), _status(cont),
+                      mm(rtip[0]), mm(rtip[1]), mm(ref["error"]), ref["how"], pct(x["distance"]), a.get("load_steps"),
+                      a.get("rejected_steps"), a.get("wall_s")])
+    sec.table(ctx, Table("hard_loads", ["law", "formulation", "load", "element", "ANCF status", "verdict",
+                                        "ANCF ux (mm)", "ANCF uy (mm)", "continuum status", "reference ux (mm)",
+                                        "reference uy (mm)", "reference error (mm)", "reference", "distance (%)",
+                                        "increments", "cut", "ANCF wall s"], table,
+                         {6: ".3f", 7: ".3f", 9: ".3f", 10: ".3f", 11: ".3f", 13: ".3f", 16: ".3f"}),
+              "Every formulation x law x load x element: the status of both models (a failure with its reason), the "
+              "tips, the continuum reference and its error estimate, and the distance.")
     lines = []
     done = [x for x in rows if x["ancf"]["status"] in ("converged", "failed")]
     failed = [x for x in rows if x["ancf"]["status"] != "converged"]
-    cfail = {(x["law"], x["load"]): x["continuum"] for x in rows
+    cfail = {(x["law"], x["formulation"], x["load"]): x["continuum"] for x in rows
              if x["continuum"] is not None and x["continuum"]["status"] != "converged"}
     lines.append(f"- {len(done)} of {len(rows)} ANCF runs ended with a status ({len(rows) - len(failed)} converged, "
                  f"{len(failed)} failed with a reason); {len(cfail)} continuum run(s) failed.")
-    lines += [f"- ANCF {x['law']} {x['element']} at {x['load']}: {_status(x['ancf'])}" for x in failed]
-    lines += [f"- continuum {law} at {load}: {_status(r)}" for (law, load), r in sorted(cfail.items())]
+    lines += [f"- ANCF {x['law']} {x['formulation']} {x['element']} at {x['load']}: {_status(x['ancf'])}"
+              for x in failed]
+    lines += [f"- continuum {law} {form} at {load}: {_status(r)}" for (law, form, load), r in sorted(cfail.items())]
     high = [x for x in rows if x["distance"] is not None and x["element"] not in g.get("low_order", [])]
     paper_load = [x for x in high if x["kind"] == "gravity" and x["size"] == 1.0]
     hard = [x for x in high if x not in paper_load]
@@ -125,7 +177,8 @@ def report(ctx) -> Section:
         if group:
             worst = max(group, key=lambda x: x["distance"])
             lines.append(f"- higher-order elements {label}, both models converged: largest distance "
-                         f"{pct(worst['distance']):.2f} % ({worst['law']}, {worst['element']}, {worst['load']}).")
+                         f"{pct(worst['distance']):.2f} % ({worst['law']}, {worst['formulation']}, {worst['element']}, "
+                         f"{worst['load']}).")
     sec.text = "\n".join(lines)
     return sec
 
@@ -135,7 +188,7 @@ def gold_values(ctx) -> dict:
     for x in rows_of(ctx):
         tip = x["ancf"].get("tip")
         if tip and x["ancf"]["status"] == "converged":
-            key = f"hard-loads/{x['law']}/{x['element']}/{x['load'].replace(' ', '')}"
+            key = f"hard-loads/{x['law']}/{x['formulation']}/{x['element']}/{x['load'].replace(' ', '')}"
             for comp in ("ux", "uy"):
                 out[f"{key}/{comp}"] = (tip[comp], 1e-6 * abs(tip[comp]) + 1e-9)
     return out

@@ -2,7 +2,7 @@
 does it hold the energy bound, when the pendulum is made hard?
 
 From a base pendulum (``base`` grid key: law, formulation, element, count, step, time),
-one change at a time: rho_inf over ``rho_inf``; penalty alpha = factor x C10 over
+and the same with each element of ``elements`` (the lock-free ones), one change at a time: rho_inf over ``rho_inf``; penalty alpha = factor x C10 over
 ``penalty_factors`` in each of ``penalty_formulations``; ``long_t_end`` s of motion;
 ``many_elements`` elements; every law constant times ``softer``; a step
 ``larger_step`` times the base step. Each with every integrator of ``integrators``
@@ -30,19 +30,23 @@ HOLDS = ("holds", "no growth (dissipative)")
 
 
 def hard_cases(grid: dict) -> list[tuple[str, str, dict]]:
-    """[(group, label, pendulum_dict keyword changes)] in report order."""
+    """[(group, label, pendulum_dict keyword changes)] in report order: the hard cases of
+    the base pendulum, then of the base pendulum with each other element of ``elements``."""
     b = grid["base"]
-    out = [("base", f"base: {b['elements']} x {b['element']}, `{b['formulation']}`, dt {1e3 * b['dt']:g} ms, "
-                    f"{b['t_end']:g} s, rho_inf {b['rho_inf']}", {})]
-    out += [("rho_inf", f"rho_inf = {r:g}", {"rho_inf": r}) for r in grid["rho_inf"]]
-    out += [("penalty", f"penalty {p:g} C10, `{f}`", {"formulation": f, "penalty_factor": p})
-            for f in grid["penalty_formulations"] for p in grid["penalty_factors"]]
-    out += [("long", f"{grid['long_t_end']:g} s of motion", {"t_end": grid["long_t_end"],
-                                                             "every": grid["long_energy_every"]}),
-            ("many", f"{grid['many_elements']} elements", {"n": grid["many_elements"]}),
-            ("softer", f"material x {grid['softer']:g} (softer)", {"stiffness_scale": grid["softer"]}),
-            ("larger-step", f"step x {grid['larger_step']:g} ({1e3 * b['dt'] * grid['larger_step']:g} ms)",
-             {"dt": b["dt"] * grid["larger_step"]})]
+    out = []
+    for el in [b["element"], *[e for e in grid.get("elements", ()) if e != b["element"]]]:
+        tag, ch0 = ("", {}) if el == b["element"] else (f"{el}: ", {"element": el})
+        out += [("base", f"{tag}base: {b['elements']} x {el}, `{b['formulation']}`, dt {1e3 * b['dt']:g} ms, "
+                         f"{b['t_end']:g} s, rho_inf {b['rho_inf']}", dict(ch0))]
+        out += [("rho_inf", f"{tag}rho_inf = {r:g}", {**ch0, "rho_inf": r}) for r in grid["rho_inf"]]
+        out += [("penalty", f"{tag}penalty {p:g} C10, `{f}`", {**ch0, "formulation": f, "penalty_factor": p})
+                for f in grid["penalty_formulations"] for p in grid["penalty_factors"]]
+        out += [("long", f"{tag}{grid['long_t_end']:g} s of motion", {**ch0, "t_end": grid["long_t_end"],
+                                                                       "every": grid["long_energy_every"]}),
+                ("many", f"{tag}{grid['many_elements']} elements", {**ch0, "n": grid["many_elements"]}),
+                ("softer", f"{tag}material x {grid['softer']:g} (softer)", {**ch0, "stiffness_scale": grid["softer"]}),
+                ("larger-step", f"{tag}step x {grid['larger_step']:g} ({1e3 * b['dt'] * grid['larger_step']:g} ms)",
+                 {**ch0, "dt": b["dt"] * grid["larger_step"]})]
     return out
 
 

@@ -25,12 +25,13 @@ from dataclasses import dataclass, field
 import numpy as np
 import ufl
 
-from contract.errors import SceneError
+from contract.loads import end_traction
 from contract.scene import Scene
 from mechanics.laws import Law, get_law
 
 from . import fem as backend
 from .models import ContinuumModel, get_model
+from ..geometry import check_support
 from ..settings import FemSettings
 
 
@@ -97,13 +98,14 @@ class Setup:
 
 
 def supports(disc: backend.Discretisation, scene: Scene, settings: FemSettings, model: ContinuumModel):
-    g, b = model.geometry, scene.beam
+    """The supports of :data:`contract.loads.SUPPORTS` on this discretisation."""
+    g, b, left = model.geometry, scene.beam, scene.supports.left
+    check_support(left, g, settings)
     sides = disc.fix(g.sides(b), components=(2,)) if settings.side_faces == "plane-strain" else []
-    if scene.supports.left == "clamp":
+    if left == "clamp":
         return disc.fix(g.at_left(b), components=range(g.gdim)) + sides
-    if settings.cells_height % 2:
-        raise SceneError("fem.cells_height: supports.left = \"pin\" fixes the node at the "
-                         "centre of the left face; needs an even number of cells across")
+    if left == "slide":
+        return disc.fix(g.at_left(b), components=(0,)) + disc.fix(g.pin(b), components=(1,), on="points") + sides
     return disc.fix(g.pin(b), components=range(g.gdim), on="points") + sides
 
 
@@ -114,7 +116,7 @@ def set_up(scene: Scene, settings: FemSettings) -> Setup:
     disc = backend.Discretisation(backend.beam_mesh(g, b, settings), settings.degree, model.has_pressure,
                                   settings.quadrature_degree)
     body = None if loads.gravity is None else m.density * g.vector(loads.gravity)
-    traction = None if loads.tip_force is None else g.vector(loads.tip_force) / (b.height * b.width)
+    traction = None if loads.tip_force is None else g.vector(end_traction(loads.tip_force, b.height, b.width))
     effects = ["elastic", *model.effects] + [k for k in ("gravity", "tip_force") if getattr(loads, k) is not None]
     return Setup(model, get_law(m.law), disc, dict(m.constants), supports(disc, scene, settings, model),
                  body, traction, g.at_right(b), m.penalty, g.width_factor(b), effects,

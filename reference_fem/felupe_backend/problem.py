@@ -29,9 +29,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from contract.errors import SceneError
+from contract.loads import end_traction
 from contract.scene import Scene
 from mechanics.laws import get_law
 
+from ..geometry import check_support
 from ..settings import FemSettings
 from .laws import strain_energy
 
@@ -178,12 +180,14 @@ def set_up(scene: Scene, settings: FemSettings) -> Setup:
     nu = u.values.size
     fixed = np.zeros(nu + (corner.npoints if settings.has_pressure else 0), bool)
     fixed_u = fixed[:nu].reshape(-1, gdim)
-    if scene.supports.left == "clamp":
+    left = scene.supports.left
+    check_support(left, g, settings)
+    if left == "clamp":
         fixed_u[g.at_left(b)(pts.T)] = True
+    elif left == "slide":
+        fixed_u[g.at_left(b)(pts.T), 0] = True
+        fixed_u[g.pin(b)(pts.T), 1] = True
     else:
-        if settings.cells_height % 2:
-            raise SceneError("fem.cells_height: supports.left = \"pin\" fixes the node at the "
-                             "centre of the left face; needs an even number of cells across")
         fixed_u[g.pin(b)(pts.T)] = True
     if gdim == 3 and settings.side_faces == "plane-strain":
         fixed_u[g.sides(b)(pts.T), 2] = True
@@ -200,7 +204,7 @@ def set_up(scene: Scene, settings: FemSettings) -> Setup:
         forces["gravity"] = f
     if loads.tip_force is not None:
         f = np.zeros((quad.npoints, gdim))
-        tbar = g.vector(loads.tip_force) / (b.height * b.width)
+        tbar = g.vector(end_traction(loads.tip_force, b.height, b.width))
         end = np.flatnonzero(g.at_right(b)(pts.T))
         w = np.ones(len(end))
         for axis in range(1, gdim):

@@ -15,7 +15,9 @@ its run function reaches, normalised, and the packages that code imports:
   first-run cost, compiling included);
 - ``fenicsx``: the continuum reference, with the backend its scene names (DOLFINx or
   FElupe; not the other one);
-- ``mms``: the manufactured solutions of one continuum code.
+- ``mms``: the manufactured solutions of one continuum code;
+- ``ancf-material``: the ANCF material at one deformation gradient (the benchmarks'
+  material-point cases).
 
 Adding a solver (e.g. a dynamic integrator living in another package) is one entry here.
 """
@@ -201,6 +203,18 @@ def _run_ancf_cold(scene: dict) -> dict:
     return rec
 
 
+def _run_material_point(scene: dict) -> dict:
+    from studies.benchmarks import run_material_point
+
+    return run_material_point(scene)
+
+
+def _check_material_point(scene: dict) -> None:
+    from studies.benchmarks import check_material_point
+
+    check_material_point(scene)
+
+
 def _run_mms(scene: dict) -> dict:
     from studies.mms import run
 
@@ -220,6 +234,7 @@ SOLVERS: dict[str, Solver] = {
         Solver("fenicsx", _run_fenicsx, _check_fenicsx, backend=_fem_backend),
         Solver("ancf-cold", _run_ancf_cold, _check_ancf, also=("ancf.simulation", "contract.scene")),
         Solver("mms", _run_mms, _check_mms, backend=_mms_code),
+        Solver("ancf-material", _run_material_point, _check_material_point),
     )
 }
 

@@ -1,0 +1,371 @@
+"""Benchmarks whose answers no one here wrote: closed forms, published tables, another code.
+
+A benchmark is data (:class:`Benchmark`): a scene per solver, the quantity read from the
+record, the reference value and its kind (closed form, literature table, another code),
+its source (citation with section, table or file), and a tolerance with its derivation,
+fixed here before any run. Every built-in element runs each case it can, and both
+continuum codes where the continuum applies. The report lists every (case, solver) with
+reference, tolerance, measured error and verdict; a miss is explained where its cause is
+known (a non-conforming element's failed patch test), never hidden.
+
+The cases (the references in :mod:`studies.closed_forms`):
+
+1. ``tension``: homogeneous uniaxial tension of the paper's strip (L = 160 mm, h = 5 mm,
+   w = 7 mm) to a large stretch, every law, in plane stress and in plane strain: the
+   ``slide`` support (the end face held on x = 0, free along it), the end load as a
+   uniform traction. The closed form is the incompressible stretch lambda(P). The state is
+   in every element's space and in the continuum's, so only the solvers' stops separate
+   them: tolerance 1e-6 on lambda - 1 (100 x Newton's 1e-8 of the load); the penalised
+   plane strain of ANCF adds its own volumetric strain, J - 1 of about P / alpha: tolerance
+   2 P lambda / (alpha (lambda - 1)) on lambda - 1 (twice that estimate). A non-conforming
+   element (HB2n-12, HB3n-12: its patch test fails, :func:`ancf.checks.patch`) does not
+   hold a homogeneous state exactly; its error is shown against the same tolerance.
+2. ``shear``: simple shear at a material point (a beam cannot carry it): the ANCF
+   material's first Piola-Kirchhoff P_12 at F = [[1, gamma], [0, 1]] against tau = 2 gamma
+   (W1 + W2) (J = 1: the penalty and the isochoric split do nothing), every law and
+   formulation: tolerance 1e-12 relative (both are explicit formulas; round-off).
+3. ``elastica``: the slender limit. A cantilever (L = 350 mm, w = 7 mm, h = L / (L/h)),
+   Neo-Hookean in plane stress, on the beam's clamp (``slide``: the end section held on
+   x = 0, so it cannot turn, and free to contract; the face clamp, which also holds the
+   section's shape, stiffens the first element, an error of order l_e / L that does not
+   fall with h / L), under a transverse end load of alpha = P L^2 /
+   (E I) (E = 3 mu, the small-strain modulus), 32 elements, against the inextensible
+   elastica (Bisshopp and Drucker 1945). The beam departs from the elastica by its shear,
+   its stretch and its material's nonlinearity, each of order (h / L)^2: shear 0.9 (h/L)^2
+   (Timoshenko, kappa = 5/6), stretch alpha / 12 (h/L)^2, the law's cubic term alpha^2 / 4
+   (h/L)^2 (strain amplitude alpha h / 2L); tolerance twice their sum on |u_tip - u_el| / L.
+   The elastica itself is checked against Mattiasson's published table (the table's five
+   decimals: half a unit of the fifth, 5e-6).
+4. ``timoshenko``: the small-strain limit of a cantilever under a uniform load (the card's
+   probe: L = 350 mm, L / h = 35, 70, 140, deflection 1e-4 L), on the beam's clamp
+   (``slide``), against Euler-Bernoulli plus Timoshenko's shear (kappa = 5/6): tolerance
+   2 (h/L)^2 on the relative tip deflection (plane-stress elasticity departs from the beam
+   theory by terms of that relative order: Timoshenko & Goodier, Theory of Elasticity,
+   the uniformly loaded beam).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from contract import paper
+
+from .closed_forms import (MATTIASSON_1981, MATTIASSON_1981_DIGITS, elastica_tip_load, simple_shear_stress,
+                           uniaxial_stretch)
+from .engine.case import make_case
+from .engine.report import Section, Table
+
+STUDY = {
+    "name": "benchmarks",
+    "title": "Benchmarks with outside references: closed forms, published tables",
+    "grid": {
+        "elements": ["LB2n-12", "HB2n-12", "HB3n-12", "HB2n-16", "HB2n-20xyp", "HB2n-20xypm", "HB2n-40p",
+                     "HB2n-60p"],
+        "laws": ["neo-hookean", "mooney-rivlin", "yeoh", "gent"],
+        "formulations": ["plane-stress", "plane-strain"],
+        "codes": ["dolfinx", "felupe"],
+        # the nominal stress of tension per law (Pa): stretches 1.7 to 2.1 (Gent: its limit)
+        "tension_stress": {"neo-hookean": 3e6, "mooney-rivlin": 3e6, "yeoh": 3e6, "gent": 3e5},
+        "tension_elements": 4,
+        "penalty_factor": 1e4,          # alpha = this x C10 (mu / 2 for a law without C10)
+        "shear_gammas": [0.5, 2.0],
+        "elastica_alphas": [1.0, 5.0],
+        "elastica_slenderness": [25.0, 50.0, 100.0, 200.0],
+        "elastica_elements": 32,
+        "timoshenko_slenderness": [35.0, 70.0, 140.0],
+        "timoshenko_elements": 16,
+    },
+    "tiny": {"elements": ["HB2n-16", "HB2n-12"], "laws": ["neo-hookean"], "codes": ["dolfinx"],
+             "shear_gammas": [0.5], "elastica_alphas": [1.0], "elastica_slenderness": [25.0, 50.0],
+             "elastica_elements": 8, "timoshenko_slenderness": [35.0], "timoshenko_elements": 8},
+}
+
+STRIP = {"length": 0.160, "height": 0.005, "width": 0.007}
+SLENDER_BEAM = {"length": 0.350, "width": 0.007}
+NEWTON_TOL = 1e-6                    # 100 x the Newton tolerance of the load (1e-8)
+
+
+def constants(law: str) -> tuple[dict, float]:
+    """(the law's constants, density): the paper's for its three laws, the example's for the others."""
+    from mechanics.laws import get_law
+
+    if law in paper.materials():
+        c = dict(paper.materials()[law])
+        return c, c.pop("density")
+    return dict(get_law(law).example), paper.materials()["neo-hookean"]["density"]
+
+
+def mu_of(law: str) -> float:
+    from mechanics.laws import get_law
+
+    return get_law(law).shear_modulus(constants(law)[0])
+
+
+def penalty(grid: dict, law: str) -> float:
+    c, _ = constants(law)
+    return grid["penalty_factor"] * c.get("C10", mu_of(law) / 2)
+
+
+# -- 1. tension ---------------------------------------------------------------------------
+
+def tension_scene(grid: dict, law: str, form: str, solver: str) -> dict:
+    c, rho = constants(law)
+    P = grid["tension_stress"][law]
+    F = P * STRIP["height"] * STRIP["width"]
+    m = {"law": law, "formulation": form, "density": rho, **c}
+    if form == "plane-strain":
+        m["penalty"] = penalty(grid, law)
+    d = {"name": f"bench-tension-{law}-{form}-{solver}", "beam": dict(STRIP), "material": m,
+         "supports": {"left": "slide"}, "loads": {"tip_force": [F, 0.0]}, "analysis": {"kind": "static"}}
+    if solver in grid["codes"]:
+        d["fem"] = {"model": form, "cells_length": 8, "cells_height": 2}
+        if solver != "dolfinx":
+            d["fem"]["backend"] = solver
+    else:
+        d["ancf"] = {"element": solver, "elements": grid["tension_elements"]}
+    return d
+
+
+def tension_reference(grid: dict, law: str, form: str) -> tuple[float, float]:
+    """(lambda - 1 of the closed form, the tolerance on it relative: see the module doc)."""
+    P = grid["tension_stress"][law]
+    lam = uniaxial_stretch(law, constants(law)[0], form, P)
+    return lam - 1.0, lam
+
+
+# -- 2. simple shear at a material point --------------------------------------------------------
+
+def shear_scene(grid: dict, law: str, form: str, gamma: float) -> dict:
+    c, rho = constants(law)
+    m = {"law": law, "formulation": form, "density": rho, **c}
+    if form == "plane-strain":
+        m["penalty"] = penalty(grid, law)
+    return {"name": f"bench-shear-{law}-{form}-g{gamma:g}", "material": m,
+            "analysis": {"kind": "material-point"}, "point": {"F": [[1.0, gamma], [0.0, 1.0]]}}
+
+
+def check_material_point(scene: dict) -> None:
+    from ancf.build import build_material
+    from contract.errors import SceneError
+    from contract.scene import MaterialSpec
+
+    m = dict(scene.get("material") or {})
+    try:
+        spec = MaterialSpec(m.pop("law"), m.pop("formulation"), m.pop("density"), m, m.pop("penalty", None))
+    except KeyError as e:
+        raise SceneError(f"material.{e.args[0]}: required") from None
+    build_material(spec)
+    F = (scene.get("point") or {}).get("F")
+    if not (isinstance(F, list) and len(F) == 2 and all(isinstance(r, list) and len(r) == 2 for r in F)):
+        raise SceneError(f"point.F: a 2 x 2 deformation gradient, got {F!r}")
+
+
+def run_material_point(scene: dict) -> dict:
+    """The ANCF material at one deformation gradient: its energy density and first
+    Piola-Kirchhoff stress (the record's ``point``)."""
+    import numpy as np
+
+    from ancf.build import build_material
+    from contract.record import new_record
+    from contract.scene import MaterialSpec
+
+    m = dict(scene["material"])
+    spec = MaterialSpec(m.pop("law"), m.pop("formulation"), m.pop("density"), m, m.pop("penalty", None))
+    W, P, _ = build_material(spec).evaluate(np.array(scene["point"]["F"], float), tangent=False)
+    rec = new_record("ancf-material", scene)
+    rec.update(status="converged", reason=None, point={"W": float(W), "P": np.asarray(P).tolist()})
+    return rec
+
+
+# -- 3. the elastica ---------------------------------------------------------------------------
+
+def elastica_scene(grid: dict, alpha: float, ratio: float, element: str) -> dict:
+    L, w = SLENDER_BEAM["length"], SLENDER_BEAM["width"]
+    h = L / ratio
+    c, rho = constants("neo-hookean")
+    E = 3.0 * mu_of("neo-hookean")
+    P = alpha * E * w * h ** 3 / 12.0 / L ** 2
+    n = grid["elastica_elements"]
+    return {"name": f"bench-elastica-a{alpha:g}-Lh{ratio:g}-{element}-{n}",
+            "beam": {"length": L, "height": h, "width": w},
+            "material": {"law": "neo-hookean", "formulation": "plane-stress", "density": rho, **c},
+            "ancf": {"element": element, "elements": n}, "supports": {"left": "slide"},
+            "loads": {"tip_force": [0.0, -P]}, "analysis": {"kind": "static", "load_steps": 20}}
+
+
+def elastica_tolerance(alpha: float, ratio: float) -> float:
+    return 2.0 * (0.9 + alpha / 12.0 + alpha ** 2 / 4.0) / ratio ** 2
+
+
+# -- 4. Timoshenko ----------------------------------------------------------------------------
+
+def timoshenko_scene(grid: dict, ratio: float, element: str) -> dict:
+    """The card's slender probe (:func:`studies.card.slender_scene`) on Timoshenko's
+    clamp: the end section held from turning and free to deform (``slide``)."""
+    from .card import slender_scene
+
+    d = slender_scene(element, ratio, grid["timoshenko_elements"])
+    d["name"] = f"bench-timoshenko-Lh{ratio:g}-{element}-{grid['timoshenko_elements']}"
+    d["supports"] = {"left": "slide"}
+    return d
+
+
+def timoshenko_reference(ratio: float) -> float:
+    """The tip deflection (m) of the probe by Euler-Bernoulli + Timoshenko's shear."""
+    from .card import beam_theory
+
+    return beam_theory(ratio)[1]
+
+
+# -- cases and report -------------------------------------------------------------------------
+
+def cases(grid: dict, tiny: bool) -> list:
+    out = []
+    for law in grid["laws"]:
+        for form in grid["formulations"]:
+            for solver in [*grid["elements"], *grid["codes"]]:
+                out.append(make_case("benchmarks", "fenicsx" if solver in grid["codes"] else "ancf",
+                                     tension_scene(grid, law, form, solver)))
+            for gamma in grid["shear_gammas"]:
+                out.append(make_case("benchmarks", "ancf-material", shear_scene(grid, law, form, gamma)))
+    for alpha in grid["elastica_alphas"]:
+        for ratio in grid["elastica_slenderness"]:
+            out += [make_case("benchmarks", "ancf", elastica_scene(grid, alpha, ratio, el)) for el in grid["elements"]]
+    for ratio in grid["timoshenko_slenderness"]:
+        out += [make_case("benchmarks", "ancf", timoshenko_scene(grid, ratio, el)) for el in grid["elements"]]
+    return out
+
+
+@dataclass
+class Row:
+    case: str
+    solver: str
+    quantity: str
+    reference: float | None
+    kind: str
+    source: str
+    tolerance: float
+    why: str
+    value: float | None
+    note: str = ""
+
+    @property
+    def error(self) -> float | None:
+        """|value - reference| relative to the reference (absolute where it is 0)."""
+        if self.value is None or self.reference is None:
+            return None
+        return abs(self.value - self.reference) / (abs(self.reference) if self.reference else 1.0)
+
+    @property
+    def verdict(self) -> str:
+        if self.value is None:
+            return "no result"
+        return "pass" if self.error <= self.tolerance else "FAIL"
+
+
+OGDEN = "Ogden 1984, Non-linear elastic deformations, sec. 7.2.2"
+SOURCES = {
+    "tension": ("closed form", OGDEN),
+    "shear": ("closed form", "Ogden 1984, sec. 5.3 (simple shear)"),
+    "elastica": ("closed form", "Bisshopp & Drucker 1945, Q. Appl. Math. 3(3) 272-275 (elliptic integrals)"),
+    "timoshenko": ("closed form", "Timoshenko & Gere 1972, Mechanics of Materials: q L^4 / 8 EI + q L^2 / 2 kappa G A"),
+}
+NONCONFORMING = ("HB2n-12", "HB3n-12")
+
+
+def _solver_of(rec: dict) -> str:
+    s = rec["scene"]
+    if rec["solver"] == "fenicsx":
+        return (s.get("fem") or {}).get("backend", "dolfinx")
+    return s["ancf"]["element"]
+
+
+def rows(ctx) -> list[Row]:
+    g = ctx.study.grid
+    out = []
+    for r in ctx.records():
+        s, name = r["scene"], r["scene"]["name"]
+        ok = r.get("status") == "converged"
+        if name.startswith("bench-tension-"):
+            law, form = s["material"]["law"], s["material"]["formulation"]
+            ref, lam = tension_reference(g, law, form)
+            solver = _solver_of(r)
+            tol, why = NEWTON_TOL, "state in the model's space: Newton's stop"
+            if form == "plane-strain" and r["solver"] == "ancf":
+                P = g["tension_stress"][law]
+                tol = max(tol, 2.0 * P * lam / (s["material"]["penalty"] * (lam - 1.0)))
+                why = "penalised: 2 P lambda / (alpha (lambda - 1))"
+            note = "non-conforming: its patch test fails" if solver in NONCONFORMING else ""
+            out.append(Row(f"tension {law} {form}", solver, "lambda - 1 = u_x(L) / L", ref, *SOURCES["tension"],
+                           tol, why, r["tip"]["ux"] / s["beam"]["length"] if ok else None, note))
+        elif name.startswith("bench-shear-"):
+            law, form = s["material"]["law"], s["material"]["formulation"]
+            gamma = s["point"]["F"][0][1]
+            ref = simple_shear_stress(law, constants(law)[0], gamma)
+            out.append(Row(f"shear {law} {form} gamma {gamma:g}", "ANCF material", "P_12 (Pa)", ref,
+                           *SOURCES["shear"], 1e-12, "explicit formulas: round-off",
+                           r["point"]["P"][0][1] if ok else None))
+        elif name.startswith("bench-elastica-"):
+            L, h = s["beam"]["length"], s["beam"]["height"]
+            E = 3.0 * mu_of("neo-hookean")
+            alpha = -s["loads"]["tip_force"][1] * L ** 2 / (E * s["beam"]["width"] * h ** 3 / 12.0)
+            u, v, _ = elastica_tip_load(alpha)
+            ratio = L / h
+            val = None
+            if ok:   # the tip's distance from the elastica's, over L; the reference is then 0 at scale 1
+                val = math.hypot(r["tip"]["ux"] / L + u, r["tip"]["uy"] / L + v)
+            out.append(Row(f"elastica alpha {alpha:.3g} L/h {ratio:g}", _solver_of(r), "|r_tip - r_elastica| / L",
+                           0.0, *SOURCES["elastica"], elastica_tolerance(alpha, ratio),
+                           "2 (0.9 + alpha/12 + alpha^2/4) (h/L)^2: shear, stretch, the law's cubic term",
+                           val, f"elastica u/L {u:.6f}, v/L {v:.6f}"))
+        elif name.startswith("bench-timoshenko-"):
+            L, h = s["beam"]["length"], s["beam"]["height"]
+            ref = timoshenko_reference(L / h)
+            out.append(Row(f"Timoshenko L/h {L / h:g}", _solver_of(r), "tip deflection (m)", ref,
+                           *SOURCES["timoshenko"], 2.0 * (h / L) ** 2,
+                           "2 (h/L)^2: plane-stress elasticity departs from the beam by (h/L)^2",
+                           -r["tip"]["uy"] if ok else None))
+    return out
+
+
+def mattiasson_rows() -> list[list]:
+    """The elastica's closed form against Mattiasson's published table."""
+    half = 0.5 * 10.0 ** -MATTIASSON_1981_DIGITS
+    out = []
+    for alpha, (u_pub, v_pub) in sorted(MATTIASSON_1981.items()):
+        u, v, _ = elastica_tip_load(alpha)
+        err = max(abs(u - u_pub), abs(v - v_pub))
+        out.append([alpha, u_pub, u, v_pub, v, err, half, "pass" if err <= half else "FAIL"])
+    return out
+
+
+def report(ctx) -> Section:
+    rs = rows(ctx)
+    sec = Section(ctx.study.title,
+                  "Every case with its reference (kind and source), the tolerance fixed before the runs and why, "
+                  "the measured value and error, and the verdict (`studies/benchmarks.py` states each derivation).")
+    sec.table(ctx, Table("benchmarks", ["case", "solver", "quantity", "reference", "kind", "source", "tolerance",
+                                        "why", "value", "error", "verdict", "note"],
+                         [[r.case, r.solver, r.quantity, r.reference, r.kind, r.source, r.tolerance, r.why, r.value,
+                           r.error, r.verdict, r.note] for r in rs],
+                         {3: ".8g", 6: ".2g", 8: ".8g", 9: ".2e"}),
+              "The benchmark cases: error relative to the reference (elastica: the tip's distance from the "
+              "elastica's tip over L).")
+    sec.table(ctx, Table("benchmarks_mattiasson", ["alpha = P L^2 / EI", "u/L published", "u/L closed form",
+                                                   "v/L published", "v/L closed form", "largest difference",
+                                                   "tolerance (half a unit of the table's last digit)", "verdict"],
+                         mattiasson_rows(), {2: ".8f", 4: ".8f", 5: ".1e", 6: ".0e"}),
+              "The elastica's closed form against Mattiasson (1981), Int. J. Numer. Meth. Engng 17, 145-153, "
+              "Table 1, as quoted with that citation by two open-source test suites (the paper itself was not "
+              "read): a literature table.")
+    n = len(rs)
+    passed = sum(r.verdict == "pass" for r in rs)
+    fails = [r for r in rs if r.verdict != "pass"]
+    worst = sorted((r for r in rs if r.error is not None and r.tolerance),
+                   key=lambda r: -(r.error / r.tolerance))[:5]
+    sec.text = (f"{passed} of {n} cases pass; "
+                + (", ".join(f"{r.case} {r.solver} ({r.verdict}{': ' + r.note if r.note else ''})" for r in fails)
+                   if fails else "none fails")
+                + ". Closest to their tolerance: "
+                + "; ".join(f"{r.case} {r.solver} {r.error:.2g} of {r.tolerance:.2g}" for r in worst) + ".")
+    return sec

@@ -1,0 +1,71 @@
+"""The benchmark suite (studies/benchmarks.py): its closed forms against published values,
+and a tiny subset of its cases run through both solvers (the full suite: make study)."""
+import math
+
+import pytest
+
+from contract.scene import scene_from_dict
+from studies.closed_forms import (MATTIASSON_1981, elastica_end_moment, elastica_tip_load, nominal_stress,
+                                  simple_shear_stress, uniaxial_stretch)
+
+
+def test_the_elastica_closed_form_reproduces_mattiassons_table_to_its_last_digit():
+    for alpha, (u, v) in MATTIASSON_1981.items():
+        U, V, _ = elastica_tip_load(alpha)
+        assert abs(U - u) <= 5e-6 and abs(V - v) <= 5e-6, alpha
+    assert elastica_tip_load(1.0)[2] == pytest.approx(0.46135, abs=5e-6)      # the table's tip angle
+
+
+def test_the_elastica_tends_to_the_linear_cantilever_and_the_arc_is_exact():
+    u, v, th = elastica_tip_load(1e-3)
+    assert v == pytest.approx(1e-3 / 3, rel=1e-3) and th == pytest.approx(1e-3 / 2, rel=1e-3)
+    x, y = elastica_end_moment(math.pi / 2)
+    assert x == pytest.approx(2 / math.pi) and y == pytest.approx(2 / math.pi)
+
+
+@pytest.mark.parametrize("form", ["plane-stress", "plane-strain"])
+def test_the_uniaxial_closed_form_inverts_its_stress_and_is_linear_at_small_strain(form):
+    c = {"C10": 0.5e6}
+    lam = uniaxial_stretch("neo-hookean", c, form, 2e6)
+    assert nominal_stress("neo-hookean", c, form, lam) == pytest.approx(2e6, rel=1e-12)
+    E = 3.0 * 1e6 if form == "plane-stress" else 4.0 * 1e6            # 3 mu, or 4 mu in plane strain
+    assert uniaxial_stretch("neo-hookean", c, form, 1e-3 * E) - 1.0 == pytest.approx(1e-3, rel=2e-3)
+    assert simple_shear_stress("mooney-rivlin", {"C10": 0.4e6, "C01": 0.1e6}, 0.5) == pytest.approx(0.5e6)
+
+
+def _run(d: dict) -> dict:
+    if "fem" in d:
+        from reference_fem.simulation import run_scene
+        return run_scene(scene_from_dict(d))
+    from ancf.simulation import run_scene
+    return run_scene(scene_from_dict(d))[0]
+
+
+@pytest.mark.dolfinx
+@pytest.mark.parametrize("solver", ["HB2n-16", "HB2n-40p", "dolfinx", "felupe"])
+def test_homogeneous_tension_is_the_closed_form_in_both_solvers(solver):
+    """The tiny subset of the tension benchmark: Yeoh in plane stress, the stretch of the
+    closed form within the benchmark's tolerance (100 x Newton's)."""
+    from studies.benchmarks import NEWTON_TOL, STUDY, tension_reference, tension_scene
+
+    g = dict(STUDY["grid"])
+    rec = _run(tension_scene(g, "yeoh", "plane-stress", solver))
+    ref, _ = tension_reference(g, "yeoh", "plane-stress")
+    assert rec["status"] == "converged"
+    assert abs(rec["tip"]["ux"] / rec["scene"]["beam"]["length"] - ref) <= NEWTON_TOL * ref
+
+
+def test_the_elastica_is_the_slender_limit_of_a_lock_free_element():
+    """HB2n-40p at L/h = 50 and 100, alpha = 1: within the benchmark's tolerance, and the
+    distance falls as (h/L)^2 (a ratio near 4 from 50 to 100)."""
+    from studies.benchmarks import STUDY, elastica_scene, elastica_tolerance
+
+    g = dict(STUDY["grid"])
+    u, v, _ = elastica_tip_load(1.0)
+    err = {}
+    for ratio in (50.0, 100.0):
+        rec = _run(elastica_scene(g, 1.0, ratio, "HB2n-40p"))
+        L = rec["scene"]["beam"]["length"]
+        err[ratio] = math.hypot(rec["tip"]["ux"] / L + u, rec["tip"]["uy"] / L + v)
+        assert err[ratio] <= elastica_tolerance(1.0, ratio)
+    assert 3.0 < err[50.0] / err[100.0] < 5.0
