@@ -141,6 +141,7 @@ def report(ctx) -> Section:
     t.write(ctx.out)
     sec.items.append(("link", t.name + ".md", "Every point of the diagram."))
     pendulum_part(ctx, sec)
+    choose_element(ctx, sec, pts)
     ancf = [p for p in pts if p["solver"] == "ancf"]
     counts = {v: sum(1 for p in ancf if p["verdict"] == v) for v in dict.fromkeys(p["verdict"] for p in ancf)}
     sec.text += (f"\nVerdicts of the {len(ancf)} static ANCF runs: "
@@ -151,6 +152,54 @@ def report(ctx) -> Section:
         sec.text += f"\n{len(failed)} of {len(pts)} static runs failed: " + "; ".join(
             f"{short(p['law'])} {p['model']} {p['config']} x {p['mesh']}" for p in failed)
     return sec
+
+
+# runs within this factor of the cheapest one's time are named beside it: timings drift by
+# 10 to 30 % between runs of one machine (the peers' rounds), so a closer order is not a ranking
+TIE = 1.3
+
+
+def choose_element(ctx, sec: Section, pts: list[dict]) -> None:
+    """For each scene (the static cantilever per law and 2D assumption, the pendulum per
+    formulation) and accuracy: the cheapest element and mesh (its settled run: it and every
+    finer one within the accuracy), and the other elements within :data:`TIE` of its time."""
+    g = ctx.study.grid
+    rows = []
+
+    def pick(label, acc, cands):
+        best = {}
+        for p in cands:            # each element's cheapest settled run
+            el = p["element"]
+            if el not in best or p["time"] < best[el]["time"]:
+                best[el] = p
+        order = sorted(best.values(), key=lambda p: p["time"])
+        if not order:
+            rows.append([label, f"{100 * acc:g} %", "none", None, None, ""])
+            return
+        top = order[0]
+        ties = [p for p in order[1:] if p["time"] <= TIE * top["time"]]
+        rows.append([label, f"{100 * acc:g} %", top["name"], top["time"], pct(top["error"]),
+                     ", ".join(f"{p['name']} ({p['time']:.3g} s)" for p in ties)])
+
+    for f in g["formulations"]:
+        m = MATCHING[f]
+        for law in g["laws"]:
+            sel = [p for p in pts if p["solver"] == "ancf" and p["law"] == law and p["model"] == m]
+            for a in g["accuracies"]:
+                ok = [dict(p, name=f"{p['config']} x {p['mesh']}") for p in settled(sel, a) if p["time"]]
+                pick(f"cantilever, {short(law)}, `{f}`", a, ok)
+    pend = pendulum_points(ctx)
+    for f in dict.fromkeys(p["formulation"] for p in pend):
+        for a in g["accuracies"]:
+            ok = [dict(p, name=f"{p['element']} x {p['n']}, dt {1e3 * p['dt']:g} ms")
+                  for p in settled_steps([p for p in pend if p["formulation"] == f], a) if p["time"]]
+            pick(f"pendulum, `{f}`", a, ok)
+    sec.table(ctx, Table("choose_element", ["scene", "accuracy", "cheapest ANCF run", "time (s)", "error (%)",
+                                            f"within {TIE:g} x its time"], rows, {3: ".3g", 4: ".3f"}),
+              "Which element to choose: for each scene and accuracy the cheapest ANCF run that reaches the accuracy "
+              "and stays within it on every finer mesh (and, for the pendulum, every smaller step), with the other "
+              f"elements whose cheapest such run is within {TIE:g} times its time (median serial warm wall time; "
+              "timings drift by tens of percent between runs, so these are ties, not a ranking).")
 
 
 def pendulum_points(ctx) -> list[dict]:
