@@ -27,6 +27,17 @@ def tiny(tmp_path_factory):
     return out, log
 
 
+def _rebuilt_without_solvers(out, monkeypatch) -> str:
+    """The results page rebuilt from the records with every solver refusing to run."""
+    def refuse(scene):
+        raise AssertionError("a report called a solver")
+
+    for name, s in list(solvers.SOLVERS.items()):
+        monkeypatch.setitem(solvers.SOLVERS, name, dataclasses.replace(s, run=refuse))
+    build_reports(out, tiny=True)
+    return (out / "README.md").read_text()
+
+
 # the quick tier's tiny run: a static table, with the continuum it needs
 FEW = ["table3"]
 
@@ -53,14 +64,7 @@ def test_a_few_studies_leave_a_record_per_case_reports_from_records_and_their_go
     log = []
     run_studies(FEW, out, tiny=True, executor="serial", progress=False, log=log.append)
     assert all(", 0 computed," in x for x in log if " cases, " in x)
-
-    def refuse(scene):
-        raise AssertionError("a report called a solver")
-
-    for name, s in list(solvers.SOLVERS.items()):
-        monkeypatch.setitem(solvers.SOLVERS, name, dataclasses.replace(s, run=refuse))
-    build_reports(out, tiny=True)
-    assert (out / "README.md").read_text() == readme
+    assert _rebuilt_without_solvers(out, monkeypatch) == readme
     gold = {k: v for k, v in load_gold().items() if k.split("/")[0] in {s.name for s in ran}}
     values = collect(out)
     assert gold and not compare({k: v for k, v in values.items() if k.split("/")[0] in {s.name for s in ran}}, gold)
@@ -108,14 +112,7 @@ def test_timed_cases_carry_serial_warm_timings(tiny):
 def test_reports_read_records_only(tiny, monkeypatch):
     out, _ = tiny
     before = (out / "README.md").read_text()
-
-    def refuse(scene):
-        raise AssertionError("a report called a solver")
-
-    for name, s in list(solvers.SOLVERS.items()):
-        monkeypatch.setitem(solvers.SOLVERS, name, dataclasses.replace(s, run=refuse))
-    build_reports(out, tiny=True)
-    assert (out / "README.md").read_text() == before
+    assert _rebuilt_without_solvers(out, monkeypatch) == before
 
 
 @pytest.mark.slow(guard="test_a_few_studies_leave_a_record_per_case_reports_from_records_and_their_gold_values")
