@@ -92,9 +92,10 @@ def _audit(args) -> int:
     from .engine import stamp
 
     reports = Path(args.reports) if args.reports else REPORTS
-    if not args.reports:      # the README's quote of the loops record, checked at every audit
-        from .loops import readme_problems
-        quote = readme_problems(REPORTS.parent / "README.md")
+    if not args.reports:      # the README's quotes of the reports and the loops record, at every audit
+        from .engine.readme import problems
+        from .loops import record_problems
+        quote = problems() + record_problems()
         for p in quote:
             print(p)
         if quote:

@@ -14,9 +14,9 @@ new directory and there, in order:
    computed), then **reused study**: ``make study`` again (every record reused).
 
 The figures go to ``reports/data/loops.json`` (a record: the commit measured, the
-machine, each figure) and :func:`markdown` renders them; the README quotes that rendering
-between the markers ``<!-- loops -->`` and ``<!-- /loops -->``, and ``studies audit``
-checks the quote against the record (:func:`readme_problems`).
+machine, each figure); :func:`markdown` renders them into ``reports/loops.md``, which the
+README quotes (:mod:`studies.engine.readme`: ``studies audit`` checks the quote, and that
+``loops.md`` is the rendering of the record: :func:`record_problems`).
 """
 from __future__ import annotations
 
@@ -33,7 +33,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 RECORD = ROOT / "reports" / "data" / "loops.json"
-BEGIN, END = "<!-- loops -->", "<!-- /loops -->"
+PAGE = ROOT / "reports" / "loops.md"
 VERIFY_SAMPLE = 20
 
 
@@ -94,7 +94,6 @@ def markdown(rec: dict) -> str:
     t = rec["tests"]
     scenes = rec["first_run"]["scenes"]
     return "\n".join([
-        BEGIN,
         f"Measured by `make loops` in a fresh clone of {rec['commit']} on this project's "
         f"{rec['machine']['cpus']}-core machine (`reports/data/loops.json`):",
         "",
@@ -108,32 +107,16 @@ def markdown(rec: dict) -> str:
         f"| `make study`, no records | {_min_s(rec['study_cold_s'])} |",
         f"| `make study`, every record reused | {_min_s(rec['study_reused_s'])} |",
         f"| `studies verify --sample {rec['verify']['sample']}` | {_min_s(rec['verify']['seconds'])} |",
-        END])
+        ""])
 
 
-def readme_problems(readme: Path, record: Path = RECORD) -> list[str]:
-    """The README's quote of the record against the record (the audit's rule)."""
-    text = readme.read_text() if readme.exists() else ""
-    if BEGIN not in text:
-        return []
+def record_problems(record: Path = RECORD, page: Path = PAGE) -> list[str]:
+    """``loops.md`` against the rendering of the record (the audit's rule)."""
     if not record.exists():
-        return [f"{readme}: quotes the loops record, but {record} is missing"]
-    quote = text[text.index(BEGIN): text.index(END) + len(END)] if END in text else text[text.index(BEGIN):]
-    want = markdown(json.loads(record.read_text()))
-    if quote != want:
-        line = text[: text.index(BEGIN)].count("\n") + 1
-        return [f"{readme}:{line}: the loops figures differ from {record.name} (make loops writes both)"]
+        return []
+    if not page.exists() or page.read_text() != markdown(json.loads(record.read_text())):
+        return [f"{page}: not the rendering of {record.name} (make loops writes both)"]
     return []
-
-
-def write_readme(rec: dict, readme: Path = ROOT / "README.md") -> None:
-    text = readme.read_text()
-    block = markdown(rec)
-    if BEGIN in text and END in text:
-        text = text[: text.index(BEGIN)] + block + text[text.index(END) + len(END):]
-    else:
-        text = text.rstrip() + "\n\n" + block + "\n"
-    readme.write_text(text)
 
 
 def main(argv=None) -> int:
@@ -147,8 +130,11 @@ def main(argv=None) -> int:
     finally:
         if not a.keep:
             shutil.rmtree(clone.parent, ignore_errors=True)
+    from .engine.readme import refresh
+
     RECORD.write_text(json.dumps(rec, indent=1) + "\n")
-    write_readme(rec)
+    PAGE.write_text(markdown(rec))
+    refresh()
     print(markdown(rec))
     return 0
 

@@ -1,7 +1,9 @@
-"""The loops record: the README quotes its rendering, and the audit holds the quote to it."""
+"""The loops record: loops.md renders it, the README quotes loops.md and any other report
+between include markers, and the audit holds both to their sources."""
 import json
 
-from studies.loops import BEGIN, END, _pytest_seconds, markdown, readme_problems, write_readme
+from studies.engine.readme import problems, refresh
+from studies.loops import _pytest_seconds, markdown, record_problems
 
 REC = {"schema": "ancf-harness/loops/1", "date": "2026-11-27", "commit": "abc1234", "machine": {"cpus": 2},
        "setup_s": 201.3, "first_run": {"scenes": {"a.toml": 1.1, "b.toml": 1.6}, "max_s": 1.6},
@@ -9,19 +11,28 @@ REC = {"schema": "ancf-harness/loops/1", "date": "2026-11-27", "commit": "abc123
        "study_cold_s": 790.0, "study_reused_s": 11.0}
 
 
-def test_the_readme_quotes_the_record_and_a_changed_figure_is_named(tmp_path):
-    record, readme = tmp_path / "loops.json", tmp_path / "README.md"
-    record.write_text(json.dumps(REC))
-    readme.write_text("# Title\n\nsome text\n")
-    write_readme(REC, readme)
+def test_the_readme_quotes_a_report_and_a_changed_line_is_named(tmp_path):
+    (tmp_path / "reports").mkdir()
+    page = tmp_path / "reports" / "loops.md"
+    page.write_text(markdown(REC))
+    readme = tmp_path / "README.md"
+    readme.write_text("# Title\n\ntext\n<!-- include reports/loops.md -->\n<!-- /include -->\nmore\n")
+    assert refresh(readme, tmp_path) and problems(readme, tmp_path) == []
     text = readme.read_text()
-    assert BEGIN in text and END in text and "13 min 10 s" in text and "1.1 to 1.6 s (2 scenes)" in text
-    assert readme_problems(readme, record) == []
+    assert "13 min 10 s" in text and "1.1 to 1.6 s (2 scenes)" in text and text.endswith("<!-- /include -->\nmore\n")
     readme.write_text(text.replace("13 min 10 s", "12 min 10 s"))
-    assert readme_problems(readme, record) == [f"{readme}:5: the loops figures differ from loops.json "
-                                               "(make loops writes both)"]
-    write_readme(REC, readme)                      # the block is replaced, not appended again
-    assert readme.read_text() == text and markdown(REC) in text
+    assert problems(readme, tmp_path) == [f"{readme}:4: the quote of reports/loops.md differs from the file "
+                                          "(studies run rewrites it)"]
+    assert refresh(readme, tmp_path) and readme.read_text() == text and not refresh(readme, tmp_path)
+
+
+def test_the_page_is_the_rendering_of_the_record(tmp_path):
+    record, page = tmp_path / "loops.json", tmp_path / "loops.md"
+    record.write_text(json.dumps(REC))
+    page.write_text(markdown(REC))
+    assert record_problems(record, page) == []
+    page.write_text(markdown(REC).replace("2 scenes", "3 scenes"))
+    assert record_problems(record, page)
 
 
 def test_pytest_time_is_read_from_each_summary_line():

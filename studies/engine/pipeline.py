@@ -56,6 +56,10 @@ def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = F
             "unchanged); not rebuilt")
     else:
         build_reports(out, tiny, log, catalog_path)
+    if Path(out).resolve() == REPORTS.resolve():     # the README's quotes of the reports
+        from .readme import refresh
+        if refresh():
+            log("README.md: its quotes of the reports rewritten")
     times["(reports)"] = time.perf_counter() - t0
     return times
 
