@@ -11,7 +11,8 @@ new directory and there, in order:
    and pytest's own time of each phase read from its summary line;
 4. **verify**: ``python -m studies verify --sample 20 --seed 1`` of the committed records;
 5. **cold study**: ``make study`` with ``reports/`` emptied (no records: everything
-   computed), then **reused study**: ``make study`` again (every record reused).
+   computed; the loops record itself kept, the README quotes it), then **reused study**:
+   ``make study`` again (every record reused).
 
 The figures go to ``reports/data/loops.json`` (a record: the commit measured, the
 machine, each figure); :func:`markdown` renders them into ``reports/loops.md``, which the
@@ -76,8 +77,10 @@ def measure(clone: Path, log=print) -> dict:
     rec["verify"]["seconds"], _ = _timed([str(clone / ".venv" / "bin" / "python"), "-m", "studies", "verify",
                                           "--sample", str(VERIFY_SAMPLE), "--seed", "1"], clone, env)
     log("cold study ...")
-    for p in (clone / "reports").iterdir():
-        shutil.rmtree(p) if p.is_dir() else p.unlink()
+    keep = {clone / "reports" / "loops.md", clone / "reports" / "data" / "loops.json"}   # not records
+    for p in list((clone / "reports").rglob("*")):
+        if p.is_file() and p not in keep:
+            p.unlink()
     rec["study_cold_s"], _ = _timed(["make", "study"], clone, env)
     log("reused study ...")
     rec["study_reused_s"], _ = _timed(["make", "study"], clone, env)

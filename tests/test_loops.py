@@ -38,3 +38,11 @@ def test_the_page_is_the_rendering_of_the_record(tmp_path):
 def test_pytest_time_is_read_from_each_summary_line():
     out = "1180 passed, 4 warnings in 104.00s (0:01:44)\n...\n1 passed, 1379 deselected, 1 warning in 7.00s\n"
     assert _pytest_seconds(out) == [104.0, 7.0]
+
+
+def test_an_empty_block_of_a_file_not_yet_written_quotes_nothing(tmp_path):
+    readme = tmp_path / "README.md"
+    readme.write_text("<!-- include reports/loops.md -->\n<!-- /include -->\n")
+    assert problems(readme, tmp_path) == [] and not refresh(readme, tmp_path)
+    readme.write_text("<!-- include reports/loops.md -->\n| stale |\n<!-- /include -->\n")
+    assert problems(readme, tmp_path) == [f"{readme}:1: quotes reports/loops.md, which is missing"]

@@ -3,7 +3,8 @@
 A block is ``<!-- include reports/NAME.md -->`` ... ``<!-- /include -->``: the lines between
 the markers are the file's content. :func:`refresh` writes them (``studies run`` does, after
 rebuilding the reports in ``reports/``; ``make loops`` for its record), :func:`problems`
-names a block that differs from its file or quotes a missing one (``studies audit``).
+names a block that differs from its file or quotes a missing one (``studies audit``); an
+empty block whose file does not exist yet quotes nothing and passes.
 """
 from __future__ import annotations
 
@@ -43,7 +44,8 @@ def problems(readme: Path = README, root: Path = ROOT) -> list[str]:
         line = text[: m.start()].count("\n") + 1
         path = root / m.group(2)
         if not path.exists():
-            out.append(f"{readme}:{line}: quotes {m.group(2)}, which is missing")
+            if m.group(3).strip():      # an empty block quotes nothing yet
+                out.append(f"{readme}:{line}: quotes {m.group(2)}, which is missing")
         elif m.group(3) != _content(path):
             out.append(f"{readme}:{line}: the quote of {m.group(2)} differs from the file (studies run rewrites it)")
     return out
