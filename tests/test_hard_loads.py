@@ -1,4 +1,4 @@
-"""The hard-load sweep (``make test-slow``): the cantilever under a tip force up to 200 N
+"""The hard-load sweep (the full tier, ``make test-full``): the cantilever under a tip force up to 200 N
 and gravity up to 1000 g, every law and element, ANCF and the continuum. Every run ends
 with a status (a failure names its reason; every run is bounded by wall_time, so none
 hangs), and where both models converge the higher-order elements agree with the
@@ -29,7 +29,7 @@ def rows(tmp_path_factory):
 @pytest.mark.slow(guard="test_hostile.py::test_loads_that_looped_end_with_a_status_in_bounded_time")
 def test_every_run_ends_with_a_status_and_a_reason_when_failed(rows):
     rows, grid = rows
-    n = len(grid["laws"]) * len(grid["elements"]) * (len(grid["gravity_factors"]) + len(grid["tip_forces"]))
+    n = len(grid["formulations"]) * len(grid["laws"]) * len(grid["elements"]) * (len(grid["gravity_factors"]) + len(grid["tip_forces"]))
     assert len(rows) == n
     for x in rows:
         for r in (x["ancf"], x["continuum"]):
@@ -40,9 +40,14 @@ def test_every_run_ends_with_a_status_and_a_reason_when_failed(rows):
 
 @pytest.mark.slow(guard="test_hostile.py::test_the_20_newton_tip_force_agrees_with_the_continuum")
 def test_where_both_converge_the_higher_order_elements_agree_with_the_continuum(rows):
+    """Plane stress: every higher-order element. Plane strain (the paper's penalty): the
+    lock-free elements only; the paper's elements lock there (HB2n-16 ~10 % off, the
+    locking verdict of the formulation and card studies), which is not this claim."""
     rows, grid = rows
+    lock_free = load_catalog()["stability-elements"].grid["elements"]
     hard = [x for x in rows if x["distance"] is not None and x["element"] not in grid["low_order"]
-            and not (x["kind"] == "gravity" and x["size"] == 1.0)]
-    assert hard
-    bad = [(x["law"], x["element"], x["load"], x["distance"]) for x in hard if x["distance"] > AGREE]
-    assert not bad
+            and not (x["kind"] == "gravity" and x["size"] == 1.0)
+            and (x["formulation"] == "plane-stress" or x["element"] in lock_free)]
+    assert {x["formulation"] for x in hard} == {"plane-stress", "plane-strain"}
+    bad = [(x["law"], x["formulation"], x["element"], x["load"], x["distance"]) for x in hard if x["distance"] > AGREE]
+    assert not bad, bad

@@ -113,7 +113,7 @@ def test_a_source_edit_during_a_run_loses_no_record_and_the_next_run_redoes_them
 
 
 def test_unknown_solver_names_the_valid_ones():
-    with pytest.raises(ValueError, match="allowed: ancf, ancf-cold, ancf-effects, fenicsx, mms"):
+    with pytest.raises(ValueError, match="allowed: ancf, ancf-cold, ancf-effects, ancf-material, fenicsx, mms"):
         make_case("t", "abaqus", small_cases()[0].scene)
 
 
