@@ -47,12 +47,13 @@ def key_of(rec: dict) -> str:
     """What the case is: solver, scene and options (the id without source and versions).
     The scene's name is a label, left out; an ANCF scene that left its quadrature to the
     element's default counts with the rule that ran (the record's ``quadrature``), so a
-    case that named [3, 2] matches one whose default was [3, 2]."""
+    case that named [3, 2] matches one whose default was [3, 2]. The modules imported
+    beside a case (``options.imports``) are how it was run, not what it is."""
     scene = {k: v for k, v in rec["scene"].items() if k != "name"}
     if "ancf" in scene and "quadrature" not in scene["ancf"] and rec.get("quadrature"):
         scene["ancf"] = {**scene["ancf"], "quadrature": rec["quadrature"]}
-    return canonical(_rounded({"solver": rec["solver"], "scene": scene,
-                               "options": (rec.get("case") or {}).get("options") or {}}))
+    options = {k: v for k, v in ((rec.get("case") or {}).get("options") or {}).items() if k != "imports"}
+    return canonical(_rounded({"solver": rec["solver"], "scene": scene, "options": options}))
 
 
 def read(path: Path) -> dict[str, dict]:
