@@ -72,10 +72,23 @@ def cases(grid: dict, tiny: bool) -> list:
 
 def reference_cases(grid: dict, tiny: bool) -> list:
     """The continuum refinement of every (formulation, law, load): the meshes of
-    ``reference_levels`` that hard-loads does not run itself."""
-    return [make_case(REFERENCE, "fenicsx", _scene(grid, law, form, label, load, None, cells))
-            for form in _forms(grid) for law in grid["laws"] for label, _, load in loads(grid)
-            for cells in grid["reference_levels"] if list(cells) != list(grid["continuum_cells"])]
+    ``reference_levels`` that hard-loads does not run itself; and the hard loads of the
+    heavy elements (``elements``), run as hard-loads runs its own."""
+    from .engine.catalog import load_catalog
+
+    out = [make_case(REFERENCE, "fenicsx", _scene(grid, law, form, label, load, None, cells))
+           for form in _forms(grid) for law in grid["laws"] for label, _, load in loads(grid)
+           for cells in grid["reference_levels"] if list(cells) != list(grid["continuum_cells"])]
+    own = load_catalog(tiny=tiny)["hard-loads"].grid
+    return out + [make_case(REFERENCE, "ancf", _scene(own, law, form, label, load, el))
+                  for form in _forms(grid) for law in grid["laws"] for label, _, load in loads(grid)
+                  for el in grid.get("elements", [])]
+
+
+def _elements(ctx) -> list[str]:
+    """hard-loads' elements, then the heavy ones hard-loads-reference runs."""
+    heavy = ctx.catalog[REFERENCE].grid.get("elements", []) if REFERENCE in ctx.catalog else []
+    return list(ctx.study.grid["elements"]) + [e for e in heavy if e not in ctx.study.grid["elements"]]
 
 
 def _by_name(ctx) -> dict:
@@ -112,7 +125,7 @@ def rows_of(ctx) -> list[dict]:
         for law in g["laws"]:
             for label, size, load in loads(g):
                 ref = continuum_reference(g, recs, law, form, label, load)
-                for el in g["elements"]:
+                for el in _elements(ctx):
                     r = recs.get(_scene(g, law, form, label, load, el)["name"])
                     if r is None:
                         continue
