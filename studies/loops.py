@@ -106,7 +106,8 @@ def markdown(rec: dict) -> str:
         f"| first `ancf run` of a shipped scene, whole process | {min(scenes.values()):.1f} to "
         f"{rec['first_run']['max_s']:.1f} s ({len(scenes)} scenes) |",
         f"| `make test`, pytest | {_min_s(sum(t['pytest_s']))} "
-        f"({' + '.join(f'{x:.0f} s' for x in t['pytest_s'])}; {_min_s(t['command_s'])} with the set-up) |",
+        f"({' + '.join(f'{x:.0f} s' for x in t['pytest_s'])}; the whole command {_min_s(t['command_s'])} "
+        "once the set-up above is done) |",
         f"| `make study`, no records | {_min_s(rec['study_cold_s'])} |",
         f"| `make study`, every record reused | {_min_s(rec['study_reused_s'])} |",
         f"| `studies verify --sample {rec['verify']['sample']}` | {_min_s(rec['verify']['seconds'])} |",
