@@ -4,7 +4,7 @@ PY := .venv/bin/python
 export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 
-.PHONY: setup test test-full test-slow study study-full audit loops bench bench-penalty bench-peers clean-venv
+.PHONY: setup test test-full test-slow test-guards study study-full audit loops bench bench-penalty bench-peers clean-venv
 
 setup:
 	@bash tools/setup.sh
@@ -34,6 +34,10 @@ test-full: setup
 	exit $$status
 
 test-slow: test-full
+
+# each test of the full tier with the quick test that guards its property (runs nothing)
+test-guards: setup
+	@$(PY) -m pytest -q --guards tests || [ $$? -eq 5 ]
 
 # The main job: the paper's tables and figures and the studies that answer the three demands
 # (accuracy against cost, hard cases, effects); every finished record reused. Its cold time

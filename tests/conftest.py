@@ -67,6 +67,12 @@ def _base(nodeid: str) -> str:
     return nodeid.split("[")[0]
 
 
+def _guard_id(nodeid: str, guard: str) -> str:
+    """The guard's node id: a bare test name is one of the slow test's own file."""
+    want = guard if "::" in guard else f"{nodeid.split('::')[0]}::{guard}"
+    return want if want.startswith("tests/") else f"tests/{want}"
+
+
 @pytest.hookimpl(tryfirst=True)          # before -m deselects either tier
 def pytest_collection_modifyitems(session, config, items):
     files = {i.nodeid.split("::")[0] for i in items}
@@ -80,9 +86,22 @@ def pytest_collection_modifyitems(session, config, items):
         if not guard:
             bad.append(f"{item.nodeid}: marked slow without a guard (slow(guard=\"a quick test of the same property\"))")
             continue
-        want = guard if "::" in guard else f"{item.nodeid.split('::')[0]}::{guard}"
-        want = want if want.startswith("tests/") else f"tests/{want}"
+        want = _guard_id(item.nodeid, guard)
         if want.split("::")[0] in files and _base(want) not in quick:
             bad.append(f"{item.nodeid}: its guard {guard!r} is not a quick test")
     if bad:
         raise pytest.UsageError("\n".join(bad))
+    if config.getoption("--guards"):
+        pairs = sorted({(_base(i.nodeid), _guard_id(i.nodeid, i.get_closest_marker("slow").kwargs["guard"]))
+                        for i in items if i.get_closest_marker("slow") is not None})
+        lines = [f"{slow}  <-  {guard}" for slow, guard in pairs]
+        config.pluginmanager.get_plugin("terminalreporter").write_line(
+            "the full tier's tests, each with the quick test that guards its property in make test:\n"
+            + "\n".join(lines))
+        config.hook.pytest_deselected(items=list(items))
+        items[:] = []
+
+
+def pytest_addoption(parser):
+    parser.addoption("--guards", action="store_true",
+                     help="list each slow test with the quick test that guards its property; run nothing")
