@@ -61,6 +61,9 @@ def tiered(params, slow: Callable[..., bool], guard: str) -> list:
 
 # the elements whose contract cases cost most (quartic sections, the sextic example)
 HEAVY_ELEMENTS = ("HB2n-40p", "HB2n-60p", "HB2n-84p")
+# the built-in elements free of volumetric and shear locking (their cards' locking sections;
+# the stability-elements study runs the pendulum's hard cases with each)
+LOCK_FREE = ("HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", "HB2n-60p")
 
 
 def _base(nodeid: str) -> str:

@@ -12,6 +12,8 @@ from studies.hard_loads import rows_of
 from studies.engine.pipeline import run_studies
 from studies.engine.report import Context
 
+from .conftest import LOCK_FREE
+
 
 # The formulation study puts the converged plane-stress ANCF elements within 0.5 % of the
 # continuum at 1 g; at 32 elements / 64 x 4 cells the discretisation adds about as much.
@@ -44,10 +46,9 @@ def test_where_both_converge_the_higher_order_elements_agree_with_the_continuum(
     lock-free elements only; the paper's elements lock there (HB2n-16 ~10 % off, the
     locking verdict of the formulation and card studies), which is not this claim."""
     rows, grid = rows
-    lock_free = load_catalog()["stability-elements"].grid["elements"]
     hard = [x for x in rows if x["distance"] is not None and x["element"] not in grid["low_order"]
             and not (x["kind"] == "gravity" and x["size"] == 1.0)
-            and (x["formulation"] == "plane-stress" or x["element"] in lock_free)]
+            and (x["formulation"] == "plane-stress" or x["element"] in LOCK_FREE)]
     assert {x["formulation"] for x in hard} == {"plane-stress", "plane-strain"}
     bad = [(x["law"], x["formulation"], x["element"], x["load"], x["distance"]) for x in hard if x["distance"] > AGREE]
     assert not bad, bad

@@ -18,6 +18,8 @@ from ancf.simulation import run_scene
 from contract import paper
 from contract.scene import MaterialSpec, scene_from_dict
 
+from .conftest import LOCK_FREE
+
 PAPER = ("LB2n-12", "HB2n-12", "HB3n-12", "HB2n-16")
 
 
@@ -108,8 +110,6 @@ def test_every_registered_element_has_a_default():
     for el in ELEMENTS.values():
         assert all(n >= 1 for n in default_quadrature(el, False, 1.0))
 
-
-LOCK_FREE = ("HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", "HB2n-60p")
 
 
 def test_at_the_slender_pendulums_two_elements_the_rule_below_fails_and_the_slender_one_passes():
