@@ -184,14 +184,17 @@ def report(ctx) -> Section:
               for x in failed]
     lines += [f"- continuum {law} {form} at {load}: {_status(r)}" for (law, form, load), r in sorted(cfail.items())]
     high = [x for x in rows if x["distance"] is not None and x["element"] not in g.get("low_order", [])]
-    paper_load = [x for x in high if x["kind"] == "gravity" and x["size"] == 1.0]
-    hard = [x for x in high if x not in paper_load]
-    for label, group in (("at the paper's load (1 g)", paper_load), ("under the hard loads", hard)):
-        if group:
-            worst = max(group, key=lambda x: x["distance"])
-            lines.append(f"- higher-order elements {label}, both models converged: largest distance "
-                         f"{pct(worst['distance']):.2f} % ({worst['law']}, {worst['formulation']}, {worst['element']}, "
-                         f"{worst['load']}).")
+    for form in _forms(g):
+        paper_load = [x for x in high if x["formulation"] == form and x["kind"] == "gravity" and x["size"] == 1.0]
+        hard = [x for x in high if x["formulation"] == form and x not in paper_load]
+        for label, group in (("at the paper's load (1 g)", paper_load), ("under the hard loads", hard)):
+            if group:
+                worst = max(group, key=lambda x: x["distance"])
+                lines.append(f"- {form}, higher-order elements {label}, both models converged: largest distance "
+                             f"{pct(worst['distance']):.2f} % ({worst['law']}, {worst['element']}, {worst['load']}); "
+                             "each element's largest: " + ", ".join(
+                                 f"{el} {pct(max(x['distance'] for x in group if x['element'] == el)):.2f} %"
+                                 for el in dict.fromkeys(x["element"] for x in group)) + ".")
     sec.text = "\n".join(lines)
     return sec
 
