@@ -116,13 +116,19 @@ def _run_launched(case: Case, timeout_s: float | None) -> tuple[dict, float]:
     return rec, time.perf_counter() - t0
 
 
+def _import_user_modules(case: Case) -> None:
+    """The modules imported beside the case (``options.imports``): user modules that
+    register elements and laws, imported before the solver sees the scene."""
+    for module in case.options.get("imports", ()):
+        importlib.import_module(module)
+
+
 def _run_once(case: Case, timeout_s: float | None = None) -> tuple[dict, float]:
     """One solver call; a solver error or a run beyond ``timeout_s`` (SIGALRM, main
     thread: pool and MPI workers run tasks there) gives a failed record."""
     if case.options.get("mpi_ranks"):
         return _run_launched(case, timeout_s)
-    for module in case.options.get("imports", ()):   # user modules that register elements / laws
-        importlib.import_module(module)
+    _import_user_modules(case)
     run = get_solver(case.solver).run
     armed = bool(timeout_s) and hasattr(signal, "setitimer")
     if armed:
@@ -161,8 +167,7 @@ def execute_timed(case: Case, timeout_s: float | None = DEFAULT_TIMEOUT_S) -> di
     samples, solve = [], []
     if warmer is not None and not case.options.get("mpi_ranks"):
         # the compiled code loaded by a small copy of the scene; the first full run is a sample
-        for module in case.options.get("imports", ()):
-            importlib.import_module(module)
+        _import_user_modules(case)
         t1 = time.perf_counter()
         warmer(case.scene)
         warm, how = time.perf_counter() - t1, "compiled code loaded by a two-element copy"
