@@ -14,7 +14,6 @@ from .engine.case import make_case
 from .continuum import scene as continuum_scene
 from .grid import DEFAULT, cantilever_case, counts_of, qlabel, takes
 from .reference import short, MATCHING, continuum_references, describe, variant_of
-from .table4 import ladder_records
 from .engine.report import GOOD, Section, Table, draw, figure, hollow_legend, marker, pct, vec_error, verdict
 
 STYLE = {(2, 2): ":", (3, 2): "-", (5, 3): "--", (3, 3): "-.", DEFAULT: "-"}
@@ -210,7 +209,7 @@ def pendulum_points(ctx) -> list[dict]:
 
     cont = continuum_pendulum()
     out = []
-    for r in ladder_records(ctx.records("table4")):
+    for r in ctx.records("table4"):
         d = describe_dynamic(r)
         ref = cont.get((d["law"], "plane-stress"))
         e = tip_errors(d["tips"], ref.tips) if (ref and d["ok"]) else {}
@@ -237,7 +236,7 @@ def pendulum_part(ctx, sec: Section) -> None:
     if not pts:
         return
     g = ctx.study.grid
-    laws = sorted({r["scene"]["material"]["law"] for r in ladder_records(ctx.records("table4"))})
+    laws = sorted({r["scene"]["material"]["law"] for r in ctx.records("table4")})
     law = laws[0] if len(laws) == 1 else None
     cont = continuum_pendulum().get((law, "plane-stress"))
     forms = list(dict.fromkeys(p["formulation"] for p in pts))

@@ -29,15 +29,10 @@ def cases(grid: dict, tiny: bool) -> list:
             for dt in ladder(grid.get("dt0", DT0), last=grid.get("dt_last"))]
 
 
-def ladder_records(records: list[dict]) -> list[dict]:
-    """Table 4's step-ladder records (the timed warm runs)."""
-    return list(records)
-
-
 def selected(ctx) -> list[dict]:
     """One row per (formulation, element, count): the converged rung or None."""
     g = ctx.study.grid
-    descs = [describe_dynamic(r) for r in ladder_records(ctx.records())]
+    descs = [describe_dynamic(r) for r in ctx.records()]
     out = []
     for f in g["formulations"]:
         for el in g["elements"]:
