@@ -101,10 +101,13 @@ SUPPORT_KINDS = {
 def fixed_dofs(mesh: Mesh, left: str, clamp: str | None) -> np.ndarray:
     """The dofs a support fixes at x = 0 (:data:`contract.loads.SUPPORTS`). ``slide``: the
     face on the plane x = 0, r_x(0, y) = 0 for every y, so the x-components of every pure
-    y-derivative kind, and the centre's y-component."""
+    y-derivative kind, and the centre's y-component. ``hinge``: the face straight through
+    its fixed centre, r(0, y) = y a, so r and every pure y-derivative kind but r_y."""
     face = tuple(k for k in mesh.element.kinds if KINDS[k][0] == 0)
     if left == "slide":
         return np.sort(np.concatenate([mesh.dofs(0, face)[0::2], mesh.dofs(0, ("r",))[1:]]))
+    if left == "hinge":
+        return np.sort(mesh.dofs(0, tuple(k for k in face if KINDS[k][1] != 1)))
     kinds = SUPPORT_KINDS[(left, clamp if left == "clamp" else None)]
     if kinds == "face":
         kinds = face

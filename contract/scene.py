@@ -21,8 +21,9 @@ from pathlib import Path
 from typing import Any, Collection, Mapping
 
 from .errors import SceneError, UnknownName
+from .loads import SUPPORTS as _SUPPORT_MEANINGS
 
-SUPPORTS = ("clamp", "pin", "slide")   # what each is: contract.loads.SUPPORTS
+SUPPORTS = tuple(_SUPPORT_MEANINGS)   # what each is: contract.loads.SUPPORTS
 CLAMPS = ("face", "all")
 ANALYSES = ("static", "dynamic")
 STATIC_KEYS = ("kind", "load_steps", "newton_rtol", "max_iterations", "wall_time")
@@ -73,6 +74,7 @@ class Supports:
 class Loads:
     gravity: tuple[float, float] | None = None    # m/s^2
     tip_force: tuple[float, float] | None = None  # N
+    end_moment: float | None = None               # N m, counter-clockwise (contract.loads)
 
 
 @dataclass(frozen=True)
@@ -192,13 +194,17 @@ def scene_from_dict(data: Mapping[str, Any]) -> Scene:
     if "description" in data and not isinstance(data["description"], str):
         raise SceneError(f"description: must be a string (free text), got {data['description']!r}")
     analysis = _analysis(_table(data, "analysis"))
+    loads = _loads(_table(data, "loads")) if "loads" in data else Loads()
+    if loads.end_moment is not None and analysis.kind != "static":
+        raise SceneError("loads.end_moment: a static load only (the couple's rotation is followed along the "
+                         "load path, contract.loads); allowed with analysis.kind = \"static\"")
     return Scene(
         name=name,
         beam=_beam(_table(data, "beam")),
         material=_material(_table(data, "material")),
         ancf=_ancf(_table(data, "ancf")) if "ancf" in data else None,
         supports=_supports(_table(data, "supports")),
-        loads=_loads(_table(data, "loads")) if "loads" in data else Loads(),
+        loads=loads,
         analysis=analysis,
         fem=dict(_table(data, "fem")) if "fem" in data else None,
     )
@@ -302,9 +308,10 @@ def _supports(t) -> Supports:
 
 
 def _loads(t) -> Loads:
-    _keys("loads", t, optional={"gravity", "tip_force"})
+    _keys("loads", t, optional={"gravity", "tip_force", "end_moment"})
     return Loads(gravity=_vector("loads.gravity", t["gravity"]) if "gravity" in t else None,
-                 tip_force=_vector("loads.tip_force", t["tip_force"]) if "tip_force" in t else None)
+                 tip_force=_vector("loads.tip_force", t["tip_force"]) if "tip_force" in t else None,
+                 end_moment=_number("loads.end_moment", t["end_moment"]) if "end_moment" in t else None)
 
 
 def _energy_limit(t):
