@@ -18,6 +18,7 @@ from mechanics.laws import LAWS, get_law
 from .material import Material
 from .mesh import Mesh, fixed_dofs
 from .beam import BeamModel
+from .couple import Loading, end_face
 from .quadrature import gauss
 from .rank import default_quadrature, rule_warnings
 
@@ -126,6 +127,15 @@ def external_loads(model: BeamModel, scene: Scene) -> dict[str, np.ndarray]:
     if scene.loads.tip_force is not None:
         loads["tip_force"] = model.tip_force(scene.loads.tip_force)
     return loads
+
+
+def static_loading(model: BeamModel, loads: dict[str, np.ndarray], scene: Scene) -> Loading:
+    """What a static solve balances (:class:`ancf.couple.Loading`): the sum of the dead
+    load vectors and, if the scene names one, the end couple on the free end face."""
+    Q = sum(loads.values(), np.zeros(model.mesh.n_dof))
+    if scene.loads.end_moment is None:
+        return Loading(Q)
+    return Loading(Q, scene.loads.end_moment, end_face(model))
 
 
 def build_integrator(scene: Scene, model: BeamModel, M, loads: dict):

@@ -67,7 +67,8 @@ def _run(args) -> int:
           f"{scene.material.law}, {scene.material.formulation}, ndof {rec['ndof']})")
     print(f"status      {rec['status']}" + (f"  ({rec['reason']})" if rec["reason"] else ""))
     if rec["tip"]:
-        print(f"tip         ux = {rec['tip']['ux'] * 1e3:.4f} mm   uy = {rec['tip']['uy'] * 1e3:.4f} mm")
+        turn = f"   end face turned {rec['tip']['rotation']:.6f} rad" if "rotation" in rec["tip"] else ""
+        print(f"tip         ux = {rec['tip']['ux'] * 1e3:.4f} mm   uy = {rec['tip']['uy'] * 1e3:.4f} mm{turn}")
     if rec.get("note"):
         print(f"note        {rec['note']}")
     if scene.analysis.kind == "static":

@@ -27,6 +27,7 @@ import numpy as np
 from numba import njit
 
 from .bandsolve import col_constrain, col_ldlt, col_ldlt_solve
+from .couple import add_couple
 from .element_fields import element_pressures
 from .kernels import INADMISSIBLE, OK, assemble_fused, live_tape, point_gradients, step_scratch
 from .tape import tape_batch
@@ -48,11 +49,22 @@ def _residual(f, target, is_free, r):
 
 
 @njit(cache=True)
-def _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb, ew):
+def _assemble(u, dN, w, dofs, ops, consts, pr, couple, f, S, b, with_tangent, chunk, R, Fb, ab, Jb, ew):
+    """f_int(u) minus the end couple's force (and the tangent of both, upper column band):
+    :func:`ancf.kernels.assemble_fused` then :func:`ancf.couple.add_couple`."""
+    status = assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, S, with_tangent, chunk, R, Fb, ab, Jb, ew)
+    if status == OK:
+        add_couple(u, couple[0], couple[1], couple[2], couple[3], f, S, b, with_tangent)
+    return status
+
+
+@njit(cache=True)
+def _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, couple, b, f, S, chunk, R, Fb, ab, Jb,
+           ew):
     """g(s) = R(u + s du) . du, the potential's slope along du (inf where det F <= 0)."""
     for i in range(u.shape[0]):
         ut[i] = u[i] + s * du[i]
-    if assemble_fused(ut, ut, 0.0, dN, w, dofs, ops, consts, pr, f, S, False, chunk, R, Fb, ab, Jb, ew) != OK:
+    if _assemble(ut, dN, w, dofs, ops, consts, pr, couple, f, S, b, False, chunk, R, Fb, ab, Jb, ew) != OK:
         return math.inf
     g = 0.0
     for i in range(u.shape[0]):
@@ -62,14 +74,16 @@ def _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, ch
 
 
 @njit(cache=True)
-def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb, ew, ut):
+def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, pr, couple, b, f, S, chunk, R, Fb, ab, Jb, ew,
+                 ut):
     """The step factor of :func:`ancf.statics._line_search`, the same rule."""
     g0 = 0.0
     for i in range(u.shape[0]):
         g0 += r[i] * du[i]
     if g0 >= 0.0:                    # not a descent direction (indefinite K): full step
         return 1.0
-    g1 = _slope(1.0, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb, ew)
+    g1 = _slope(1.0, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, couple, b, f, S, chunk, R, Fb, ab,
+                Jb, ew)
     if abs(g1) <= 0.5 * abs(g0):
         return 1.0
     lo, glo, hi, ghi = 0.0, g0, 1.0, g1
@@ -81,7 +95,8 @@ def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, pr, f, S, 
         else:
             s = 0.5 * (lo + hi)
         s = min(max(s, lo + 0.1 * (hi - lo)), hi - 0.1 * (hi - lo))
-        gs = _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab, Jb, ew)
+        gs = _slope(s, u, du, ut, target, is_free, dN, w, dofs, ops, consts, pr, couple, b, f, S, chunk, R, Fb, ab,
+                    Jb, ew)
         if abs(gs) <= 0.5 * abs(g0):
             return s
         if gs < 0.0:
@@ -92,10 +107,11 @@ def _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, pr, f, S, 
 
 
 @njit(cache=True)
-def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, u, atol, utol, hbeam, max_it, line_search,
+def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, couple, u, atol, utol, hbeam, max_it, line_search,
            residuals):
-    """Solve f_int(u) = target on the free dofs from u (in place), with the line search
-    of :func:`ancf.statics._line_search` if ``line_search``; b: the half-bandwidth.
+    """Solve f_int(u) = target + the end couple's force on the free dofs from u (in place),
+    with the line search of :func:`ancf.statics._line_search` if ``line_search``; b: the
+    half-bandwidth; couple: (rows, A, d0, M) of :meth:`ancf.couple.Loading.compiled`.
     residuals (max_it + 2,) receives the residual norms. Returns (outcome, iterations,
     number of residuals)."""
     n = u.shape[0]
@@ -108,7 +124,7 @@ def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, u, atol, utol,
     chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
     nres = 0
     for it in range(max_it + 1):
-        if assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, S, True, chunk, R, Fb, ab, Jb, ew) != OK:
+        if _assemble(u, dN, w, dofs, ops, consts, pr, couple, f, S, b, True, chunk, R, Fb, ab, Jb, ew) != OK:
             return NOT_ADMISSIBLE, nres, nres
         rn = _residual(f, target, is_free, r)
         residuals[nres] = rn
@@ -131,8 +147,8 @@ def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, u, atol, utol,
             if not abs(du[i]) < math.inf:
                 return UNPIVOTED, it, nres
         if line_search:
-            step = _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, pr, f, S, chunk, R, Fb, ab,
-                                Jb, ew, ut)
+            step = _line_search(u, du, r, target, is_free, dN, w, dofs, ops, consts, pr, couple, b, f, S, chunk, R,
+                                Fb, ab, Jb, ew, ut)
             for i in range(n):
                 du[i] *= step
         umax, dumax = 0.0, 0.0
@@ -141,7 +157,7 @@ def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, u, atol, utol,
             umax = max(umax, abs(u[i]))
             dumax = max(dumax, abs(du[i]))
         if it >= 1 and dumax <= utol * max(umax, hbeam):
-            if assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, S, False, chunk, R, Fb, ab, Jb, ew) != OK:
+            if _assemble(u, dN, w, dofs, ops, consts, pr, couple, f, S, b, False, chunk, R, Fb, ab, Jb, ew) != OK:
                 return NOT_ADMISSIBLE, nres, nres
             residuals[nres] = _residual(f, target, is_free, r)
             return CONVERGED, it + 1, nres + 1
@@ -199,14 +215,15 @@ class StaticKernel:
         self.hbeam = float(model.mesh.height)
         self.bandwidth = int(model.mesh.bandwidth)
 
-    def newton(self, u0: np.ndarray, target: np.ndarray, atol: float, max_iterations: int,
+    def newton(self, u0: np.ndarray, loading, atol: float, max_iterations: int,
                utol: float, line_search: bool = False) -> tuple[int, np.ndarray, int, list[float]]:
-        """(outcome, u, iterations, residuals) from u0 (not changed)."""
+        """(outcome, u, iterations, residuals) from u0 (not changed), balancing ``loading``
+        (:class:`ancf.couple.Loading`)."""
         u = np.array(u0, dtype=float)
         residuals = np.empty(max_iterations + 2)
-        outcome, its, nres = newton(*self.data, self.bandwidth, np.ascontiguousarray(target, dtype=float), u,
-                                    float(atol), float(utol), self.hbeam, int(max_iterations),
-                                    bool(line_search), residuals)
+        outcome, its, nres = newton(*self.data, self.bandwidth, np.ascontiguousarray(loading.Q, dtype=float),
+                                    loading.compiled(), u, float(atol), float(utol), self.hbeam,
+                                    int(max_iterations), bool(line_search), residuals)
         return int(outcome), u, int(its), [float(x) for x in residuals[:nres]]
 
     def roundoff_floor(self, u: np.ndarray) -> float:

@@ -10,7 +10,8 @@ from contract.record import new_record
 from contract.scene import Scene
 from mechanics.time_loop import energy_limit, integrate, record_keys
 
-from .build import build_integrator, capacity, build_model, external_loads, quadrature, quadrature_warnings
+from .build import (build_integrator, capacity, build_model, external_loads, quadrature, quadrature_warnings,
+                    static_loading)
 from .statics import relax, solve_static
 
 
@@ -50,11 +51,13 @@ def _run_scene(scene: Scene, progress=None) -> tuple[dict, object]:
     effects = model.elastic_effects + list(loads)
     if scene.analysis.kind == "dynamic":
         return _run_dynamic(scene, model, loads, effects + ["inertia"], rec, t0, progress)
-    f_ext = sum(loads.values(), np.zeros(model.mesh.n_dof))
+    loading = static_loading(model, loads, scene)
+    if loading.face is not None:
+        effects.append("end_moment")
     model.internal_force_and_tangent(np.zeros(model.mesh.n_dof))  # tabulate, warm caches
     rec["setup_s"] = time.perf_counter() - t0
     a = scene.analysis
-    res = solve_static(model, f_ext, a.load_steps, a.newton_rtol, a.max_iterations, a.wall_time)
+    res = solve_static(model, loading, a.load_steps, a.newton_rtol, a.max_iterations, a.wall_time)
     rec.update(
         status=res.status, reason=res.reason, ndof=model.n_free,
         newton_iterations=res.newton_iterations, load_steps=res.load_steps,
@@ -67,10 +70,12 @@ def _run_scene(scene: Scene, progress=None) -> tuple[dict, object]:
     if res.u is not None:
         ux, uy = model.tip_displacement(res.u)
         rec["tip"] = {"ux": float(ux), "uy": float(uy)}
+        if res.rotation is not None:
+            rec["tip"]["rotation"] = float(res.rotation)       # of the end face, rad (contract.loads)
         # two stable equilibria of one scene (a load path may reach either) are told apart
         # by this: the lower total potential is the better answer
-        rec["potential_energy"] = float(model.strain_energy(res.u) - f_ext @ res.u)
-    if not np.any(f_ext[np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)]):
+        rec["potential_energy"] = float(model.strain_energy(res.u) + loading.potential(res.u, res.rotation))
+    if not np.any(loading.Q[np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)]) and not loading.has_couple:
         rec["note"] = ("no load: an unloaded static scene is valid, its answer is the "
                        + ("reference state" if model.material.formulation.stress_free else "relaxed state"))
     return rec, (model, res)

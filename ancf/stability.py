@@ -70,7 +70,7 @@ def below(K, shift: float) -> int:
                                   check_finite=False)))
 
 
-def check_stability(model: BeamModel, u: np.ndarray) -> Stability:
+def check_stability(model: BeamModel, u: np.ndarray, loads=None) -> Stability:
     """Classify the equilibrium u by the inertia of the Jacobi-scaled constrained tangent
     S (a congruence of K: the same signs of eigenvalues): unstable when eigenvalues lie
     below -SINGULAR_TOL (their number is the record's ``negative_eigenvalues``); stable
@@ -80,8 +80,13 @@ def check_stability(model: BeamModel, u: np.ndarray) -> Stability:
     else undetermined. Counting by inertia cannot miss a negative eigenvalue, as an
     eigen solver asked for the eigenvalue nearest a shift can; the lowest eigenpair (the
     mode the static solver escapes along) is computed only when the state is not stable;
-    a stable state carries its lowest eigenvalue alone (its margin above SINGULAR_TOL)."""
-    _, K = model.internal_force_and_tangent(u)
+    a stable state carries its lowest eigenvalue alone (its margin above SINGULAR_TOL).
+    ``loads`` (:class:`ancf.couple.Loading`): an end couple's load stiffness joins the
+    tangent (the Hessian of the total potential); dead loads add none."""
+    if loads is not None and loads.has_couple:
+        _, K = loads.out_of_balance_and_tangent(model, u)
+    else:
+        _, K = model.internal_force_and_tangent(u)
     K = K.constrain(model.fixed)
     negative = below(K, -SINGULAR_TOL)
     if negative == 0 and below(K, SINGULAR_TOL) == 0:

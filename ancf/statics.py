@@ -31,8 +31,11 @@ from mechanics.load_path import Attempt, PathCounts, PathFailure, follow
 from mechanics.newton import newton as newton_loop
 from mechanics.time_loop import StepFailure
 
+from contract.loads import continued
+
 from . import compiled_statics
 from .beam import BeamModel, InadmissibleState
+from .couple import Loading, as_loading
 from .stability import check_stability
 
 
@@ -45,13 +48,15 @@ class NewtonResult:
     reason: str | None = None
 
 
-def newton(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol: float,
+def newton(model: BeamModel, u0: np.ndarray, target: Loading, atol: float,
            max_iterations: int, utol: float = 1e-9, line_search: bool = False) -> NewtonResult:
-    """Solve f_int(u) = target on the free dofs, starting at u0 (fixed dofs stay as in u0):
+    """Solve f_int(u) = f_ext(u) (``target``, :class:`ancf.couple.Loading`) on the free dofs,
+    starting at u0 (fixed dofs stay as in u0):
     :func:`newton_reference`'s iteration, compiled (:mod:`ancf.compiled_statics`). An attempt
     whose unpivoted LDL^T meets a zero pivot is redone by :func:`newton_reference`, whose
     pivoted LU decides whether the tangent is singular. A model the compiled loop cannot
     run (:attr:`ancf.beam.BeamModel.compiled`) goes to :func:`newton_reference` at once."""
+    target = as_loading(target)
     if not model.compiled:
         return newton_reference(model, u0, target, atol, max_iterations, utol, line_search)
     outcome, u, its, residuals = model.static_kernel.newton(u0, target, atol, max_iterations, utol, line_search)
@@ -62,9 +67,9 @@ def newton(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol: float,
     return newton_reference(model, u0, target, atol, max_iterations, utol, line_search)
 
 
-def newton_reference(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol: float,
+def newton_reference(model: BeamModel, u0: np.ndarray, target: Loading, atol: float,
                      max_iterations: int, utol: float = 1e-9, line_search: bool = False) -> NewtonResult:
-    """Solve f_int(u) = target on the free dofs, starting at u0 (fixed dofs stay as in u0).
+    """Solve f_int(u) = f_ext(u) on the free dofs, starting at u0 (fixed dofs stay as in u0).
 
     Converged when the residual norm is at most ``atol`` (N), or when the last Newton
     correction is negligible, ||du||_inf <= utol max(||u||_inf, h) (the error after it
@@ -79,7 +84,7 @@ def newton_reference(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol:
     energy differences, carry no cancellation): s = 1 if |g(1)| <= |g(0)| / 2, else a
     root of g by safeguarded regula falsi (at most 8 force evaluations).
     """
-    system = _StaticSystem(model, u0, target, utol, line_search)
+    system = _StaticSystem(model, u0, as_loading(target), utol, line_search)
     try:
         its, _ = newton_loop(system, 1.0, atol, max_iterations, system.small_correction, diverging=1e3)
         return NewtonResult(system.u, True, its, system.residuals)
@@ -92,10 +97,10 @@ def newton_reference(model: BeamModel, u0: np.ndarray, target: np.ndarray, atol:
 
 
 class _StaticSystem:
-    """f_int(u) = target on the free dofs as a system of :func:`mechanics.newton.newton`
+    """f_int(u) = f_ext(u) on the free dofs as a system of :func:`mechanics.newton.newton`
     (tolerance: ||R|| <= atol with r_ref = 1)."""
 
-    def __init__(self, model: BeamModel, u0: np.ndarray, target: np.ndarray, utol: float, line_search: bool):
+    def __init__(self, model: BeamModel, u0: np.ndarray, target: Loading, utol: float, line_search: bool):
         self.model, self.target, self.utol, self.line_search = model, target, utol, line_search
         self.free = np.ones(model.mesh.n_dof, bool)
         self.free[model.fixed] = False
@@ -104,8 +109,8 @@ class _StaticSystem:
         self.updates = 0
 
     def residual_norm(self) -> float:
-        f, self.K = self.model.internal_force_and_tangent(self.u)
-        self.R = np.where(self.free, f - self.target, 0.0)
+        R, self.K = self.target.out_of_balance_and_tangent(self.model, self.u)
+        self.R = np.where(self.free, R, 0.0)
         r = float(np.linalg.norm(self.R))
         self.residuals.append(r)
         return r
@@ -129,7 +134,7 @@ class _StaticSystem:
         residual after it is recorded (the confirming evaluation)."""
         if self.updates >= 2 and self.du_max <= self.utol * max(np.abs(self.u).max(), self.model.mesh.height):
             self.residuals.append(float(np.linalg.norm(
-                np.where(self.free, self.model.internal_force(self.u) - self.target, 0.0))))
+                np.where(self.free, self.target.out_of_balance(self.model, self.u), 0.0))))
             return True
         return False
 
@@ -141,7 +146,7 @@ def _line_search(model, u, du, target, R0, free) -> float:
 
     def g(s):
         try:
-            return float(np.where(free, model.internal_force(u + s * du) - target, 0.0) @ du)
+            return float(np.where(free, target.out_of_balance(model, u + s * du), 0.0) @ du)
         except InadmissibleState:
             return np.inf
     g1 = g(1.0)
@@ -173,29 +178,44 @@ ROUNDOFF_FLOOR = 10.0
 DESCENT_BELOW = 1e-2
 
 
-def increment_solver(model: BeamModel, target: Callable[[float], np.ndarray], u0: np.ndarray,
-                     atol: float, max_iterations: int):
+# An accepted increment may turn the end face by at most this much (rad): the face's
+# rotation is continued from one equilibrium to the next (contract.loads.continued), which
+# is unambiguous below pi; a larger turn is cut like a failed increment.
+MAX_TURN = 0.5 * np.pi
+
+
+def increment_solver(model: BeamModel, target: Callable[[float], Loading], u0: np.ndarray,
+                     atol: float, max_iterations: int, theta0: float = 0.0):
     """The ANCF attempt of one load increment for :func:`mechanics.load_path.follow`, and the
     state it keeps: from the last accepted u, Newton from a secant predictor; if it
     fails, Newton with a line search from u; if that fails on a small increment, the
     shifted-Newton energy descent. Returns (solve, state) with state["u"] the last
-    accepted equilibrium."""
-    state = {"u": u0, "du_prev": None}
+    accepted equilibrium and, with an end couple, state["theta"] its end face's rotation
+    continued from ``theta0`` at u0."""
+    state = {"u": u0, "du_prev": None, "theta": theta0}
 
     def solve(t0: float, t1: float) -> Attempt:
         u, prev, dt = state["u"], state["du_prev"], t1 - t0
+        loading = as_loading(target(t1))
         guess = u if prev is None else u + prev[1] * (dt / prev[0])
-        res = newton(model, guess, target(t1), atol, max_iterations)
+        res = newton(model, guess, loading, atol, max_iterations)
         if not res.converged:        # retry from the last state with a line search
-            retry = newton(model, u, target(t1), atol, max_iterations, line_search=True)
+            retry = newton(model, u, loading, atol, max_iterations, line_search=True)
             retry.iterations += res.iterations
             res = retry
         if not res.converged and dt <= DESCENT_BELOW:
             # a small increment that still fails is not a step-size problem (e.g. an
             # indefinite tangent): descend the potential before cutting further
-            retry = _descend(model, u, target(t1), atol, 4 * max_iterations)
+            retry = _descend(model, u, loading, atol, 4 * max_iterations)
             retry.iterations += res.iterations
             res = retry
+        if res.converged and loading.face is not None:
+            face = loading.face
+            theta = continued(state["theta"], face.first_moment(u), face.first_moment(res.u))
+            if abs(theta - state["theta"]) > MAX_TURN:
+                return Attempt(False, res.iterations, f"the end face turned {abs(theta - state['theta']):.3g} rad "
+                                                      f"in one increment (more than {MAX_TURN:.3g})")
+            state["theta"] = theta
         if res.converged:
             state["du_prev"], state["u"] = (dt, res.u - u), res.u
         return Attempt(res.converged, res.iterations, res.reason)
@@ -218,11 +238,15 @@ class StaticResult:
     cpu_s: float = 0.0
     wall_s: float = 0.0
     lowest_eigenvalue: float | None = None    # of the final state's Jacobi-scaled constrained tangent
+    rotation: float | None = None             # of the end face (rad), continued, with an end couple
 
 
-def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
+def solve_static(model: BeamModel, loads: Loading | np.ndarray, load_steps: int = 10,
                  rtol: float = 1e-8, max_iterations: int = 25, wall_time: float | None = None) -> StaticResult:
+    """The equilibrium under ``loads`` (a :class:`ancf.couple.Loading`, or a dead load vector
+    Q in N), reached along t: 0 -> 1 (see the module doc)."""
     wall0, cpu0 = time.perf_counter(), time.process_time()
+    loads = as_loading(loads)
     deadline = None if wall_time is None else wall0 + wall_time
     free = np.ones(model.mesh.n_dof, bool)
     free[model.fixed] = False
@@ -230,41 +254,47 @@ def solve_static(model: BeamModel, f_ext: np.ndarray, load_steps: int = 10,
     counts = PathCounts()
     n_relax = 0
     f0 = np.where(free, model.internal_force(u), 0.0)
+    f_ext = loads.force(u)
     scale = max(np.linalg.norm(f_ext[free]), np.linalg.norm(f0), 1e-30)
     # never below the force's round-off (small loads on a stiff section: rtol |f_ext|
     # can lie under it, and then only luck in the last digits converges)
     atol = max(rtol * scale, ROUNDOFF_FLOOR * model.roundoff_floor(u))
 
+    theta = None if loads.face is None else loads.face.rotation(u)
+
     def finish(status, reason, u, verdict=None, stability=None):
         return StaticResult(u, status, reason, counts.newton_iterations, counts.accepted,
                             counts.rejected, n_relax, verdict and verdict.stable, stability,
                             verdict and verdict.negative, time.process_time() - cpu0,
-                            time.perf_counter() - wall0, verdict and verdict.lowest)
+                            time.perf_counter() - wall0, verdict and verdict.lowest, theta)
 
     phases = []
     if np.linalg.norm(f0) > atol:
-        phases.append(("relax", lambda t: f0 * (1.0 - t), 1))
+        phases.append(("relax", lambda t: Loading(f0 * (1.0 - t)), 1))
     if np.linalg.norm(f_ext[free]) > 0:
-        phases.append(("load", lambda t: f_ext * t, load_steps))
+        phases.append(("load", loads.scaled, load_steps))
     try:
         for phase, target, steps in phases:
-            solve, state = increment_solver(model, target, u, atol, max_iterations)
+            solve, state = increment_solver(model, target, u, atol, max_iterations, theta or 0.0)
             for _ in follow(solve, steps, counts, phase, deadline=deadline):
                 n_relax += phase == "relax"
             u = state["u"]
+            theta = None if loads.face is None else (loads.face.rotation(u) if phase == "relax" else state["theta"])
     except PathFailure as e:
         return finish("failed", e.reason, None)
 
-    verdict = check_stability(model, u)
+    verdict = check_stability(model, u, loads)
     note = first = None if verdict.kind == "stable" else verdict.describe()
     tries = 0
     while verdict.kind == "unstable" and tries < 3:
         tries += 1
-        u_new = _escape(model, u, verdict.mode, f_ext, atol, max_iterations, counts)
+        u_new = _escape(model, u, verdict.mode, loads, atol, max_iterations, counts)
         if u_new is None:
             break
+        if loads.face is not None:
+            theta = continued(theta, loads.face.first_moment(u), loads.face.first_moment(u_new))
         u = u_new
-        verdict = check_stability(model, u)
+        verdict = check_stability(model, u, loads)
         note = (f"Newton converged to an unstable equilibrium ({first}); perturbed along the "
                 f"unstable mode and descended to {verdict.describe()} ({tries} time(s))")
     return finish("converged", None, u, verdict, note)
@@ -290,12 +320,13 @@ def relax(model: BeamModel, rtol: float = 1e-8, max_iterations: int = 25,
     return res
 
 
-def potential(model: BeamModel, u: np.ndarray, f_ext: np.ndarray) -> float:
-    """Total potential energy U(u) - Q_K . u (J) of the dead loads."""
-    return model.strain_energy(u) - float(f_ext @ u)
+def potential(model: BeamModel, u: np.ndarray, loads: Loading | np.ndarray, theta: float | None = None) -> float:
+    """Total potential energy U(u) - Q_K . u - M theta (J); theta continued along the path
+    where the caller has it (:meth:`ancf.couple.Loading.potential`)."""
+    return model.strain_energy(u) + as_loading(loads).potential(u, theta)
 
 
-def _escape(model, u, mode, f_ext, atol, max_iterations, counts: PathCounts) -> np.ndarray | None:
+def _escape(model, u, mode, f_ext: Loading, atol, max_iterations, counts: PathCounts) -> np.ndarray | None:
     """From u, move along +- the unstable mode and descend the potential energy to a
     minimum; keep the end state of lower energy (None if neither side converges).
 
@@ -310,7 +341,7 @@ def _escape(model, u, mode, f_ext, atol, max_iterations, counts: PathCounts) -> 
     free[model.fixed] = False
 
     def slope(v, d):
-        return float(np.where(free, model.internal_force(v) - f_ext, 0.0) @ d)
+        return float(np.where(free, f_ext.out_of_balance(model, v), 0.0) @ d)
 
     best = None
     for sign in (1.0, -1.0):
@@ -336,13 +367,14 @@ def _escape(model, u, mode, f_ext, atol, max_iterations, counts: PathCounts) -> 
         res = _descend(model, u + lo * d, f_ext, atol, 20 * max_iterations)
         counts.newton_iterations += res.iterations
         if res.converged:
-            e = potential(model, res.u, f_ext)
+            e = potential(model, res.u, f_ext, None if f_ext.face is None else
+                          continued(0.0, f_ext.face.first_moment(u), f_ext.face.first_moment(res.u)))
             if best is None or e < best[0]:
                 best = (e, res.u)
     return None if best is None else best[1]
 
 
-def _descend(model, v, f_ext, atol, max_iterations) -> NewtonResult:
+def _descend(model, v, f_ext: Loading, atol, max_iterations) -> NewtonResult:
     """Shifted Newton descent to a minimum of the potential: (K + sigma |diag K|) du = -R
     with sigma raised (x 10 from 1e-12) until the matrix is positive definite, and lowered
     10x each iteration, and a backtracking line search whose decrease is measured from
@@ -355,13 +387,13 @@ def _descend(model, v, f_ext, atol, max_iterations) -> NewtonResult:
     free[model.fixed] = False
 
     def slope(w, d):
-        return float(np.where(free, model.internal_force(w) - f_ext, 0.0) @ d)
+        return float(np.where(free, f_ext.out_of_balance(model, w), 0.0) @ d)
 
     sigma, residuals = 0.0, []
     try:
         for it in range(max_iterations):
-            f, K = model.internal_force_and_tangent(v)
-            R = np.where(free, f - f_ext, 0.0)
+            R, K = f_ext.out_of_balance_and_tangent(model, v)
+            R = np.where(free, R, 0.0)
             residuals.append(float(np.linalg.norm(R)))
             if residuals[-1] <= atol:
                 return NewtonResult(v, True, it, residuals)
