@@ -28,7 +28,7 @@ PACKAGE = Path(__file__).resolve().parent
 # (the time loop's step rules are compiled into the step loop)
 COMPILED_FROM = ("mechanics",)
 # front-end modules that no compiled code imports: an edit of them keeps the cache
-FRONT_END = ("__main__.py", "cli.py", "output.py", "warm.py")
+FRONT_END = ("__main__.py", "cli.py", "output.py", "warm.py", "compiled_cache.py")
 
 
 def _normalised(source: bytes) -> bytes:
@@ -47,20 +47,49 @@ def _normalised(source: bytes) -> bytes:
     return ast.dump(tree, include_attributes=False).encode()
 
 
-def source_digest(package: Path = PACKAGE) -> str:
-    """sha256 over the names and normalised code of the modules of ``package`` (but its
-    front end, :data:`FRONT_END`) and of its sibling packages named in
-    :data:`COMPILED_FROM` (16 hex digits)."""
-    h = hashlib.sha256()
-    package = Path(package)
+def _sources(package: Path) -> list[tuple[str, bytes]]:
+    """(name, bytes) of every module the digest covers, in a fixed order."""
+    out = []
     siblings = [package.parent / name for name in COMPILED_FROM if (package.parent / name).is_dir()]
     for d in [package, *siblings]:
         for p in sorted(Path(d).rglob("*.py")):
             if d == package and p.parent == package and p.name in FRONT_END:
                 continue
-            h.update(d.name.encode() + b"/" + p.relative_to(d).as_posix().encode() + b"\0"
-                     + _normalised(p.read_bytes()) + b"\0")
-    return h.hexdigest()[:16]
+            out.append((d.name + "/" + p.relative_to(d).as_posix(), p.read_bytes()))
+    return out
+
+
+def source_digest(package: Path = PACKAGE) -> str:
+    """sha256 over the names and normalised code of the modules of ``package`` (but its
+    front end, :data:`FRONT_END`) and of its sibling packages named in
+    :data:`COMPILED_FROM` (16 hex digits).
+
+    Parsing every module costs a quarter of a second at each import, so the digest is kept
+    in a memo file named by a hash of the files' raw bytes (``<package>/__pycache__/
+    digest-<raw>``): unchanged files read it back; any edit, even of a comment, parses
+    again once (and finds the same digest if only comments or docstrings changed)."""
+    package = Path(package)
+    sources = _sources(package)
+    raw = hashlib.sha256(b"".join(name.encode() + b"\0" + text + b"\0" for name, text in sources)).hexdigest()
+    memo = package / "__pycache__" / f"digest-{raw[:24]}"
+    try:
+        digest = memo.read_text().strip()
+        if len(digest) == 16:
+            return digest
+    except OSError:
+        pass
+    h = hashlib.sha256()
+    for name, text in sources:
+        h.update(name.encode() + b"\0" + _normalised(text) + b"\0")
+    digest = h.hexdigest()[:16]
+    try:
+        memo.parent.mkdir(exist_ok=True)
+        tmp = memo.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_text(digest + "\n")
+        os.replace(tmp, memo)
+    except OSError:
+        pass                      # a read-only install computes it each time
+    return digest
 
 
 def _writable(d: Path) -> bool:

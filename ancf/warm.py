@@ -103,15 +103,19 @@ def shipped() -> list[Scene]:
 
 def prune() -> list[Path]:
     """Remove the caches of earlier versions of the code (``numba-<digest>`` beside the
-    current one, 25 MB each); return what was removed."""
+    current one, 25 MB each) and the digest memos of earlier sources
+    (:func:`ancf.compiled_cache.source_digest`); return the caches removed."""
     import shutil
 
-    from .compiled_cache import cache_dir
+    from .compiled_cache import PACKAGE, cache_dir
 
     current = cache_dir()
     gone = [d for d in current.parent.glob("numba-*") if d.is_dir() and d != current]
     for d in gone:
         shutil.rmtree(d, ignore_errors=True)
+    memos = sorted((PACKAGE / "__pycache__").glob("digest-*"), key=lambda p: p.stat().st_mtime)
+    for p in memos[:-1]:                     # the newest is the current sources'
+        p.unlink(missing_ok=True)
     return gone
 
 

@@ -96,3 +96,14 @@ def test_no_record_depends_on_the_engine_that_keys_it():
         for scene, options in (({}, {}), ({"fem": {"backend": "felupe"}}, {}), ({}, {"mpi_ranks": 2})):
             ms = _modules(name, scene, options)
             assert not [m for m in ms if m.split(":")[0] in engine], (name, options)
+
+
+def test_no_record_depends_on_where_compiled_code_is_cached_or_on_the_command_lines():
+    """The compiled-code cache's location (its own digest guards it), the console, the
+    output writers and the warm-up cannot change a result: no solver's fingerprint reads
+    them, so an edit there keeps every record."""
+    for name in SOLVERS:
+        for scene in ({}, {"fem": {"backend": "felupe"}}):
+            ms = {m.split(":")[0] for m in _modules(name, scene)}
+            assert not ms & set(fp.NOT_RESULTS), name
+    assert "ancf.compiled_cache" in fp.NOT_RESULTS and "ancf.couple" in _modules("ancf", {})

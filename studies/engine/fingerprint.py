@@ -22,7 +22,9 @@ Three rules keep it to what runs:
   (:data:`DISCOVERS`);
 - per backend: a continuum case counts the backend its scene names, never the other one
   (:data:`BACKENDS`), so a change to FElupe's backend keeps DOLFINx's records, and the
-  reverse.
+  reverse;
+- modules that cannot change a result (:data:`NOT_RESULTS`: where compiled code is cached,
+  the command lines' console and output, the warm-up) never count.
 
 :func:`fingerprint` returns ``{"code": sha256, "packages": {name: version}}``;
 :func:`modules` lists what it read (for a reader who wants to see why a record moved).
@@ -47,6 +49,10 @@ SOLVER_PACKAGES = ("ancf", "mechanics", "contract", "reference_fem", "examples")
 BY_NAME_PACKAGES = ("studies",)
 # packages that import their own submodules by name at run time: reached, they count whole
 DISCOVERS = ("mechanics.laws",)
+# modules that cannot change a result: where the compiled code is cached (its own source
+# digest keeps stale compiled code from running: tests/test_compiled_cache.py), the command
+# lines' console, output writers and warm-up; never part of a fingerprint
+NOT_RESULTS = ("ancf.compiled_cache", "ancf.cli", "ancf.output", "ancf.warm", "ancf.__main__", "contract.console")
 # the continuum backends: a case counts the one its scene names (scene["fem"]["backend"])
 BACKENDS = {"dolfinx": "reference_fem.dolfinx_backend", "felupe": "reference_fem.felupe_backend"}
 # distributions a package's code depends on without importing them (JIT code generators)
@@ -334,7 +340,7 @@ def packages(top_level: Iterable[str]) -> dict[str, str | None]:
 # -- the fingerprint --------------------------------------------------------------------
 
 def _read(entries: tuple[str, ...], exclude: tuple[str, ...], whole: bool = False) -> _Reader:
-    r = _Reader(exclude, {}, set(), () if whole else BY_NAME_PACKAGES)
+    r = _Reader(exclude + NOT_RESULTS, {}, set(), () if whole else BY_NAME_PACKAGES)
     for e in entries:
         module, _, name = e.partition(":")
         r.name(module, name) if name else r.module(module)
