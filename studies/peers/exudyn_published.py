@@ -300,7 +300,7 @@ def published_markdown(rec: dict) -> str:
              "held by `CoordinateConstraint`s, a tip `Force`; `static_settings`: EigenSparse, one thread, the "
              "static Newton to the published run's tolerances) and solved by `SolveStatic` in `.venv-peers`: "
              f"Exudyn {p['exudyn']} ({p['module']}), numpy {p['numpy']}, Python {p['python']}.", "",
-             f"Sources: Exudyn's repository `{rec['repository']}` at `{rec['tree'][:10]}`; {rec['installed']}.", ""]
+             f"Sources: {rec['installed']}.", ""]
     for c in rec["cases"]:
         if c["name"] == "mini-cable2d" or c["name"] == "cantilever-1":
             lines.append(f"- {c['title'] if c['name'] == 'mini-cable2d' else 'ANCFcantileverTest.py, static'}: "
