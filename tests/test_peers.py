@@ -291,6 +291,8 @@ def test_the_peer_reports_are_audited_against_their_records(tmp_path):
         shutil.copy(reports / "data" / "peers" / record, copy / "data" / "peers" / record)
     rounds = reports / "data" / "peers" / "peers-work-precision-rounds.jsonl"    # the rounds column's records
     shutil.copy(rounds, copy / "data" / "peers" / rounds.name)
+    published = reports / "data" / "peers" / "peers-published.json"     # peers.md's published-checks section
+    shutil.copy(published, copy / "data" / "peers" / published.name)
     figures = sorted(p.name for p in reports.glob("peers_work_precision*.figure.csv"))
     for name in figures:
         shutil.copy(reports / name, copy / name)
@@ -407,3 +409,96 @@ def test_a_run_whose_tip_leaves_the_pendulum_is_diverged_whatever_its_solver_say
         assert r["status"] == "diverged" and r["error"] is None and "from the pin" in r["reason"]
         assert pr.cheapest([r], "exudyn", None, 1.0) is None
     assert wp.score(rec(sane[:4] + [(1.9 * LENGTH, 0.0)]))["status"] == "converged"     # far off, but in reach
+
+
+# -- Exudyn against its own published numbers (studies.peers.exudyn_published) --------------
+def fake_published_peer(shift=0.0, fail=()):
+    """The peer's output as if it gave every published value exactly, ``shift`` (m) added to
+    each 'ux'; the runs named in ``fail`` failed."""
+    from studies.peers import exudyn_published as ep
+
+    runs = {}
+    for c in ep.cases():
+        if c["name"] in fail:
+            runs[c["name"]] = {"status": "failed", "reason": "SolverError: SolveStatic terminated due to errors"}
+            continue
+        r = {"status": "converged", "newtonSteps": 6, "newtonJacobians": 6, "residual_N": 1e-3,
+             "linearSolver": "LinearSolverType.EigenSparse", "relativeTolerance": c["static"]["relative_tolerance"],
+             "absoluteTolerance": c["static"]["absolute_tolerance"], "numberOfLoadSteps": 1, "adaptiveStep": True}
+        for k in c["checks"]:
+            r[k["quantity"]] = k["published"] + (shift if k["quantity"] == "ux" else 0.0)
+        runs[c["name"]] = r
+    return {"status": "converged", "exudyn": "9.9", "numpy": "9.9", "module": "exudynCPPfast", "python": "3.11",
+            "runs": runs}
+
+
+def test_published_tolerances_are_derived_from_the_published_material():
+    """The rows' 1e-9 m is three times the largest distance between two published runs of
+    one mesh (3.4e-10 m, 4 elements, x: the file's two tables); the converged check adds the
+    256 mesh's distance from the limit and half a 12th decimal; the mini example takes
+    Exudyn's test-suite tolerance."""
+    from studies.peers import exudyn_published as ep
+
+    assert ep.rerun_spread() == pytest.approx(3.369e-10, rel=1e-3)
+    assert ep.ROW_TOL == 1e-9 == pytest.approx(3 * ep.rerun_spread(), rel=0.02)
+    assert ep.converged_tolerance() == pytest.approx(1e-9 + 7.48e-11 / 15 + 0.5e-12, rel=1e-3)
+    assert ep.MINI_TOL == 3e-11
+    cases = {c["name"]: c for c in ep.cases()}
+    assert sorted(c["model"]["elements"] for n, c in cases.items() if n.startswith("cantilever-")
+                  and not n.endswith("tight")) == [1, 2, 4, 8, 16, 32, 64, 128, 256]
+    m = cases["cantilever-64"]["model"]
+    assert m["EI"] == pytest.approx(2.07e11 * 0.1 ** 4 / 12) and m["tip_force"][1] == pytest.approx(-3 * m["EI"] / 4)
+    assert m["support"] == "clamp" and m["gravity"] is None and cases["mini-cable2d"]["model"]["gravity"] == [0, -9.81]
+    # every check names its source and says why its tolerance
+    for c in cases.values():
+        assert c["source"]["files"] and all(k["why"] and k["tolerance"] > 0 for k in c["checks"])
+
+
+def test_published_checks_fail_beyond_their_tolerance_and_on_a_failed_run():
+    from studies.peers import exudyn_published as ep
+
+    ok = ep.evaluate(fake_published_peer())
+    assert ok and all(k["agrees"] for k in ok) and len(ok) == 25
+    off = ep.evaluate(fake_published_peer(shift=2e-9))         # every ux 2e-9 m off: the rows' 1e-9 m is exceeded
+    bad = {(k["check"], k["quantity"]) for k in off if not k["agrees"]}
+    assert ("table, 64 elements", "ux") in bad and ("mini example", "ux") in bad
+    assert all(k["agrees"] for k in off if k["quantity"] != "ux")
+    failed = ep.evaluate(fake_published_peer(fail=("cantilever-8",)))
+    assert [(k["check"], k["peer"], k["agrees"]) for k in failed if k["run"] == "cantilever-8"] == [
+        ("table, 8 elements", None, False)] * 2
+    md = ep.published_markdown(ep.record(fake_published_peer(fail=("cantilever-8",))))
+    assert "23 of 25 checks agree within their tolerance." in md
+    assert "| table, 8 elements | ux | -0.5085092365729895 | failed | - | 1e-09 | DIFFERS |" in md
+    assert "| cantilever-8 | 8 | failed: SolverError: SolveStatic terminated due to errors | | | | |" in md
+    assert "main/pythonDev/Examples/ANCFcantileverTest.py:135-148" in md and "not in the installed wheel" in md
+
+
+def test_peers_report_carries_the_published_section_from_its_record():
+    from studies.peers import exudyn_published as ep
+
+    rec = ep.record(fake_published_peer())
+    base = {"ours": [fake_ours(0.04)], "exudyn": fake_peer(), "load": [(1.0,) * 3] * 2, "rounds": 1}
+    md = compare.peers_markdown(base, rec)
+    assert md.startswith(compare.peers_markdown(base).rstrip("\n"))
+    assert "## Exudyn against its own published numbers" in md
+    assert "| mini example | ux | -0.5013058140308901 | -0.5013058140308901 | 0.00e+00 | 3e-11 | agrees |" in md
+
+
+def test_our_exudyn_set_up_gives_exudyns_published_numbers():
+    """Runs Exudyn (in .venv-peers, the pinned version) on every published case, built by the
+    pendulum's own set-up, and compares each value with its tolerance."""
+    import re
+
+    from studies.peers import exudyn_published as ep
+
+    if not compare.PEER_PYTHON.exists():
+        pytest.skip(f"SKIPPED, not run: {compare.PEER_PYTHON} does not exist (`bash tools/setup_peers.sh` makes it); "
+                    "the checks against Exudyn's published numbers need Exudyn")
+    peer = ep.run_peer()
+    pinned = re.search(r"^EXUDYN_VERSION=(\S+)", (compare.ROOT / "tools" / "setup_peers.sh").read_text(), re.M)[1]
+    assert peer["exudyn"] == pinned, f"the peer venv has exudyn {peer['exudyn']}, the pin is {pinned}: rerun setup_peers"
+    rows = ep.evaluate(peer)
+    bad = [f"{k['check']} {k['quantity']}: Exudyn {k['peer']!r}, published {k['published']!r}, "
+           f"difference {k['difference']}, tolerance {k['tolerance']:g}" for k in rows if not k["agrees"]]
+    assert not bad, "\n".join(bad)
+    assert len(rows) == 25

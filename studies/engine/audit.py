@@ -77,9 +77,10 @@ def compare_text(name: str, expected: str, found: str) -> list[str]:
 def _peer_markdown(kind: str, path: Path) -> str:
     import json
 
-    if kind == "compare":
+    if kind == "compare":          # with the published checks' section where their record is beside it
         from ..peers.compare import peers_markdown
-        return peers_markdown(json.loads(path.read_text()))
+        from ..peers.exudyn_published import RECORD as PUBLISHED, read_record
+        return peers_markdown(json.loads(path.read_text()), read_record(path.with_name(PUBLISHED.name)))
     from ..peers.precision_report import read, report_markdown, rounds_path
     return report_markdown(read(path), read(rounds_path(path)))
 

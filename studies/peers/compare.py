@@ -94,15 +94,22 @@ def peer(dt: float, rho_inf: float, repeats: int = 5, python: Path = PEER_PYTHON
          module: str = "fast", elements: int = 32, height: float | None = None, newton: str = "modified") -> dict:
     """Run the Exudyn script in .venv-peers (in a scratch directory, so that nothing it
     might write lands in the repository) and return its JSON output."""
+    args = ["--dt", repr(dt), "--rho-inf", repr(rho_inf), "--repeats", str(repeats), "--module", module,
+            "--elements", str(elements), "--newton", newton]
+    if height is not None:
+        args += ["--height", repr(height)]
+    return run_peer_script(PEER_SCRIPT, args, python)
+
+
+def run_peer_script(script: Path, args: list[str], python: Path = PEER_PYTHON) -> dict:
+    """Run a peer script of this directory with ``python`` (.venv-peers), in a scratch
+    directory (nothing it might write lands in the repository) and without our venv's
+    environment, and return the JSON on its last line (:func:`parse_peer_output`)."""
     if not Path(python).exists():
         raise SystemExit(f"{python} not found: run `bash tools/setup_peers.sh` first")
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME")}
-    cmd = [str(python), str(PEER_SCRIPT), "--dt", repr(dt), "--rho-inf", repr(rho_inf),
-           "--repeats", str(repeats), "--module", module, "--elements", str(elements), "--newton", newton]
-    if height is not None:
-        cmd += ["--height", repr(height)]
     with tempfile.TemporaryDirectory(prefix="exudyn-peer-") as cwd:
-        p = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
+        p = subprocess.run([str(python), str(script), *args], cwd=cwd, env=env, capture_output=True, text=True)
     if p.returncode != 0:
         raise RuntimeError(f"peer script exited {p.returncode}:\n{p.stdout[-2000:]}\n{p.stderr[-2000:]}")
     return parse_peer_output(p.stdout)
@@ -234,9 +241,11 @@ diagram (`peers_work_precision.md`).
   never asserted in tests."""
 
 
-def peers_markdown(result: dict) -> str:
+def peers_markdown(result: dict, published: dict | None = None) -> str:
     """reports/peers.md from the comparison's record (``--json`` / :data:`RECORD`: {'ours':
-    [...], 'exudyn': {...}, 'load': [...]}) alone: a plain function, records in, markdown out."""
+    [...], 'exudyn': {...}, 'load': [...]}) alone: a plain function, records in, markdown out;
+    with the record of the checks against Exudyn's published numbers
+    (:data:`studies.peers.exudyn_published.RECORD`), their section at the end."""
     p, os_ = result["exudyn"], result["ours"]
     load0, load1 = result["load"]
     rounds = result["rounds"]
@@ -280,7 +289,20 @@ def peers_markdown(result: dict) -> str:
         else:
             lines.append(f"- {k} = {v}")
     lines.append("")
+    if published is not None:
+        from .exudyn_published import published_markdown
+        lines.append(published_markdown(published))
     return "\n".join(lines)
+
+
+def write_report(reports: Path = ROOT / "reports") -> None:
+    """reports/peers.md from the comparison's record and, where it exists, the published
+    checks' record (both under ``reports/data/peers/``)."""
+    from .exudyn_published import RECORD as PUBLISHED, read_record
+
+    data = reports / "data" / "peers"
+    (reports / "peers.md").write_text(peers_markdown(json.loads((data / RECORD.name).read_text()),
+                                                     read_record(data / PUBLISHED.name)))
 
 
 def main(argv=None) -> int:
@@ -303,7 +325,7 @@ def main(argv=None) -> int:
     ap.add_argument("--report-only", action="store_true", help="redraw reports/peers.md from the record, no runs")
     a = ap.parse_args(argv)
     if a.report_only:
-        (ROOT / "reports" / "peers.md").write_text(peers_markdown(json.loads(RECORD.read_text())))
+        write_report()
         return 0
     load0 = os.getloadavg()
     elements = a.element or ["HB2n-12", "HB2n-16"]
@@ -322,7 +344,7 @@ def main(argv=None) -> int:
     if a.report:
         RECORD.parent.mkdir(parents=True, exist_ok=True)
         RECORD.write_text(json.dumps(result, indent=1))
-        (ROOT / "reports" / "peers.md").write_text(peers_markdown(json.loads(RECORD.read_text())))
+        write_report()
     return 0
 
 

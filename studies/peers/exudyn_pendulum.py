@@ -3,7 +3,10 @@
     .venv-peers/bin/python studies/peers/exudyn_pendulum.py [--dt 1e-3] [--rho-inf 0.8]
 
 Imports only exudyn, numpy and the standard library (not ``ancf``): this file runs in the
-separate venv that ``tools/setup_peers.sh`` creates, never in ``.venv``.
+separate venv that ``tools/setup_peers.sh`` creates, never in ``.venv``. Its builders are the
+peer's one set-up of the cable, shared with the checks against Exudyn's published numbers
+(``exudyn_published.py``): :func:`add_cable` (the elements, gravity, the first node's support,
+a tip force), :func:`common_settings` and :func:`static_settings`.
 
 The model: 32 (``--elements``) ObjectANCFCable2D elements (Euler-Bernoulli, linear elastic, 2 nodes with
 position and slope, 8 coordinates each), L = 0.350 m, h = 0.005 m (``--height``), w = 0.007 m, density
@@ -48,38 +51,90 @@ OUTPUT_TIMES = (0.1, 0.2, 0.3, 0.4, 0.5)
 NEWTON = ("modified", "linear")        # --newton: Exudyn's Newton, or one linear solve per step
 
 
+# Supports of the cable's first node, as the node coordinates held at their reference
+# values (NodePoint2DSlope1: x, y, slope x, slope y); Exudyn's examples write the same as
+# ``fixedConstraintsNode0`` of GenerateStraightLineANCFCable2D, a 0/1 list
+PIN = (0, 1)                  # x, y held, the slope (the rotation) free: the pendulum
+CLAMP = (0, 1, 3)             # x, y and the slope's y held: a cantilever ([1, 1, 0, 1])
+
+
+def add_cable(mbs, length: float, elements: int, EA: float, EI: float, rhoA: float,
+              gravity: tuple | None = None, support: tuple = PIN, tip_force: tuple | None = None) -> list:
+    """A straight cable from the origin along x in ``mbs``: ``elements`` ObjectANCFCable2D of
+    equal length (nodes with unit slope (1, 0)); ``gravity`` (gx, gy) on every element through
+    MarkerBodyMass + LoadMassProportional (none if None); the first node's coordinates
+    ``support`` (:data:`PIN`, :data:`CLAMP`) held at their reference values by one
+    CoordinateConstraint each to a ground node; ``tip_force`` (fx, fy) a Force on the last
+    node's position (MarkerNodePosition; none if None). Returns the node numbers."""
+    from exudyn.itemInterface import (CoordinateConstraint, Force, LoadMassProportional, MarkerBodyMass,
+                                      MarkerNodeCoordinate, MarkerNodePosition, NodePoint2DSlope1,
+                                      NodePointGround, ObjectANCFCable2D, VCoordinateConstraint,
+                                      VObjectANCFCable2D)
+    le = length / elements
+    nodes = [mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[i * le, 0.0, 1.0, 0.0]))
+             for i in range(elements + 1)]
+    for i in range(elements):
+        cable = mbs.AddObject(ObjectANCFCable2D(
+            length=le, massPerLength=rhoA, bendingStiffness=EI, axialStiffness=EA,
+            nodeNumbers=[nodes[i], nodes[i + 1]], visualization=VObjectANCFCable2D(show=False)))
+        if gravity is not None:
+            m = mbs.AddMarker(MarkerBodyMass(bodyNumber=cable))
+            mbs.AddLoad(LoadMassProportional(markerNumber=m, loadVector=[gravity[0], gravity[1], 0.0]))
+    ground = mbs.AddNode(NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0]))
+    mg = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground, coordinate=0))
+    for c in support:
+        mc = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=c))
+        mbs.AddObject(CoordinateConstraint(markerNumbers=[mg, mc], visualization=VCoordinateConstraint(show=False)))
+    if tip_force is not None:
+        mt = mbs.AddMarker(MarkerNodePosition(nodeNumber=nodes[-1]))
+        mbs.AddLoad(Force(markerNumber=mt, loadVector=[tip_force[0], tip_force[1], 0.0]))
+    return nodes
+
+
+def common_settings(exu, s) -> None:
+    """The settings every peer run shares, dynamic or static: EigenSparse linear solver, one
+    thread, no solution / restart files, no statistics or timers printed."""
+    s.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+    s.parallel.numberOfThreads = 1
+    s.solution.file.write = False
+    s.solution.restart.write = False
+    s.show.statistics = False
+    s.show.computationTime = False
+    s.show.globalTimers = False
+
+
+def static_settings(exu, relative_tolerance: float, absolute_tolerance: float):
+    """SimulationSettings for ``SolveStatic``: :func:`common_settings`, the static solver's
+    Newton to the given tolerances (Exudyn's test: |residual| / |initial residual| <= relative
+    or |residual| <= absolute, in N), verbose off; everything else at Exudyn's defaults (full
+    Newton, one load step, adaptive load stepping)."""
+    s = exu.SimulationSettings()
+    common_settings(exu, s)
+    ss = s.staticSolver
+    ss.newton.relativeTolerance = relative_tolerance
+    ss.newton.absoluteTolerance = absolute_tolerance
+    ss.verboseMode = 0
+    ss.verboseModeFile = 0
+    return s
+
+
 def build(exu, dt: float, rho_inf: float, elements: int = ELEMENTS, newton: str = "modified"):
     """A fresh SystemContainer with the assembled pendulum, its settings and the tip sensor.
     ``newton`` (:data:`NEWTON`): "modified", modified Newton to Exudyn's default tolerances;
     "linear", one linear solve per step (``newton.active = False``: the step's equations
     linearised at its predictor, no convergence test)."""
-    from exudyn.itemInterface import (CoordinateConstraint, LoadMassProportional, MarkerBodyMass,
-                                      MarkerNodeCoordinate, NodePoint2DSlope1, NodePointGround,
-                                      ObjectANCFCable2D, SensorNode, VCoordinateConstraint,
-                                      VObjectANCFCable2D)
+    from exudyn.itemInterface import SensorNode
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     A, I = H * W, W * H ** 3 / 12.0
-    le = L / elements
-    nodes = [mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[i * le, 0.0, 1.0, 0.0]))
-             for i in range(elements + 1)]
-    for i in range(elements):
-        cable = mbs.AddObject(ObjectANCFCable2D(
-            length=le, massPerLength=DENSITY * A, bendingStiffness=E * I, axialStiffness=E * A,
-            nodeNumbers=[nodes[i], nodes[i + 1]], visualization=VObjectANCFCable2D(show=False)))
-        m = mbs.AddMarker(MarkerBodyMass(bodyNumber=cable))
-        mbs.AddLoad(LoadMassProportional(markerNumber=m, loadVector=[GRAVITY[0], GRAVITY[1], 0.0]))
     # pin: x and y of the first node held at 0 (slope coordinates free)
-    ground = mbs.AddNode(NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0]))
-    mg = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground, coordinate=0))
-    for c in (0, 1):
-        mc = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=c))
-        mbs.AddObject(CoordinateConstraint(markerNumbers=[mg, mc], visualization=VCoordinateConstraint(show=False)))
+    nodes = add_cable(mbs, L, elements, EA=E * A, EI=E * I, rhoA=DENSITY * A, gravity=GRAVITY, support=PIN)
     tip = mbs.AddSensor(SensorNode(nodeNumber=nodes[-1], outputVariableType=exu.OutputVariableType.Position,
                                    storeInternal=True, writeToFile=False))
     mbs.Assemble()
 
     s = exu.SimulationSettings()
+    common_settings(exu, s)
     ti = s.timeIntegration
     ti.solverType = exu.DynamicSolverType.GeneralizedAlpha
     ti.generalizedAlpha.spectralRadius = rho_inf
@@ -98,14 +153,7 @@ def build(exu, dt: float, rho_inf: float, elements: int = ELEMENTS, newton: str 
     ti.automaticStepSize = False
     ti.verboseMode = 0
     ti.verboseModeFile = 0
-    s.linearSolver.solverType = exu.LinearSolverType.EigenSparse
-    s.parallel.numberOfThreads = 1
-    s.solution.file.write = False
-    s.solution.restart.write = False
     s.solution.sensors.writePeriod = dt       # sample every step; output times picked below
-    s.show.statistics = False
-    s.show.computationTime = False
-    s.show.globalTimers = False
     return SC, mbs, s, tip
 
 
