@@ -21,7 +21,13 @@ W1 = dW/dI1 and W2 = dW/dI2 are typed here again (:data:`DERIVATIVES`), so a sli
   published table it is checked against;
 - :func:`elastica_end_moment`: the same cantilever under an end couple M, a circular arc
   of angle phi = M L / (EI): x / L = sin(phi) / phi, y / L = (1 - cos phi) / phi (Euler;
-  code_aster validation manual V6.04.138, "Benchmark solution").
+  code_aster validation manual V6.04.138, "Benchmark solution");
+- :func:`rivlin_bending`: Rivlin's flexure (1949), the exact plane-strain pure bending of an
+  incompressible block for any law of :data:`DERIVATIVES`: at the curvature kappa (bending angle per
+  reference length) the face stretches lambda_b = 1 / lambda_a = exp(asinh(kappa h) / 2) and the couple
+  M / w = 2 / kappa^2 int_0^asinh(kappa h) (W1 + W2)(1 + 2 cosh s) sinh(s)^2 ds (quadrature);
+  :func:`rivlin_curvature` inverts it, :func:`rivlin_moment_mooney_rivlin` is its closed form for the
+  Mooney-Rivlin family (neo-Hookean included).
 """
 from __future__ import annotations
 
@@ -113,6 +119,8 @@ def elastica_end_moment(phi: float) -> tuple[float, float]:
 MATTIASSON_1981 = {1.0: (0.05643, 0.30172), 2.0: (0.16064, 0.49346), 5.0: (0.38763, 0.71379),
                    10.0: (0.55500, 0.81061)}
 MATTIASSON_1981_DIGITS = 5
+# Bisshopp and Drucker's (1945) own table of u / L, v / L against alpha is not here: no copy of its
+# digits that could be cited exactly was at hand, and none is typed from memory.
 
 
 # --- Rivlin's flexure: pure bending of an incompressible block in plane strain -----------------------------
