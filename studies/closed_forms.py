@@ -22,6 +22,10 @@ W1 = dW/dI1 and W2 = dW/dI2 are typed here again (:data:`DERIVATIVES`), so a sli
 - :func:`elastica_end_moment`: the same cantilever under an end couple M, a circular arc
   of angle phi = M L / (EI): x / L = sin(phi) / phi, y / L = (1 - cos phi) / phi (Euler;
   code_aster validation manual V6.04.138, "Benchmark solution");
+- :func:`plane_stress_bending`: the same pure bending of a plane-stress strip (free faces out of
+  the plane), whose 2D law is compressible in the plane: not a closed form but a two-point
+  boundary-value problem in the thickness, solved by shooting to round-off (its derivation in
+  the function); :func:`plane_stress_curvature` inverts it;
 - :func:`rivlin_bending`: Rivlin's flexure (1949), the exact plane-strain pure bending of an
   incompressible block for any law of :data:`DERIVATIVES`: at the curvature kappa (bending angle per
   reference length) the face stretches lambda_b = 1 / lambda_a = exp(asinh(kappa h) / 2) and the couple
@@ -258,3 +262,104 @@ def rivlin_curvature(law: str, constants: Mapping[str, float], moment_per_width:
         if hi > 1e4 or f_hi < f_lo:
             raise ValueError(f"{law}: no curvature up to kappa h = {hi:g} carries M / w = {target:g} N m / m")
         lo, f_lo, hi = hi, f_hi, 2.0 * hi
+
+
+# -- pure bending in plane stress ---------------------------------------------------------------
+
+def _plane_stress_partials(law: str, constants: Mapping[str, float], t: float, r: float) -> tuple[float, float]:
+    """(dW/dt, dW/dr) of the plane-stress energy W(t, r) = W(lambda_1 = t, lambda_2 = r,
+    lambda_3 = 1 / (t r)) (free faces out of the plane, incompressible): I1 = t^2 + r^2 +
+    (t r)^-2, I2 = t^2 r^2 + t^-2 + r^-2."""
+    I1 = t * t + r * r + 1.0 / (t * r) ** 2
+    I2 = (t * r) ** 2 + 1.0 / (t * t) + 1.0 / (r * r)
+    W1, W2 = DERIVATIVES[law](I1, I2, constants)
+    return (W1 * (2.0 * t - 2.0 / (t ** 3 * r * r)) + W2 * (2.0 * t * r * r - 2.0 / t ** 3),
+            W1 * (2.0 * r - 2.0 / (r ** 3 * t * t)) + W2 * (2.0 * r * t * t - 2.0 / r ** 3))
+
+
+def plane_stress_bending(law: str, constants: Mapping[str, float], kappa: float, height: float) -> dict[str, float]:
+    """The exact pure bending of a plane-stress strip (incompressible, free faces out of the
+    plane and across the thickness) at the bending angle per reference length kappa (1/m).
+
+    The strip's reference point (X, Y) goes to polar (r(Y), kappa X), so the hoop stretch
+    is t = kappa r and the radial stretch r'(Y); the energy per reference length and width,
+    E = int W(kappa r, r') dY over Y in [-h/2, h/2], is stationary in r(Y) (the same
+    argument as Rivlin's flexure, for a 2D law that is compressible in the plane: the
+    thickness out of the plane takes up the change of area): with the radial nominal
+    stress P_r = dW/dr,
+
+        r' = the radial stretch at which dW/dr = P_r,    P_r' = kappa dW/dt,
+
+    and P_r = 0 on both faces (traction-free). Solved by shooting on r(-h/2) (scipy's
+    solve_ivp, DOP853, rtol 1e-12; brentq for the radial stretch at each point and for the
+    shot). The couple is M / w = dE / dkappa = int dW/dt r dY (the envelope theorem), the
+    axial force N / w = int dW/dt dY = [P_r] = 0 (a check). Only the law's W1 and W2 are
+    used (:data:`DERIVATIVES`); rivlin_bending is the plane-strain twin, in closed form.
+
+    Returns moment_per_width (N m / m), axial_force_per_width (N / m, ~0), lambda_mid (the
+    hoop stretch of the reference mid-line Y = 0), lambda_outer and lambda_inner (hoop
+    stretches of the faces), thickness_ratio (r(h/2) - r(-h/2)) / h, kappa."""
+    from scipy.integrate import quad, solve_ivp
+    from scipy.optimize import brentq
+
+    if kappa <= 0.0:
+        raise ValueError(f"kappa: must be > 0, got {kappa!r}")
+    h, k = float(height), float(kappa)
+
+    def radial_stretch(t: float, P: float) -> float:
+        """The radial stretch at which dW/dr = P, bracketed from the free face's t^-1/2 by
+        steps of 10 % (a law with a lock, Gent's, is not monotone past it)."""
+        f = lambda r: _plane_stress_partials(law, constants, t, r)[1] - P
+        lo = hi = 1.0 / math.sqrt(t)
+        for _ in range(200):
+            if f(lo) <= 0.0 <= f(hi):
+                return brentq(f, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200)
+            lo, hi = (lo / 1.1, hi) if f(lo) > 0.0 else (lo, hi * 1.1 if f(hi) < 0.0 else hi)
+        raise ValueError(f"{law}: no radial stretch carries P = {P:g} Pa at the hoop stretch {t:g}")
+
+    def rhs(Y, y):
+        r, P = y
+        t = k * r
+        lr = radial_stretch(t, P)
+        return [lr, k * _plane_stress_partials(law, constants, t, lr)[0]]
+
+    def shot(r0: float):
+        return solve_ivp(rhs, (-h / 2, h / 2), [r0, 0.0], method="DOP853", rtol=1e-12, atol=1e-14 * h,
+                         dense_output=True)
+
+    # the inner face lies inside the fibre of unit stretch (1 / kappa), less than 3 h / 4 inside it
+    R0 = 1.0 / k
+    r_inner = brentq(lambda r0: shot(r0).y[1, -1], max(R0 - 0.75 * h, 0.05 * R0), R0, xtol=1e-15 * R0, rtol=1e-15,
+                     maxiter=200)
+    sol = shot(r_inner)
+
+    def hoop(Y: float) -> float:
+        r, P = sol.sol(Y)
+        return _plane_stress_partials(law, constants, k * r, radial_stretch(k * r, P))[0]
+
+    W1, W2 = DERIVATIVES[law](3.0, 3.0, constants)
+    scale = 2.0 * (W1 + W2) * h                       # mu h: N's scale (N is 0 up to round-off)
+    M = quad(lambda Y: hoop(Y) * sol.sol(Y)[0], -h / 2, h / 2, epsabs=0.0, epsrel=1e-12, limit=200)[0]
+    N = quad(hoop, -h / 2, h / 2, epsabs=1e-13 * scale, epsrel=1e-12, limit=200)[0]
+    r_out = float(sol.y[0, -1])
+    return {"moment_per_width": M, "axial_force_per_width": N, "lambda_mid": k * float(sol.sol(0.0)[0]),
+            "lambda_outer": k * r_out, "lambda_inner": k * r_inner, "thickness_ratio": (r_out - r_inner) / h,
+            "kappa": k}
+
+
+def plane_stress_curvature(law: str, constants: Mapping[str, float], moment_per_width: float,
+                           height: float) -> float:
+    """kappa (1/m) of :func:`plane_stress_bending` at the couple M / w (N m / m), > 0: from the
+    small-curvature guess M / (3 mu h^3 / 12) (mu = 2 (W1 + W2) at the reference state),
+    bracketed by factors of 1.5 and found by brentq."""
+    from scipy.optimize import brentq
+
+    W1, W2 = DERIVATIVES[law](3.0, 3.0, constants)
+    guess = moment_per_width / (3.0 * 2.0 * (W1 + W2) * height ** 3 / 12.0)
+    f = lambda k: plane_stress_bending(law, constants, k, height)["moment_per_width"] - moment_per_width
+    lo, hi = guess / 1.5, guess * 1.5
+    while f(lo) > 0.0:
+        lo /= 1.5
+    while f(hi) < 0.0:
+        hi *= 1.5
+    return brentq(f, lo, hi, xtol=1e-14 * guess, rtol=1e-13, maxiter=100)
