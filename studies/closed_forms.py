@@ -339,7 +339,7 @@ def plane_stress_bending(law: str, constants: Mapping[str, float], kappa: float,
 
     W1, W2 = DERIVATIVES[law](3.0, 3.0, constants)
     scale = 2.0 * (W1 + W2) * h                       # mu h: N's scale (N is 0 up to round-off)
-    M = quad(lambda Y: hoop(Y) * sol.sol(Y)[0], -h / 2, h / 2, epsabs=0.0, epsrel=1e-12, limit=200)[0]
+    M = quad(lambda Y: hoop(Y) * sol.sol(Y)[0], -h / 2, h / 2, epsabs=1e-13 * scale * h, epsrel=1e-12, limit=200)[0]
     N = quad(hoop, -h / 2, h / 2, epsabs=1e-13 * scale, epsrel=1e-12, limit=200)[0]
     r_out = float(sol.y[0, -1])
     return {"moment_per_width": M, "axial_force_per_width": N, "lambda_mid": k * float(sol.sol(0.0)[0]),
