@@ -148,14 +148,29 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
                effects=sorted(model.effects), load_reached=res.t_reached)
     if res.unloaded:
         rec["note"] = "no load: an unloaded static scene is valid, its answer is the reference state"
+    _notes(rec, scene, settings.geometry, model)
     if res.status == "converged":
         u = model.displacement(settings.geometry.tip_point(scene.beam))
         rec["tip"] = {"ux": float(u[0]), "uy": float(u[1])}
+        if scene.loads.end_moment is not None:
+            rec["tip"]["rotation"] = float(model.rotation())
         if len(u) == 3:
             rec["tip_uz"] = float(u[2])
         if output is not None:
             rec["output"] = str(model.write(Path(output) / safe_name(scene.name), output_format))
     return rec
+
+
+def _notes(rec: dict, scene: Scene, geometry, model) -> None:
+    """How a static record's hinge (``pin``) and end moment (``end_moment``: the shared
+    definition and the backend's method) are modelled; records of other scenes keep their
+    keys."""
+    from .geometry import END_MOMENT_NOTE, support_note
+
+    if scene.supports.left == "hinge":
+        rec["pin"] = support_note("hinge", geometry)
+    if scene.loads.end_moment is not None:
+        rec["end_moment"] = f"{END_MOMENT_NOTE}; {model.end_moment_method}"
 
 
 def run_dynamic(scene: Scene, settings: FemSettings, output: Path | None = None,
@@ -168,14 +183,14 @@ def run_dynamic(scene: Scene, settings: FemSettings, output: Path | None = None,
     from mechanics.time_loop import energy_limit as scene_energy_limit
     from mechanics.time_loop import integrate, record_keys
 
+    from .geometry import support_note
     from .stepper import ContinuumStepper
 
     a = scene.analysis
     rec = _record(scene, settings)
     t0 = time.perf_counter()
     problem = backend(settings.backend).dynamic_model(scene, settings)
-    rec["pin"] = (problem.geometry.pin_note if scene.supports.left == "pin"
-                  else "clamp: the whole face x = 0 fixed")
+    rec["pin"] = support_note(scene.supports.left, problem.geometry)
     stepper = ContinuumStepper(problem, a.integrator, a.rho_inf, a.newton_rtol, a.max_iterations, scene.beam)
     rec["setup_s"] = time.perf_counter() - t0
     limit = energy_limit if energy_limit is not None else scene_energy_limit(scene)
