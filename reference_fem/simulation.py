@@ -15,7 +15,10 @@ ANCF run, plus ``continuum_model`` ("plane-strain" | "plane-stress" | "3d"),
 ``incompressibility`` ("mixed" | "penalty" | "exact") and ``fem`` (the resolved
 discretisation: cells, cell type, degree, quadrature degree) and ``dolfinx``
 (version). ``ndof`` counts the unknowns of the solve (displacement and pressure
-degrees of freedom minus those the supports fix), like ancf's free dofs. ``setup_s``
+degrees of freedom minus those the supports fix or, for the hinge, eliminate), like
+ancf's free dofs. A scene with an end moment adds ``tip.rotation`` (rad, the end face's
+theta continued along the load path) and ``end_moment`` (how the couple is applied); a
+hinged one ``pin`` (how the hinge is modelled, as in dynamic records). ``setup_s``
 is meshing and JIT compilation, apart from the solve. The 3D model adds ``tip_uz`` (m,
 the lateral displacement of the free-end face centre: zero by symmetry on hexahedra)
 and ``mpi_ranks``; under ``mpiexec`` every rank computes the same record and the
@@ -26,7 +29,8 @@ loop (:func:`mechanics.time_loop.record_keys`, the same as ``ancf run``'s): ``ti
 [{t, x, y}] (position of the free-end centre point at the output times),
 ``configurations``, ``energy`` [{t, kinetic, strain, gravity, total}] (J, full beam),
 ``steps``, ``rejected_steps``, ``newton_iterations``, ``integrator`` (name, rho_inf,
-coefficients) and ``energy_limit``; ``pin`` says how the support is modelled. The
+coefficients) and ``energy_limit``; ``pin`` says how the support is modelled
+(:func:`reference_fem.geometry.support_note`). The
 continuum models are stress-free at the reference: the motion starts from the
 undeformed beam at rest.
 """

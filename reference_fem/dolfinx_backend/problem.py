@@ -13,8 +13,8 @@ the uniform dead traction tbar = F_tip / (h w) on the end face x = L (its result
 over the full width is F_tip). Constants enter as dolfinx Constants.
 
 The end moment M (``loads.end_moment``, static scenes) adds the couple's potential
--t M_p theta(d) (:class:`reference_fem.couple.EndMoment`; M_p = M / width_factor, per unit width in 2D): d the
-end face's first moment (:class:`reference_fem.dolfinx_backend.fem.FaceFirstMoment`,
+-t M_p theta(d) (:class:`reference_fem.couple.EndMoment`; M_p = M / width_factor, per
+unit width in 2D): d the end face's first moment (:class:`~.fem.FaceFirstMoment`,
 linear in the unknowns, d = d0 + G^T w), theta = atan2(-d_x, d_y). Its force
 -t M_p G dtheta/dd enters the residual and its rank-2 tangent -t M_p G H G^T enters the
 Newton solve exactly, by Sherman-Morrison-Woodbury on the factorisation of the forms'

@@ -265,7 +265,7 @@ class DynamicProblem:
 
 
 def build_dynamic_problem(scene, settings) -> DynamicProblem:
-    """The scene's beam (pinned or clamped at x = 0) as a continuum in motion."""
+    """The scene's beam (pinned, hinged or clamped at x = 0) as a continuum in motion."""
     b = scene.beam
     return DynamicProblem(set_up(scene, settings), settings.model, settings.incompressibility,
                           scene.material.density, b.height / settings.cells_height, b.height)
