@@ -308,13 +308,13 @@ def plane_stress_bending(law: str, constants: Mapping[str, float], kappa: float,
 
     def radial_stretch(t: float, P: float) -> float:
         """The radial stretch at which dW/dr = P, bracketed from the free face's t^-1/2 by
-        steps of 10 % (a law with a lock, Gent's, is not monotone past it)."""
+        steps of 1 % (a law with a lock, Gent's, is not monotone past it)."""
         f = lambda r: _plane_stress_partials(law, constants, t, r)[1] - P
         lo = hi = 1.0 / math.sqrt(t)
-        for _ in range(200):
+        for _ in range(500):
             if f(lo) <= 0.0 <= f(hi):
                 return brentq(f, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200)
-            lo, hi = (lo / 1.1, hi) if f(lo) > 0.0 else (lo, hi * 1.1 if f(hi) < 0.0 else hi)
+            lo, hi = (lo / 1.01, hi) if f(lo) > 0.0 else (lo, hi * 1.01 if f(hi) < 0.0 else hi)
         raise ValueError(f"{law}: no radial stretch carries P = {P:g} Pa at the hoop stretch {t:g}")
 
     def rhs(Y, y):
