@@ -86,7 +86,7 @@ PEER_ELEMENTS = --element HB2n-12 --element HB2n-16 --element HB2n-20xyp --eleme
 
 bench-peers: setup
 	bash tools/setup_peers.sh && $(PY) -m studies.peers.compare --report
-	$(PY) -m studies.peers.exudyn_published --report
+	$(PY) -m studies.peers.exudyn_published --report && $(PY) -m studies.peers.compare --report-only
 	$(PY) -m studies.peers.work_precision --scene pendulum $(PEER_ELEMENTS)
 	$(PY) -m studies.peers.work_precision --scene thick $(PEER_ELEMENTS)
 

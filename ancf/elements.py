@@ -32,7 +32,7 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
-from contract.errors import UnknownName
+from contract.registry import Registry
 from .polynomial import Poly, parse
 
 class _Kinds(dict):
@@ -158,27 +158,20 @@ class ElementSpec:
         return np.array([ref.get(k, (0.0, 0.0)) for k in self.kinds])
 
 
-ELEMENTS: dict[str, ElementSpec] = {}
-# element name -> the module that registered it (what a fresh process imports to have it)
-ORIGIN: dict[str, str] = {}
+# (ELEMENTS.origin: element name -> the module that registered it, what a fresh process
+# imports to have it)
+ELEMENTS: Registry[ElementSpec] = Registry("ancf.element", "element")
 
 
 def register_element(spec: ElementSpec) -> ElementSpec:
     import sys
 
-    if spec.name in ELEMENTS:
-        raise ValueError(f"element {spec.name!r} is registered already")
     spec.dimensionless(1.0, 1.0)  # fail at registration, not at first use
-    ELEMENTS[spec.name] = spec
-    ORIGIN[spec.name] = sys._getframe(1).f_globals.get("__name__", "__main__")
-    return spec
+    return ELEMENTS.register(spec.name, spec, sys._getframe(1).f_globals.get("__name__", "__main__"))
 
 
 def get_element(name: str) -> ElementSpec:
-    try:
-        return ELEMENTS[name]
-    except KeyError:
-        raise UnknownName("ancf.element", name, ELEMENTS) from None
+    return ELEMENTS.lookup(name)
 
 
 # From l_e / h = 15 a rule exact along the beam misses a finite-strain stretch family (both
@@ -297,4 +290,4 @@ register_element(ElementSpec(
     pressure=("1", "y"), assumed=("xx",)))
 
 # the elements of this package; any other was registered by a user's module
-BUILTIN = frozenset(ELEMENTS)
+BUILTIN = ELEMENTS.freeze_builtin()

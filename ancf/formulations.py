@@ -18,7 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable
 
-from contract.errors import UnknownName
+from contract.registry import Registry
 from contract.scene import FORMULATIONS as PENALISED
 
 
@@ -49,21 +49,16 @@ def _plane_stress(a, J):
     return a + Jm2, a * Jm2 + J ** 2
 
 
-FORMULATIONS: dict[str, Formulation] = {
-    f.name: f
-    for f in (
-        Formulation("paper", _paper, stress_free=False,
-                    doc="the paper's literal 2D energies plus alpha/2 (J - 1)^2"),
-        Formulation("plane-strain", _plane_strain, stress_free=True,
-                    doc="F33 = 1, isochoric invariants, plus alpha/2 (J - 1)^2"),
-        Formulation("plane-stress", _plane_stress, stress_free=True,
-                    doc="incompressible, F33 = 1/J, no penalty"),
-    )
-}
+FORMULATIONS: Registry[Formulation] = Registry("material.formulation", "formulation")
+for _f in (Formulation("paper", _paper, stress_free=False,
+                       doc="the paper's literal 2D energies plus alpha/2 (J - 1)^2"),
+           Formulation("plane-strain", _plane_strain, stress_free=True,
+                       doc="F33 = 1, isochoric invariants, plus alpha/2 (J - 1)^2"),
+           Formulation("plane-stress", _plane_stress, stress_free=True,
+                       doc="incompressible, F33 = 1/J, no penalty")):
+    FORMULATIONS.register(_f.name, _f)
+FORMULATIONS.freeze_builtin()
 
 
 def get_formulation(name: str) -> Formulation:
-    try:
-        return FORMULATIONS[name]
-    except KeyError:
-        raise UnknownName("material.formulation", name, FORMULATIONS) from None
+    return FORMULATIONS.lookup(name)

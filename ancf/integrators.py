@@ -26,6 +26,7 @@ from functools import cached_property
 
 import numpy as np
 
+from contract.registry import Registry
 from mechanics import alpha_family
 from mechanics.newton import newton
 from mechanics.time_loop import Energies, Output, State, StepFailure, acceleration_error
@@ -290,4 +291,7 @@ class _AlphaStep:
         return self.du_max <= self.m.utol * max(np.abs(self.u).max(), self.m.model.mesh.height)
 
 
-INTEGRATORS: dict[str, type[Integrator]] = {cls.name: cls for cls in (GeneralizedAlpha, Newmark, DiscreteGradient)}
+INTEGRATORS: Registry[type[Integrator]] = Registry("analysis.integrator", "integrator")
+for _cls in (GeneralizedAlpha, Newmark, DiscreteGradient):
+    INTEGRATORS.register(_cls.name, _cls)
+INTEGRATORS.freeze_builtin()

@@ -21,7 +21,7 @@ import numpy as np
 
 from .gold_pendulum import LAWS, pendulum_dict
 
-BACKENDS = ("dolfinx", "felupe")
+from .backends import BACKENDS
 
 
 def run(law: str, model: str, backend: str, t_end: float | None = None) -> dict:

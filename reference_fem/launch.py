@@ -97,6 +97,6 @@ def run_launched(scene: dict, ranks: int, workdir, timeout_s: float | None = Non
         code, err = None, f"timeout: stopped after {timeout_s:g} s"
     if out.exists():
         return json.loads(out.read_text())
-    rec = new_record("fenicsx", scene)
+    rec = new_record((scene.get("fem") or {}).get("backend", "dolfinx"), scene)
     rec["reason"] = f"mpi launch on {ranks} ranks failed (exit {code}): {err.strip()[-1500:]}"
     return rec

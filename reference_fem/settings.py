@@ -63,7 +63,6 @@ INCOMPRESSIBILITY = ("mixed", "penalty")
 MODELS = ("plane-strain", "plane-stress", "3d")
 SIDE_FACES = ("free", "plane-strain")
 LINEAR_SOLVERS = ("direct", "iterative")
-BACKENDS = ("dolfinx", "felupe")
 # The lowest displacement degree of each incompressibility: a pressure field (mixed,
 # penalty) is one degree lower (Taylor-Hood), so the displacement needs degree 2.
 MIN_DEGREE = {"mixed": 2, "penalty": 2, "exact": 1}
@@ -217,7 +216,9 @@ def fem_settings(scene: Scene) -> FemSettings:
     qdeg = _int("quadrature_degree", t.get("quadrature_degree", default_quadrature_degree(degree)), 1,
                 4 * MAX_DEGREE)
     solver = _choice("linear_solver", t.get("linear_solver", "direct"), LINEAR_SOLVERS)
-    backend = _choice("backend", t.get("backend", "dolfinx"), BACKENDS)
+    from .backends import BACKENDS, DEFAULT
+
+    backend = _choice("backend", t.get("backend", DEFAULT), BACKENDS)
     if model != "3d":
         return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg, linear_solver=solver,
                            backend=backend)

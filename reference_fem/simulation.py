@@ -10,7 +10,7 @@ equations, the start, energies, point positions, output) that one stepper
 record is the same but for the version key (``dolfinx`` or ``felupe``) and ``fem.backend``
 (given for "felupe" only).
 
-The record is :func:`contract.record.new_record` ("fenicsx") with the same keys as an
+The record is :func:`contract.record.new_record` (labelled with the backend that ran: "dolfinx", "felupe") with the same keys as an
 ANCF run, plus ``continuum_model`` ("plane-strain" | "plane-stress" | "3d"),
 ``incompressibility`` ("mixed" | "penalty" | "exact") and ``fem`` (the resolved
 discretisation: cells, cell type, degree, quadrature degree) and ``dolfinx``
@@ -103,20 +103,20 @@ def check_static(scene: Scene) -> None:
 
 
 def backend(name: str):
-    """The backend package of ``[fem] backend`` (:data:`reference_fem.settings.BACKENDS`):
+    """The backend of ``[fem] backend`` (:data:`reference_fem.backends.BACKENDS`):
     ``version()``, ``static_model(scene, settings)``, an object with the Newton system
     (``system``, driven by :func:`reference_fem.statics.solve_static`), ``set_load(t)``,
     ``n_free``, ``effects``, ``ranks``, ``displacement(point)`` and ``write(path, fmt)``,
     and ``dynamic_model(scene, settings)``, an object with what
     :class:`reference_fem.stepper.ContinuumStepper` steps (see there) and ``n_dof``,
     ``n_free``, ``effects``, ``geometry`` and ``write(path, fmt, w, t)``."""
-    import importlib
+    from .backends import get_backend
 
-    return importlib.import_module(f"{__package__}.{name}_backend")
+    return get_backend(name)
 
 
 def _record(scene: Scene, settings: FemSettings) -> dict:
-    rec = new_record("fenicsx", scene.to_dict())
+    rec = new_record(settings.backend, scene.to_dict())      # labelled with what ran
     rec.update(continuum_model=settings.model, incompressibility=settings.incompressibility,
                fem=settings.to_dict())
     rec[settings.backend] = backend(settings.backend).version()

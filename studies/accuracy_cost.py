@@ -26,7 +26,7 @@ def cases(grid: dict, tiny: bool, study: str = "accuracy-cost") -> list:
     out = [cantilever_case(study, law, f, el, n, q, grid["clamp"], opts)
            for law in grid["laws"] for f in grid["formulations"] for el in grid["elements"]
            for q in grid["quadratures"] if takes(grid, el, q) for n in counts_of(grid, el)]
-    out += [make_case(study, "fenicsx", continuum_scene(law, MATCHING[f], tuple(lv)), opts)
+    out += [make_case(study, "continuum", continuum_scene(law, MATCHING[f], tuple(lv)), opts)
             for law in grid["laws"] for f in grid["formulations"] for lv in grid["continuum_levels"]]
     return out
 
@@ -45,7 +45,7 @@ def points(ctx) -> list[dict]:
                  "quadrature": d["quadrature"], "mesh": d["elements"], "ndof": r.get("ndof")}
         else:
             ref = refs.get((d["law"], variant_of(r["scene"])))
-            p = {"law": d["law"], "model": variant_of(r["scene"]), "solver": "fenicsx", "config": "continuum Q2",
+            p = {"law": d["law"], "model": variant_of(r["scene"]), "solver": "continuum", "config": "continuum Q2",
                  "element": "continuum", "quadrature": None, "mesh": f"{d['cells'][0]}x{d['cells'][1]}",
                  "ndof": r.get("ndof")}
         ok = d["status"] == "converged"
@@ -118,7 +118,7 @@ def report(ctx) -> Section:
             sel = [p for p in pts if p["law"] == law and p["model"] == m]
             for a in g["accuracies"]:
                 best_a = cheapest(settled([p for p in sel if p["solver"] == "ancf"], a), a)
-                best_c = cheapest(settled([p for p in sel if p["solver"] == "fenicsx"], a), a)
+                best_c = cheapest(settled([p for p in sel if p["solver"] == "continuum"], a), a)
                 rows.append([short(law), f, f"{100 * a:g} %",
                              f"{best_a['config']} x {best_a['mesh']}" if best_a else "none",
                              best_a["verdict"] if best_a else None,

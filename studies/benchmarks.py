@@ -82,6 +82,7 @@ from .closed_forms import (MATTIASSON_1981, MATTIASSON_1981_DIGITS, elastica_end
                            plane_stress_bending, plane_stress_curvature, rivlin_bending, simple_shear_stress,
                            uniaxial_stretch)
 from .engine.case import make_case
+from .engine.solvers import Solver, register_solver
 from .engine.report import Section, Table
 
 STUDY = {
@@ -347,7 +348,7 @@ def cases(grid: dict, tiny: bool) -> list:
     for law in grid["laws"]:
         for form in grid["formulations"]:
             for solver in [*grid["elements"], *grid["codes"]]:
-                out.append(make_case("benchmarks", "fenicsx" if solver in grid["codes"] else "ancf",
+                out.append(make_case("benchmarks", "continuum" if solver in grid["codes"] else "ancf",
                                      tension_scene(grid, law, form, solver)))
             for gamma in grid["shear_gammas"][law]:
                 out.append(make_case("benchmarks", "ancf-material", shear_scene(grid, law, form, gamma)))
@@ -362,7 +363,7 @@ def cases(grid: dict, tiny: bool) -> list:
                 continue
             for x in curvatures:
                 for solver in [*grid["elements"], *grid["codes"]]:
-                    out += [make_case("benchmarks", "fenicsx" if solver in grid["codes"] else "ancf",
+                    out += [make_case("benchmarks", "continuum" if solver in grid["codes"] else "ancf",
                                       bending_scene(grid, law, form, x, n, solver)) for n in grid["bending_lengths"]]
     for phi in grid["arc_angles"]:
         for ratio in grid["arc_slenderness"]:
@@ -412,10 +413,8 @@ NONCONFORMING = ("HB2n-12", "HB3n-12")
 
 
 def _solver_of(rec: dict) -> str:
-    s = rec["scene"]
-    if rec["solver"] == "fenicsx":
-        return (s.get("fem") or {}).get("backend", "dolfinx")
-    return s["ancf"]["element"]
+    """The continuum backend that ran (the record's label), or the ANCF element."""
+    return rec["solver"] if "fem" in rec["scene"] else rec["scene"]["ancf"]["element"]
 
 
 def rows(ctx) -> list[Row]:
@@ -577,3 +576,7 @@ def report(ctx) -> Section:
                      + "; ".join(f"{r.case} {r.solver} {r.error:.2g} of {r.tolerance:.2g}" for r in worst) + ".")
     sec.text = "\n".join(lines)
     return sec
+
+
+# the material point, this study's own solver (the engine imports this module to run its cases)
+register_solver(Solver("ancf-material", run_material_point, check_material_point))

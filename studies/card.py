@@ -41,6 +41,8 @@ import numpy as np
 from ancf.rank import ASPECTS
 from contract import paper
 
+from .engine.audit import register_prebuild
+from .engine.verify import register_case_source
 from .engine.case import Case, make_case
 from .grid import DEFAULT, cantilever_case
 from .pendulum_cases import pendulum_dict
@@ -89,10 +91,10 @@ def element_imports(element: str) -> list[str]:
     """The module a fresh process imports to have ``element``: none for a built-in one,
     else the module that registered it (a case is what it runs: other modules imported
     beside it do not enter its cases)."""
-    from ancf.elements import BUILTIN, ORIGIN, get_element
+    from ancf.elements import BUILTIN, ELEMENTS, get_element
 
     get_element(element)
-    origin = ORIGIN.get(element, "__main__")
+    origin = ELEMENTS.origin.get(element, "__main__")
     if element in BUILTIN:
         return []
     if origin == "__main__":
@@ -357,3 +359,14 @@ def clamp_probe(element: str, g: dict) -> dict | None:
             out[key].append((-float(m.tip_displacement(res.u)[1]) - exact) / exact
                             if res.status == "converged" else None)
     return out
+
+
+def _recorded_cases(reports: Path) -> dict:
+    """{store name: {case id: case}} of every card recorded under ``reports`` (what verify draws from)."""
+    return {f"card-{slug(element)}": {c.id: c for c in cases(element, tiny)}
+            for element, tiny in recorded_cards(reports, stale=[])}
+
+
+# the cards' records and pages, known to the engine's audit and verify
+register_prebuild("cards", render_recorded)
+register_case_source("cards", _recorded_cases)

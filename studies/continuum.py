@@ -31,7 +31,7 @@ def scene(law: str, variant: str, cells: tuple[int, int]) -> dict:
 
 
 def cases(grid: dict, tiny: bool) -> list:
-    return [make_case("continuum", "fenicsx", scene(law, v, tuple(lv)))
+    return [make_case("continuum", "continuum", scene(law, v, tuple(lv)))
             for law in grid["laws"] for v in grid["variants"] for lv in grid["levels"]]
 
 

@@ -81,7 +81,7 @@ def hard_load_scenes(hard: dict) -> list[tuple[str, str, dict, dict]]:
     forms = list(hard["formulations"])
     for form in forms:
         for law in hard["laws"]:
-            for label, _, load in hard_loads(hard):
+            for label, _, load in hard_loads(hard, law):
                 d = hard_scene(hard, law, form, label, load, None)
                 tag = f"{label} ({form})" if len(forms) > 1 else label
                 out.append((law, tag, d, _on_felupe(json.loads(json.dumps(d)))))
@@ -102,13 +102,13 @@ def pendulum_scenes(law: str, model: str, aspect: float) -> tuple[dict, dict, di
 def cases(grid: dict, tiny: bool) -> list:
     from .engine.catalog import load_catalog
 
-    out = [make_case("continuum-agreement", "fenicsx", scene(law, v, tuple(lv)))
+    out = [make_case("continuum-agreement", "continuum", scene(law, v, tuple(lv)))
            for law in grid["laws"] for v in grid["variants"] for lv in grid["levels"]]
-    out += [make_case("continuum-agreement", "fenicsx", solid_scene(law, lv))
+    out += [make_case("continuum-agreement", "continuum", solid_scene(law, lv))
             for law in grid["solid_laws"] for lv in grid["solid_levels"]]
     hard = load_catalog(tiny=tiny)["hard-loads"].grid
-    out += [make_case("continuum-agreement", "fenicsx", f) for _, _, _, f in hard_load_scenes(hard)]
-    out += [make_case("continuum-agreement", "fenicsx", d) for law in grid["pendulum_laws"]
+    out += [make_case("continuum-agreement", "continuum", f) for _, _, _, f in hard_load_scenes(hard)]
+    out += [make_case("continuum-agreement", "continuum", d) for law in grid["pendulum_laws"]
             for model in grid["pendulum_models"] for d in pendulum_scenes(law, model, grid["pendulum_aspect"])]
     return out
 

@@ -81,7 +81,7 @@ def cases(grid: dict, tiny: bool) -> list:
     for form in _forms(grid):
         for law in grid["laws"]:
             for label, _, load in loads(grid, law):
-                out.append(make_case("hard-loads", "fenicsx", _scene(grid, law, form, label, load, None)))
+                out.append(make_case("hard-loads", "continuum", _scene(grid, law, form, label, load, None)))
                 out += [make_case("hard-loads", "ancf", _scene(grid, law, form, label, load, el))
                         for el in grid["elements"]]
     return out
@@ -93,7 +93,7 @@ def reference_cases(grid: dict, tiny: bool) -> list:
     heavy elements (``elements``), run as hard-loads runs its own."""
     from .engine.catalog import load_catalog
 
-    out = [make_case(REFERENCE, "fenicsx", _scene(grid, law, form, label, load, None, cells))
+    out = [make_case(REFERENCE, "continuum", _scene(grid, law, form, label, load, None, cells))
            for form in _forms(grid) for law in grid["laws"] for label, _, load in loads(grid, law)
            for cells in grid["reference_levels"] if list(cells) != list(grid["continuum_cells"])]
     own = load_catalog(tiny=tiny)["hard-loads"].grid

@@ -21,7 +21,7 @@ from mechanics.laws import get_law
 
 from .engine.case import make_case
 from .engine.report import Section, Table, mm, pct
-from .reference import continuum_references
+from .reference import continuum_references, is_continuum
 
 VARIANTS = {"plane-stress": ("plane-stress", None), "plane-strain-penalty": ("plane-strain", "penalty")}
 DENSITY = 2150.0      # kg/m^3, the paper's neo-Hookean rubber
@@ -58,7 +58,7 @@ def cases(grid: dict, tiny: bool) -> list:
                 for cl, ch in grid["levels"]:
                     fem = {"cells_length": cl, "cells_height": ch, "cell": "quadrilateral", "degree": 2,
                            "quadrature_degree": 4, **({"incompressibility": inc} if inc else {})}
-                    out.append(make_case("law-card", "fenicsx", _scene(
+                    out.append(make_case("law-card", "continuum", _scene(
                         who, model, f"law-card-{_tag(who)}-{v}-{cl}x{ch}", fem=fem, load_steps=10)))
                 for el in grid["elements"]:
                     for n in grid["counts"]:
@@ -98,7 +98,7 @@ def report(ctx) -> Section:
         rows, effects = [], []
         for v in VARIANTS:
             def fem_ref(who):
-                refs = continuum_references([r for r in recs if r["solver"] == "fenicsx" and _law_of(r) == who
+                refs = continuum_references([r for r in recs if is_continuum(r) and _law_of(r) == who
                                              and f"-{v}-" in r["scene"]["name"]])
                 return next(iter(refs.values()), None)
             ref, twin = fem_ref(law), fem_ref(f"twin:{law}")

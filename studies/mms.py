@@ -28,6 +28,7 @@ from contract import paper
 from contract.errors import SceneError
 
 from .engine.case import make_case
+from .engine.solvers import Solver, register_solver
 from .engine.report import Section, Table
 
 STUDY = {
@@ -46,7 +47,7 @@ STUDY = {
 }
 
 SOLVER = "mms"
-CODES = ("dolfinx", "felupe")
+
 ORDER_TOLERANCE = 0.3     # observed >= expected - this, between the two finest levels
 
 
@@ -68,9 +69,11 @@ def check(sc: dict) -> None:
     from mechanics.laws import get_law
     from reference_fem.mms import get_model
 
+    from reference_fem.backends import BACKENDS
+
     m = sc.get("mms") or {}
-    if m.get("code") not in CODES:
-        raise SceneError(f"mms.code: {m.get('code')!r}; allowed: {', '.join(CODES)}")
+    if m.get("code") not in BACKENDS:
+        raise SceneError(f"mms.code: {m.get('code')!r}; allowed: {', '.join(BACKENDS)}")
     get_model(m.get("model"))
     get_law(m.get("law")).check(m.get("constants") or {})
     levels = m.get("levels")
@@ -86,15 +89,14 @@ def run(sc: dict) -> dict:
     from contract.record import new_record
     from reference_fem.mms import EXPECTED_ORDER, manufactured, observed_orders
 
+    from reference_fem.backends import get_backend
+
     check(sc)
     m = sc["mms"]
-    if m["code"] == "dolfinx":
-        from reference_fem.dolfinx_backend.mms import solve
-    else:
-        from reference_fem.felupe_backend.mms import solve
+    code = get_backend(m["code"])
     t0 = time.perf_counter()
     ms = manufactured(m["law"], m["constants"], m["model"], m.get("alpha"), m["amplitude"])
-    levels = [solve(ms, n) for n in m["levels"]]
+    levels = [code.manufactured(ms, n) for n in m["levels"]]
     rec = new_record(SOLVER, sc)
     bad = [lv for lv in levels if lv["status"] != "converged"]
     rec.update(status="failed" if bad else "converged",
@@ -141,7 +143,10 @@ def _series(values, fmt: str) -> str | None:
     return ", ".join("-" if v is None else format(v, fmt) for v in values)
 
 
-LABEL = {"dolfinx": "DOLFINx", "felupe": "FElupe"}
+def _label(code: str) -> str:
+    from reference_fem.backends import get_backend
+
+    return get_backend(code).label
 
 
 def code_difference(records: list[dict]) -> float | None:
@@ -183,9 +188,9 @@ def report(ctx) -> Section:
         if ok:
             passed += 1
         else:
-            failed.append(f"{LABEL[sc['code']]} {sc['model']} {sc['law']}" + (f" ({why})" if why else ""))
+            failed.append(f"{_label(sc['code'])} {sc['model']} {sc['law']}" + (f" ({why})" if why else ""))
         exp = m.get("expected") or {}
-        rows.append([LABEL[sc["code"]], sc["model"], sc["law"], ", ".join(str(n) for n in sc["levels"]),
+        rows.append([_label(sc["code"]), sc["model"], sc["law"], ", ".join(str(n) for n in sc["levels"]),
                      _series([x["error_u"] for x in lv], ".3e"), _series(m.get("orders_u"), ".2f"), exp.get("u"),
                      _series([None if x["error_p"] is None else x["error_p"] / 1e6 for x in lv], ".3e")
                      if m.get("orders_p") else None,
@@ -204,3 +209,11 @@ def report(ctx) -> Section:
                    f" The two codes' errors at the same level differ by at most {diff:.1e} (relative): the same "
                    f"discretisation, two implementations."))
     return sec
+
+
+def _code(scene: dict) -> str:
+    return (scene.get("mms") or {}).get("code", "dolfinx")
+
+
+# the solver of this study (the engine imports this module to run its cases)
+register_solver(Solver(SOLVER, run, check, backend=_code))

@@ -36,7 +36,7 @@ def scene(law: str, mesh, dt: float, rho_inf: float, t_end: float) -> dict:
 
 
 def cases(grid: dict, tiny: bool) -> list:
-    return [make_case("pendulum-3d", "fenicsx", scene(law, mesh, grid["dt"], grid["rho_inf"], grid["t_end"]))
+    return [make_case("pendulum-3d", "continuum", scene(law, mesh, grid["dt"], grid["rho_inf"], grid["t_end"]))
             for law in grid["laws"] for mesh in grid["meshes"]]
 
 

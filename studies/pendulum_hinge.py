@@ -62,8 +62,8 @@ def ancf_scene(g: dict, element: str) -> dict:
 
 
 def cases(grid: dict, tiny: bool) -> list:
-    out = [make_case("pendulum-hinge", "fenicsx", continuum_scene(grid, s, c)) for s in SUPPORTS for c in grid["levels"]]
-    out.append(make_case("pendulum-hinge", "fenicsx", continuum_scene(grid, "hinge", grid["time_level"], grid["dt"] / 2)))
+    out = [make_case("pendulum-hinge", "continuum", continuum_scene(grid, s, c)) for s in SUPPORTS for c in grid["levels"]]
+    out.append(make_case("pendulum-hinge", "continuum", continuum_scene(grid, "hinge", grid["time_level"], grid["dt"] / 2)))
     return out + [make_case("pendulum-hinge", "ancf", ancf_scene(grid, el)) for el in grid["elements"]]
 
 

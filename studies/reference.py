@@ -35,7 +35,7 @@ def short(law: str) -> str:
 
 
 def variant_of(scene: dict) -> str:
-    """The continuum variant of a fenicsx scene (gold-file names)."""
+    """The continuum variant of a continuum scene (gold-file names)."""
     fem = scene.get("fem") or {}
     if fem.get("model") == "3d":
         return "3d"
@@ -124,3 +124,10 @@ def stability_mark(d: dict) -> str:
     if d.get("stable") is False:
         return " (singular)" if "singular" in str(d.get("stability")) else " (unstable)"
     return ""
+
+
+def is_continuum(rec: dict) -> bool:
+    """Was the record made by a continuum backend (its label, :data:`reference_fem.backends.BACKENDS`)?"""
+    from reference_fem.backends import BACKENDS
+
+    return rec.get("solver") in BACKENDS

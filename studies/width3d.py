@@ -54,7 +54,7 @@ def cases(grid: dict, tiny: bool) -> list:
     out = []
     for law in grid["laws"]:
         for k in grid["widths_h"]:
-            out.append(make_case("width-3d", "fenicsx", scene(law, grid["xy"], _width(h, k), grid["cell_width"]),
+            out.append(make_case("width-3d", "continuum", scene(law, grid["xy"], _width(h, k), grid["cell_width"]),
                                  options))
     return out
 

@@ -8,7 +8,7 @@ from studies.continuum import scene as dolfinx_scene
 
 def _records(make, tips):
     cells = [(12, 1), (24, 2), (48, 4)]
-    return [{"scene": make("yeoh", "plane-stress", c), "status": "converged", "solver": "fenicsx",
+    return [{"scene": make("yeoh", "plane-stress", c), "status": "converged", "solver": "dolfinx",
              "tip": {"ux": ux, "uy": uy}} for c, (ux, uy) in zip(cells, tips)]
 
 

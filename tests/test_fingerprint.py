@@ -64,12 +64,12 @@ def _modules(solver: str, scene: dict, options: dict | None = None) -> list[str]
 
 def test_each_backend_counts_its_own_code_and_packages():
     dolfinx, felupe = {"fem": {"backend": "dolfinx"}}, {"fem": {"backend": "felupe"}}
-    md, mf = _modules("fenicsx", dolfinx), _modules("fenicsx", felupe)
+    md, mf = _modules("continuum", dolfinx), _modules("continuum", felupe)
     assert any(m.startswith("reference_fem.dolfinx_backend") for m in md)
     assert not any(m.startswith("reference_fem.felupe_backend") for m in md)
     assert any(m.startswith("reference_fem.felupe_backend") for m in mf)
     assert not any(m.startswith("reference_fem.dolfinx_backend") for m in mf)
-    pd, pf = (SOLVERS["fenicsx"].fingerprint(s)["packages"] for s in (dolfinx, felupe))
+    pd, pf = (SOLVERS["continuum"].fingerprint(s)["packages"] for s in (dolfinx, felupe))
     assert "fenics-dolfinx" in pd and "felupe" not in pd and "tensortrax" not in pd
     assert "felupe" in pf and "tensortrax" in pf and "fenics-dolfinx" not in pf
     mms_d = _modules("mms", {"mms": {"code": "dolfinx"}})

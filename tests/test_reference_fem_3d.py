@@ -103,7 +103,7 @@ def test_two_ranks_give_the_one_rank_tip_and_one_record(monkeypatch):
     one = run_scene(scene)
     repo = str(Path(__file__).resolve().parents[1])
     monkeypatch.setenv("PYTHONPATH", repo + (":" + os.environ["PYTHONPATH"] if os.environ.get("PYTHONPATH") else ""))
-    two = execute(make_case("test", "fenicsx", scene.to_dict(), {"mpi_ranks": 2}), timeout_s=300)
+    two = execute(make_case("test", "continuum", scene.to_dict(), {"mpi_ranks": 2}), timeout_s=300)
     assert two["status"] == "converged", two.get("reason")
     assert two["mpi_ranks"] == 2 and one["mpi_ranks"] == 1
     assert two["ndof"] == one["ndof"] and two["newton_iterations"] == one["newton_iterations"]

@@ -147,7 +147,7 @@ cell = "triangle"
     out = tmp_path / "rec.json"
     assert main(["run", str(scene), "--json", str(out), "--vtk", str(tmp_path / "vtk")]) == 0
     rec = json.loads(out.read_text())
-    assert rec["solver"] == "fenicsx" and rec["status"] == "converged" and rec["reason"] is None
+    assert rec["solver"] == "dolfinx" and rec["status"] == "converged" and rec["reason"] is None
     assert rec["continuum_model"] == "plane-stress" and rec["effects"] == ["elastic", "tip_force"]
     for k in ("ndof", "newton_iterations", "load_steps", "rejected_steps", "cpu_s", "wall_s", "setup_s"):
         assert rec[k] is not None, k

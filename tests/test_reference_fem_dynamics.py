@@ -98,7 +98,7 @@ def test_coarse_pendulum_runs_and_writes_the_record(tmp_path):
                        capture_output=True, text=True, cwd=ROOT)
     assert p.returncode == 0, p.stderr[-2000:]
     rec = json.loads(out.read_text())
-    assert rec["status"] == "converged" and rec["solver"] == "fenicsx"
+    assert rec["status"] == "converged" and rec["solver"] == "dolfinx"
     for k in DYNAMIC_KEYS:
         assert rec[k] is not None, k
     assert [h["t"] for h in rec["tip_history"]] == pytest.approx([0.0, 0.005, 0.01, 0.02])

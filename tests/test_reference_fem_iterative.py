@@ -98,7 +98,7 @@ def test_3d_iterative_on_two_ranks(monkeypatch):
     scene = _scene({**COARSE_3D, "linear_solver": "iterative"})
     repo = str(Path(__file__).resolve().parents[1])
     monkeypatch.setenv("PYTHONPATH", repo + (":" + os.environ["PYTHONPATH"] if os.environ.get("PYTHONPATH") else ""))
-    two = execute(make_case("test", "fenicsx", scene.to_dict(), {"mpi_ranks": 2}), timeout_s=120)
+    two = execute(make_case("test", "continuum", scene.to_dict(), {"mpi_ranks": 2}), timeout_s=120)
     assert two["status"] == "converged", two.get("reason")
     assert two["mpi_ranks"] == 2 and two["ndof"] == one["ndof"]
     assert two["newton_iterations"] == one["newton_iterations"]

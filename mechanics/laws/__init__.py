@@ -28,7 +28,8 @@ from typing import Callable, Mapping
 
 import numpy as np
 
-from contract.errors import SceneError, UnknownName
+from contract.errors import SceneError
+from contract.registry import Registry
 
 
 class _Dispatch:
@@ -132,21 +133,17 @@ class Law:
             raise SceneError(msg)
 
 
-LAWS: dict[str, Law] = {}
+LAWS: Registry[Law] = Registry("material.law", "law")
 
 
 def register_law(law: Law) -> Law:
-    if law.name in LAWS:
-        raise ValueError(f"law {law.name!r} is registered already")
-    LAWS[law.name] = law
-    return law
+    import sys
+
+    return LAWS.register(law.name, law, sys._getframe(1).f_globals.get("__name__", "__main__"))
 
 
 def get_law(name: str) -> Law:
-    try:
-        return LAWS[name]
-    except KeyError:
-        raise UnknownName("material.law", name, LAWS) from None
+    return LAWS.lookup(name)
 
 
 def _discover() -> None:
@@ -160,4 +157,4 @@ def _discover() -> None:
 
 _discover()
 # the laws of this package; any other was registered by a user's module
-BUILTIN = frozenset(LAWS)
+BUILTIN = LAWS.freeze_builtin()

@@ -31,3 +31,10 @@ def dynamic_model(scene, settings):
     from .dynamic_problem import build_dynamic_problem
 
     return build_dynamic_problem(scene, settings)
+
+
+def manufactured(solution, cells: int) -> dict:
+    """One level of a manufactured solution on ``cells`` cells (:func:`.mms.solve`)."""
+    from .mms import solve
+
+    return solve(solution, cells)

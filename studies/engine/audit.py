@@ -11,10 +11,10 @@ line. Figures are compared by the data they draw
 (``<name>.figure.csv``: every point, its label and whether its marker is hollow), not by
 their pixels. Then each study's own audit rules (``audit(ctx) -> [problem]`` in its module,
 see :mod:`.catalog`) check what a referee would recompute: counts against lists, verdicts
-against the records. The peer reports (``peers.md``, ``peers_work_precision.md``), which
-``make bench-peers`` writes outside the study pipeline, are rebuilt from their records in
-``DIR/data/peers/`` by their own plain functions (:data:`PEER_REPORTS`) and compared too,
-with the data of the work-precision figures.
+against the records. Reports drawn outside the study pipeline are audited by the rules
+their owners register (:func:`register_rule`: the peer reports, :mod:`studies.peers.audit`),
+and what the rebuilt tree needs first by the hooks they register (:func:`register_prebuild`:
+the element cards, :mod:`studies.card`).
 
 What it cannot check: that the records themselves are right (the solvers' tests and
 ``python -m studies diff`` do that), files no study writes (listed as not audited), and
@@ -24,9 +24,13 @@ from __future__ import annotations
 
 import difflib
 import shutil
+import sys
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Callable
+
+from contract.registry import Registry
 
 from .catalog import CASES_TOML, load_catalog
 from .report import FIGURE_DATA, Context
@@ -74,50 +78,20 @@ def compare_text(name: str, expected: str, found: str) -> list[str]:
     return out
 
 
-def _peer_markdown(kind: str, path: Path) -> str:
-    import json
-
-    if kind == "compare":          # with the published checks' section where their record is beside it
-        from ..peers.compare import peers_markdown
-        from ..peers.exudyn_published import RECORD as PUBLISHED, read_record
-        return peers_markdown(json.loads(path.read_text()), read_record(path.with_name(PUBLISHED.name)))
-    from ..peers.precision_report import read, report_markdown, rounds_path
-    return report_markdown(read(path), read(rounds_path(path)))
+# what is rendered or audited outside the studies' pipeline, registered by its owner:
+# PREBUILD(tmp) renders into the rebuilt tree first (the element cards, which the README lists);
+# RULES(reports, res) compares reports drawn by their own functions (the peer reports) and
+# returns the files it covers
+PREBUILD: Registry[Callable[[Path], object]] = Registry("audit.prebuild", "pre-build hook")
+RULES: Registry[Callable[[Path, "AuditResult"], set]] = Registry("audit.rule", "audit rule")
 
 
-# peer report -> (its record under DIR/data/peers/, the function that draws it)
-PEER_REPORTS = {"peers.md": ("peers-compare.json", "compare"),
-                "peers_work_precision.md": ("peers-work-precision.jsonl", "work_precision")}
+def register_prebuild(name: str, hook: Callable[[Path], object]) -> None:
+    PREBUILD.register(name, hook, sys._getframe(1).f_globals.get("__name__", "__main__"))
 
 
-def audit_peers(reports: Path, res: AuditResult) -> set[str]:
-    """The peer rule: each peer report that exists is redrawn from its record and compared,
-    and so is the data of every work-precision figure (one per scene). Returns the files
-    the rule covers."""
-    covered = set()
-    for name, (record, kind) in PEER_REPORTS.items():
-        if not (reports / name).exists():
-            continue
-        covered.add(name)
-        rec = reports / "data" / "peers" / record
-        if not rec.exists():
-            res.problems.append(f"{reports / name}:1: its record data/peers/{record} is missing")
-            continue
-        res.checked.append(name)
-        res.problems += compare_text(str(reports / name), _peer_markdown(kind, rec), (reports / name).read_text())
-        if kind == "work_precision":
-            from ..peers.precision_report import figure_csv, figure_name, read, scenes_of
-            recs = read(rec)
-            for scene in scenes_of(recs):
-                png = figure_name(scene)
-                data = png[:-4] + FIGURE_DATA
-                covered |= {png, data}
-                if not (reports / data).exists():
-                    res.problems.append(f"{reports / data}:1: missing (the records give this file)")
-                    continue
-                res.checked.append(data)
-                res.problems += compare_text(str(reports / data), figure_csv(recs, scene), (reports / data).read_text())
-    return covered
+def register_rule(name: str, rule: Callable[[Path, "AuditResult"], set]) -> None:
+    RULES.register(name, rule, sys._getframe(1).f_globals.get("__name__", "__main__"))
 
 
 def audit(reports: Path, catalog_path: Path = CASES_TOML, tiny: bool = False, log=None) -> AuditResult:
@@ -139,8 +113,8 @@ def audit(reports: Path, catalog_path: Path = CASES_TOML, tiny: bool = False, lo
         for d in COPIED:
             if (reports / d).is_dir():
                 shutil.copytree(reports / d, tmp / d)
-        from ..card import render_recorded
-        render_recorded(tmp)
+        for hook in PREBUILD.values():
+            hook(tmp)
         build_reports(tmp, tiny, log or (lambda *a, **k: None), catalog_path)
         made, have = _files(tmp), _files(reports)
         for name in sorted(made):
@@ -155,8 +129,8 @@ def audit(reports: Path, catalog_path: Path = CASES_TOML, tiny: bool = False, lo
                 res.problems.append(f"{reports / name}:1: missing (the records give this file)")
                 continue
             res.problems += compare_text(str(reports / name), (tmp / name).read_text(), (reports / name).read_text())
-        peers = audit_peers(reports, res)
-        res.not_audited = sorted(have - made - peers)
+        covered = set().union(*(rule(reports, res) for rule in RULES.values()))
+        res.not_audited = sorted(have - made - covered)
         catalog = load_catalog(tiny, catalog_path)
         for study in catalog.values():
             rules = getattr(study.module, "audit", None)

@@ -46,6 +46,9 @@ class Case:
     # worker never re-derives it from sources that may have changed since (see
     # :meth:`Case.sources_changed`)
     id: str = field(default="", compare=False)
+    # the module that registered the solver (how to run the case, not what it is): a worker
+    # imports it before it looks the solver up (studies.engine.solvers.get_solver)
+    solver_module: str | None = field(default=None, compare=False)
 
     def __post_init__(self):
         if not self.id:
@@ -134,7 +137,7 @@ def make_case(study: str, solver: str, scene: Mapping, options: Mapping | None =
     """A case from plain data; the solver name and the scene are checked here (an
     unknown solver fails with the list of valid ones; a bad scene with a SceneError)."""
     get_solver(solver).check(dict(scene))
-    return Case(study, solver, canonical(scene), canonical(dict(options or {})))
+    return Case(study, solver, canonical(scene), canonical(dict(options or {})), solver_module=SOLVERS.origin[solver])
 
 
 __all__ = ["Case", "make_case", "case_id", "packages", "canonical", "SOLVERS"]

@@ -11,6 +11,9 @@ changes whenever a solver's source does), and compares what a record reports:
 
 Timings are never compared. A case present on one side only is listed. The output is one
 line per difference, then a count per study; the exit status is 1 if anything differs.
+
+A move that renames a solver or a study (``--rename OLD=NEW``, repeatable) pairs the old
+records under the new names, so that the move can be shown to change no result.
 """
 from __future__ import annotations
 
@@ -43,7 +46,7 @@ def _rounded(x):
     return x
 
 
-def key_of(rec: dict) -> str:
+def key_of(rec: dict, rename: dict | None = None) -> str:
     """What the case is: solver, scene and options (the id without source and versions).
     The scene's name is a label, left out; an ANCF scene that left its quadrature to the
     element's default counts with the rule that ran (the record's ``quadrature``), so a
@@ -52,11 +55,14 @@ def key_of(rec: dict) -> str:
     scene = {k: v for k, v in rec["scene"].items() if k != "name"}
     if "ancf" in scene and "quadrature" not in scene["ancf"] and rec.get("quadrature"):
         scene["ancf"] = {**scene["ancf"], "quadrature": rec["quadrature"]}
-    options = {k: v for k, v in ((rec.get("case") or {}).get("options") or {}).items() if k != "imports"}
-    return canonical(_rounded({"solver": rec["solver"], "scene": scene, "options": options}))
+    case = rec.get("case") or {}
+    options = {k: v for k, v in (case.get("options") or {}).items() if k != "imports"}
+    solver = case.get("solver") or rec["solver"]          # the engine's solver (a record's label may be a backend's)
+    solver = (rename or {}).get(solver, solver)
+    return canonical(_rounded({"solver": solver, "scene": scene, "options": options}))
 
 
-def read(path: Path) -> dict[str, dict]:
+def read(path: Path, rename: dict | None = None) -> dict[str, dict]:
     out = {}
     if not path.exists():
         return out
@@ -65,7 +71,7 @@ def read(path: Path) -> dict[str, dict]:
             try:   # a torn or hand-edited line that is not a record is skipped, as the store does
                 rec = json.loads(line)
                 rec["scene"]["name"]
-                out[key_of(rec)] = rec
+                out[key_of(rec, rename)] = rec
             except (json.JSONDecodeError, KeyError, TypeError, AttributeError, ValueError):
                 continue
     return out
@@ -110,13 +116,17 @@ def compare(a: dict, b: dict, rtol: float, atol: float) -> list[str]:
     return out
 
 
-def diff(old: Path, new: Path, rtol: float = 1e-6, atol: float = 1e-9) -> tuple[list[Change], dict]:
-    """(the changes, {study: (matched, only old, only new, changed)}) over every study file."""
+def diff(old: Path, new: Path, rtol: float = 1e-6, atol: float = 1e-9,
+         rename: dict | None = None) -> tuple[list[Change], dict]:
+    """(the changes, {study: (matched, only old, only new, changed)}) over every study file;
+    ``rename`` {old name: new name} of solvers and studies (a study's records file)."""
+    rename = rename or {}
     changes, summary = [], {}
-    names = sorted({p.stem for p in (Path(old) / "data").glob("*.jsonl")}
-                   | {p.stem for p in (Path(new) / "data").glob("*.jsonl")})
+    olds = {rename.get(p.stem, p.stem): p for p in (Path(old) / "data").glob("*.jsonl")}
+    names = sorted(set(olds) | {p.stem for p in (Path(new) / "data").glob("*.jsonl")})
     for study in names:
-        a, b = read(Path(old) / "data" / f"{study}.jsonl"), read(Path(new) / "data" / f"{study}.jsonl")
+        a = read(olds[study], rename) if study in olds else {}
+        b = read(Path(new) / "data" / f"{study}.jsonl")
         changed = 0
         for k in sorted(set(a) & set(b)):
             try:

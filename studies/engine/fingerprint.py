@@ -21,7 +21,7 @@ Three rules keep it to what runs:
 - a package that loads its own modules by name (``mechanics.laws``) counts whole
   (:data:`DISCOVERS`);
 - per backend: a continuum case counts the backend its scene names, never the other one
-  (:data:`BACKENDS`), so a change to FElupe's backend keeps DOLFINx's records, and the
+  (:func:`backends`), so a change to FElupe's backend keeps DOLFINx's records, and the
   reverse;
 - modules that cannot change a result (:data:`NOT_RESULTS`: where compiled code is cached,
   the command lines' console and output, the warm-up) never count.
@@ -53,8 +53,14 @@ DISCOVERS = ("mechanics.laws",)
 # digest keeps stale compiled code from running: tests/test_compiled_cache.py), the command
 # lines' console, output writers and warm-up; never part of a fingerprint
 NOT_RESULTS = ("ancf.compiled_cache", "ancf.cli", "ancf.output", "ancf.warm", "ancf.__main__", "contract.console")
-# the continuum backends: a case counts the one its scene names (scene["fem"]["backend"])
-BACKENDS = {"dolfinx": "reference_fem.dolfinx_backend", "felupe": "reference_fem.felupe_backend"}
+
+
+def backends() -> dict[str, str]:
+    """{continuum backend: its package} (:data:`reference_fem.backends.BACKENDS`): a case
+    counts the one its scene names (scene["fem"]["backend"])."""
+    from reference_fem.backends import BACKENDS
+
+    return {name: b.package for name, b in BACKENDS.items()}
 # distributions a package's code depends on without importing them (JIT code generators)
 IMPLIED = {"fenics-dolfinx": ("fenics-ffcx", "fenics-basix", "fenics-ufl")}
 
@@ -366,7 +372,7 @@ def fingerprint(entries: Iterable[str], backend: str | None = None, whole: bool 
     ``module:name``), "packages": {distribution: version}}; with ``backend``, the other
     continuum backends are left out (see the module doc); ``whole``: every module reached
     counts whole, ``studies`` too (what report code reaches)."""
-    exclude = tuple(sorted(p for b, p in BACKENDS.items() if backend is not None and b != backend))
+    exclude = tuple(sorted(p for b, p in backends().items() if backend is not None and b != backend))
     code, pkgs = _fingerprint(tuple(entries), exclude, whole)
     return {"code": code, "packages": dict(pkgs)}
 
@@ -385,5 +391,5 @@ def digest(fingerprint: dict) -> str:
 
 def modules(entries: Iterable[str], backend: str | None = None) -> list[str]:
     """What :func:`fingerprint` reads, sorted (``module`` or ``module:name``)."""
-    exclude = tuple(sorted(p for b, p in BACKENDS.items() if backend is not None and b != backend))
+    exclude = tuple(sorted(p for b, p in backends().items() if backend is not None and b != backend))
     return sorted(_read(tuple(entries), exclude).code)

@@ -50,6 +50,10 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from typing import Callable
+
+from contract.registry import Registry
+
 from .case import Case
 
 TIMING_ONLY = ("ancf-cold", "ancf-effects")
@@ -96,15 +100,23 @@ def _skip_reason(rec: dict, max_case_s: float) -> str | None:
     return None
 
 
+# record stores made outside the studies' catalog (the element cards), each a function of
+# the reports directory giving {store name: {case id: case}} as today's code makes them
+CASE_SOURCES: Registry[Callable[[Path], dict]] = Registry("verify.source", "case source")
+
+
+def register_case_source(name: str, source: Callable[[Path], dict]) -> None:
+    CASE_SOURCES.register(name, source, sys._getframe(1).f_globals.get("__name__", "__main__"))
+
+
 def todays_cases(reports: Path, catalog_path=None) -> dict[str, dict[str, Case]]:
-    """{store name: {case id: case}}: every study's cases (the ``full`` ones too) and every
-    recorded element card's, as today's code makes them."""
-    from ..card import cases as card_cases, recorded_cards, slug
+    """{store name: {case id: case}}: every study's cases (the ``full`` ones too) and those of
+    every registered case source (the element cards), as today's code makes them."""
     from .catalog import CASES_TOML, load_catalog
 
     out = {s.name: {c.id: c for c in s.cases()} for s in load_catalog(False, catalog_path or CASES_TOML).values()}
-    for element, tiny in recorded_cards(reports, stale=[]):
-        out[f"card-{slug(element)}"] = {c.id: c for c in card_cases(element, tiny)}
+    for source in CASE_SOURCES.values():
+        out.update(source(Path(reports)))
     return out
 
 

@@ -129,7 +129,7 @@ def _run_once(case: Case, timeout_s: float | None = None) -> tuple[dict, float]:
     if case.options.get("mpi_ranks"):
         return _run_launched(case, timeout_s)
     _import_user_modules(case)
-    run = get_solver(case.solver).run
+    run = get_solver(case.solver, case.solver_module).run
     armed = bool(timeout_s) and hasattr(signal, "setitimer")
     if armed:
         previous = signal.signal(signal.SIGALRM, _alarm)
@@ -163,7 +163,7 @@ def execute_timed(case: Case, timeout_s: float | None = DEFAULT_TIMEOUT_S) -> di
     opts = case.timing or {}
     repeats = int(opts.get("repeats", DEFAULT_REPEATS))
     budget = float(opts.get("budget_s", DEFAULT_BUDGET_S))
-    warmer = get_solver(case.solver).warm
+    warmer = get_solver(case.solver, case.solver_module).warm
     samples, solve = [], []
     if warmer is not None and not case.options.get("mpi_ranks"):
         # the compiled code loaded by a small copy of the scene; the first full run is a sample

@@ -29,16 +29,15 @@ import argparse
 import json
 import math
 import statistics
-import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
+
+from .venv import PEER_PYTHON, parse_peer_output, run_peer_script  # noqa: F401  (the peer's venv, shared)
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "scenes" / "pendulum-yeoh-plane-stress.toml"
 PEER_SCRIPT = Path(__file__).with_name("exudyn_pendulum.py")
-PEER_PYTHON = ROOT / ".venv-peers" / "bin" / "python"
 TARGET_RATIO = 1.0          # issue 10: at least as fast as Exudyn (issue 4 asked for 3x)
 # issue 22: at equal steps, HB2n-12 within half of Exudyn's time and HB2n-16 within 0.8 of it
 TARGETS = {"HB2n-12": 0.5, "HB2n-16": 0.8}
@@ -76,20 +75,6 @@ def ours(dt: float, rho_inf: float, repeats: int = 5, scene_path: Path = SCENE, 
     }
 
 
-def parse_peer_output(stdout: str) -> dict:
-    """The JSON object on the last non-empty line of the peer script's stdout."""
-    lines = [ln for ln in stdout.splitlines() if ln.strip()]
-    if not lines:
-        raise RuntimeError("the peer script printed nothing")
-    try:
-        out = json.loads(lines[-1])
-    except json.JSONDecodeError as e:
-        raise RuntimeError(f"the peer script's last line is not JSON: {lines[-1][:200]!r}") from e
-    if out.get("status") != "converged":
-        raise RuntimeError(f"the peer run failed: {out.get('reason')}")
-    return out
-
-
 def peer(dt: float, rho_inf: float, repeats: int = 5, python: Path = PEER_PYTHON,
          module: str = "fast", elements: int = 32, height: float | None = None, newton: str = "modified") -> dict:
     """Run the Exudyn script in .venv-peers (in a scratch directory, so that nothing it
@@ -99,20 +84,6 @@ def peer(dt: float, rho_inf: float, repeats: int = 5, python: Path = PEER_PYTHON
     if height is not None:
         args += ["--height", repr(height)]
     return run_peer_script(PEER_SCRIPT, args, python)
-
-
-def run_peer_script(script: Path, args: list[str], python: Path = PEER_PYTHON) -> dict:
-    """Run a peer script of this directory with ``python`` (.venv-peers), in a scratch
-    directory (nothing it might write lands in the repository) and without our venv's
-    environment, and return the JSON on its last line (:func:`parse_peer_output`)."""
-    if not Path(python).exists():
-        raise SystemExit(f"{python} not found: run `bash tools/setup_peers.sh` first")
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME")}
-    with tempfile.TemporaryDirectory(prefix="exudyn-peer-") as cwd:
-        p = subprocess.run([str(python), str(script), *args], cwd=cwd, env=env, capture_output=True, text=True)
-    if p.returncode != 0:
-        raise RuntimeError(f"peer script exited {p.returncode}:\n{p.stdout[-2000:]}\n{p.stderr[-2000:]}")
-    return parse_peer_output(p.stdout)
 
 
 def tip_differences(ours_tips: list[dict], peer_tips: list[dict]) -> list[dict]:
@@ -290,7 +261,7 @@ def peers_markdown(result: dict, published: dict | None = None) -> str:
             lines.append(f"- {k} = {v}")
     lines.append("")
     if published is not None:
-        from .exudyn_published import published_markdown
+        from .exudyn_published import published_markdown     # (it imports nothing of this module)
         lines.append(published_markdown(published))
     return "\n".join(lines)
 

@@ -240,7 +240,7 @@ def peer_main(module: str) -> int:
 # -- our side (.venv): run, compare, report -----------------------------------------------
 def run_peer(python: Path | None = None, module: str = "fast") -> dict:
     """The peer side in .venv-peers (``--peer``), its JSON."""
-    from .compare import PEER_PYTHON, run_peer_script
+    from .venv import PEER_PYTHON, run_peer_script
 
     return run_peer_script(Path(__file__), ["--peer", "--module", module], python or PEER_PYTHON)
 
@@ -351,19 +351,16 @@ def main(argv=None) -> int:
     ap.add_argument("--module", choices=("fast", "regular"), default="fast",
                     help="Exudyn's compiled module (default fast, as the pendulum comparison)")
     ap.add_argument("--peer-python", type=Path, default=None)
-    ap.add_argument("--report", action="store_true", help=f"write the record {RECORD.relative_to(ROOT)} and redraw "
-                    "reports/peers.md with its section")
+    ap.add_argument("--report", action="store_true", help=f"write the record {RECORD.relative_to(ROOT)} "
+                    "(`python -m studies.peers.compare --report-only` then redraws reports/peers.md with its section)")
     a = ap.parse_args(argv)
     if a.peer:
         return peer_main(a.module)
     rec = record(run_peer(a.peer_python, a.module))
     print(published_markdown(rec))
     if a.report:
-        from .compare import write_report
-
         RECORD.parent.mkdir(parents=True, exist_ok=True)
         RECORD.write_text(json.dumps(rec, indent=1))
-        write_report()
     return 0 if all(k["agrees"] for k in rec["checks"]) else 1
 
 
