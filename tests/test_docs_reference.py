@@ -162,3 +162,30 @@ def test_the_site_builds(tmp_path):
     assert run.returncode == 0, run.stderr[-5000:]
     for page in ("index", "reference/scene", "reference/cli", "results/generated/README", "tutorials/first-scene"):
         assert (tmp_path / "html" / f"{page}.html").is_file(), page
+
+
+IMPORTS_NOTHING_HEAVY = r'''
+import importlib, pkgutil, sys
+sys.path.insert(0, "docs/_ext")
+import harness_docs, ancf.cli, reference_fem.cli, studies.cli, reference_fem.settings
+for package in harness_docs.API_PACKAGES:
+    for info in pkgutil.walk_packages(importlib.import_module(package).__path__, package + "."):
+        if not info.name.endswith("__main__"):
+            importlib.import_module(info.name)
+from numba.core.registry import CPUDispatcher
+compiled = [f"{name}.{v.__name__}" for name, m in list(sys.modules.items()) if name.startswith(("ancf", "mechanics"))
+            for v in vars(m).values() if isinstance(v, CPUDispatcher) and v.signatures]
+heavy = sorted({m.split(".")[0] for m in sys.modules} & {"dolfinx", "ufl", "petsc4py", "mpi4py", "gmsh", "felupe"})
+print(compiled, heavy)
+assert not compiled and not heavy
+'''
+
+
+def test_the_api_pages_need_no_continuum_stack_and_compile_nothing():
+    """What `make docs` imports (every module of contract, mechanics and ancf for the API
+    pages, the three command lines, the [fem] settings) imports no DOLFINx, PETSc, MPI,
+    gmsh or FElupe and compiles no numba function: importing ancf defines its compiled
+    functions, calling one compiles it."""
+    run = subprocess.run([sys.executable, "-c", IMPORTS_NOTHING_HEAVY], cwd=ROOT, capture_output=True, text=True,
+                         timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr[-3000:]
