@@ -458,7 +458,16 @@ def render_report(src: Path, page: Path, figures: dict, captions: dict[str, str]
     return text
 
 
-ISSUE = re.compile(r"\s*\(issue \d+\)|\bissue \d+'s\s+")
+ISSUES = ((re.compile(r"\s*\([Ii]ssues? \d+(, \d+)*\)"), ""), (re.compile(r"\(([Ii]ssues? \d+(, \d+)*); "), "("),
+          (re.compile(r"\b[Ii]ssue \d+'s\s+"), "the "))
+
+
+def no_issue_numbers(text: str) -> str:
+    """The text without references to the project's issue tracker ("(issue 20)",
+    "(issue 20; ...", "issue 20's"): a report's or a docstring's history, not the reader's."""
+    for pattern, by in ISSUES:
+        text = pattern.sub(by, text)
+    return text
 
 
 def _headings(lines: list[str]) -> list[str]:
@@ -473,7 +482,7 @@ def _headings(lines: list[str]) -> list[str]:
         if m and not fence:
             want = min(len(m.group(1)), level + 1)
             line, level = "#" * want + line[len(m.group(1)):], want
-        out.append(ISSUE.sub(lambda m: "the " if "'s" in m.group(0) else "", line) if not fence else line)
+        out.append(no_issue_numbers(line) if not fence else line)
     return out
 
 
@@ -571,9 +580,10 @@ LITERAL = re.compile(r"(``.+?``|:[a-z:]+:`[^`]+`|`[^`]+`)")
 
 def plain_docstring(app, what, name, obj, options, lines: list[str]) -> None:
     """The code's docstrings are plain text with reST's literals and roles: their math
-    (|u|, a * b) is not markup, so | and * outside literals and roles are escaped."""
+    (|u|, a * b) is not markup, so | and * outside literals and roles are escaped; and no
+    issue numbers (:func:`no_issue_numbers`)."""
     for i, line in enumerate(lines):
-        parts = LITERAL.split(line)
+        parts = LITERAL.split(no_issue_numbers(line))
         lines[i] = "".join(p if k % 2 else p.replace("\\", "\\\\").replace("|", "\\|").replace("*", "\\*")
                            for k, p in enumerate(parts))
 
