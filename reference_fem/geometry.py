@@ -89,15 +89,32 @@ def geometry_for(model: str) -> Geometry:
     return BOX if model == "3d" else PLANE
 
 
+HINGE_NOTE = ("hinge: the left face kept straight through its fixed centre, u(0, Y) = Y a (a free "
+              "in-plane vector: the face turns and stretches), exactly, by eliminating the face's "
+              "displacement unknowns for the two of a (u = T w_r: tangent T^T K T, residual T^T R; "
+              "pressure unknowns untouched); a support with a mesh limit")
+END_MOMENT_NOTE = ("end moment: the couple -M theta, theta = atan2(-d_x, d_y) of the end face's first "
+                   "moment d = int (X + u) Y dA / int Y^2 dA (linear in u: d = d0 + G^T u), continued "
+                   "along the load path; its rank-2 tangent -t M G H G^T enters the Newton solve exactly")
+
+
+def support_note(left: str, geometry: Geometry) -> str:
+    """How the continuum models the support ``left`` (a record's ``pin`` note)."""
+    return {"pin": geometry.pin_note, "hinge": HINGE_NOTE,
+            "slide": "slide: u_x = 0 over the face x = 0, u_y = 0 at its centre node",
+            }.get(left, "clamp: the whole face x = 0 fixed")
+
+
 def check_support(left: str, geometry: Geometry, settings) -> None:
     """A support this continuum can apply (:data:`contract.loads.SUPPORTS`), or a
     SceneError naming what it cannot: ``pin`` and ``slide`` hold the face centre's node,
     so the mesh needs an even number of cells across; the 3D model offers ``clamp`` and
-    ``pin`` only."""
+    ``pin`` only. The ``hinge`` needs no centre node (the face's nodes are slaved to its
+    top node, u = (Y / Y_top) u_top: any number of cells across)."""
     from contract.errors import SceneError
 
-    if left == "slide" and geometry.gdim == 3:
-        raise SceneError("supports.left: \"slide\" is not offered by the 3D continuum model "
+    if left in ("slide", "hinge") and geometry.gdim == 3:
+        raise SceneError(f"supports.left: \"{left}\" is not offered by the 3D continuum model "
                          "(fem.model = \"3d\"); allowed there: clamp, pin")
     if left in ("pin", "slide") and settings.cells_height % 2:
         raise SceneError(f"fem.cells_height: supports.left = \"{left}\" holds the node at the centre of the "

@@ -15,7 +15,10 @@ ANCF run, plus ``continuum_model`` ("plane-strain" | "plane-stress" | "3d"),
 ``incompressibility`` ("mixed" | "penalty" | "exact") and ``fem`` (the resolved
 discretisation: cells, cell type, degree, quadrature degree) and ``dolfinx``
 (version). ``ndof`` counts the unknowns of the solve (displacement and pressure
-degrees of freedom minus those the supports fix), like ancf's free dofs. ``setup_s``
+degrees of freedom minus those the supports fix or, for the hinge, eliminate), like
+ancf's free dofs. A scene with an end moment adds ``tip.rotation`` (rad, the end face's
+theta continued along the load path) and ``end_moment`` (how the couple is applied); a
+hinged one ``pin`` (how the hinge is modelled, as in dynamic records). ``setup_s``
 is meshing and JIT compilation, apart from the solve. The 3D model adds ``tip_uz`` (m,
 the lateral displacement of the free-end face centre: zero by symmetry on hexahedra)
 and ``mpi_ranks``; under ``mpiexec`` every rank computes the same record and the
@@ -26,7 +29,8 @@ loop (:func:`mechanics.time_loop.record_keys`, the same as ``ancf run``'s): ``ti
 [{t, x, y}] (position of the free-end centre point at the output times),
 ``configurations``, ``energy`` [{t, kinetic, strain, gravity, total}] (J, full beam),
 ``steps``, ``rejected_steps``, ``newton_iterations``, ``integrator`` (name, rho_inf,
-coefficients) and ``energy_limit``; ``pin`` says how the support is modelled. The
+coefficients) and ``energy_limit``; ``pin`` says how the support is modelled
+(:func:`reference_fem.geometry.support_note`). The
 continuum models are stress-free at the reference: the motion starts from the
 undeformed beam at rest.
 """
@@ -148,14 +152,29 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
                effects=sorted(model.effects), load_reached=res.t_reached)
     if res.unloaded:
         rec["note"] = "no load: an unloaded static scene is valid, its answer is the reference state"
+    _notes(rec, scene, settings.geometry, model)
     if res.status == "converged":
         u = model.displacement(settings.geometry.tip_point(scene.beam))
         rec["tip"] = {"ux": float(u[0]), "uy": float(u[1])}
+        if scene.loads.end_moment is not None:
+            rec["tip"]["rotation"] = float(model.rotation())
         if len(u) == 3:
             rec["tip_uz"] = float(u[2])
         if output is not None:
             rec["output"] = str(model.write(Path(output) / safe_name(scene.name), output_format))
     return rec
+
+
+def _notes(rec: dict, scene: Scene, geometry, model) -> None:
+    """How a static record's hinge (``pin``) and end moment (``end_moment``: the shared
+    definition and the backend's method) are modelled; records of other scenes keep their
+    keys."""
+    from .geometry import END_MOMENT_NOTE, support_note
+
+    if scene.supports.left == "hinge":
+        rec["pin"] = support_note("hinge", geometry)
+    if scene.loads.end_moment is not None:
+        rec["end_moment"] = f"{END_MOMENT_NOTE}; {model.end_moment_method}"
 
 
 def run_dynamic(scene: Scene, settings: FemSettings, output: Path | None = None,
@@ -168,14 +187,14 @@ def run_dynamic(scene: Scene, settings: FemSettings, output: Path | None = None,
     from mechanics.time_loop import energy_limit as scene_energy_limit
     from mechanics.time_loop import integrate, record_keys
 
+    from .geometry import support_note
     from .stepper import ContinuumStepper
 
     a = scene.analysis
     rec = _record(scene, settings)
     t0 = time.perf_counter()
     problem = backend(settings.backend).dynamic_model(scene, settings)
-    rec["pin"] = (problem.geometry.pin_note if scene.supports.left == "pin"
-                  else "clamp: the whole face x = 0 fixed")
+    rec["pin"] = support_note(scene.supports.left, problem.geometry)
     stepper = ContinuumStepper(problem, a.integrator, a.rho_inf, a.newton_rtol, a.max_iterations, scene.beam)
     rec["setup_s"] = time.perf_counter() - t0
     limit = energy_limit if energy_limit is not None else scene_energy_limit(scene)

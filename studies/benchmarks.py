@@ -42,6 +42,34 @@ The cases (the references in :mod:`studies.closed_forms`):
    2 (h/L)^2 on the relative tip deflection (plane-stress elasticity departs from the beam
    theory by terms of that relative order: Timoshenko & Goodier, Theory of Elasticity,
    the uniformly loaded beam).
+5. ``bending``: pure bending at finite strain, every law, in plane strain against Rivlin's
+   flexure (1949: exact for an incompressible block) and in plane stress against the same
+   flexure of a plane-stress strip (a two-point problem across the thickness, solved to
+   round-off: :func:`studies.closed_forms.plane_stress_bending`). The strip (h = 5 mm) stands
+   on its symmetry plane x = 0 (``slide``) under the end moment (:mod:`contract.loads`) of
+   the exact solution at kappa h = 0.2 and 0.5 in plane stress, 0.2 and 0.3 in plane strain
+   (Gent: 0.1, 0.2, below its lock). Past kappa h of about 0.35 in penalised plane strain the
+   last ANCF elements under the couple distort (det F 0.78 at a point of the last element at
+   kappa h = 0.34 with HB2n-40p, 2 elements per h) and the load path ends there whatever its
+   steps, while the continuum goes on: an end-zone limit of the elements, not the flexure's,
+   and not what this case measures. The couple
+   is applied as a conservative couple on the end face's rotation, not as Rivlin's end
+   tractions: the two differ by a self-equilibrated load whose effect stays within about h
+   of the end (Saint-Venant), so the strip is run at two lengths, 8 h and 16 h, and the
+   curvature read as kappa = (theta(16 h) - theta(8 h)) / 8 h, where that end zone cancels.
+   The exact section r(Y) is no polynomial, so no element holds it exactly: the tolerance
+   is a requirement, 1e-3 relative on kappa, the accuracy class the lock-free elements are
+   built for (0.1 % on the paper's cantilever); the penalised plane strain of ANCF adds its
+   own softening of the bending stiffness by mu / alpha (E' = 4 mu (3 alpha + mu) /
+   (3 alpha + 4 mu)): 2 mu / alpha more. The continuum codes run Q2 cells of h / 4 (and
+   plane strain exactly incompressible, mixed).
+6. ``arc``: the slender limit under an end couple, Euler's circular arc of angle phi =
+   M L / (E I) (E = 3 mu), on the slender cantilever of the elastica case (``slide``),
+   neo-Hookean in plane stress, phi = 1 and 2 pi (a full roll-up), L / h = 25 to 200. The
+   strip departs from the arc by its own finite-strain bending (the curvature at the couple
+   and the mid-line's stretch, both of order (kappa h)^2), which the exact plane-stress
+   pure bending gives: tolerance twice that departure (:func:`arc_departure`), plus the
+   Newton floor 1e-6.
 """
 from __future__ import annotations
 
@@ -50,7 +78,8 @@ from dataclasses import dataclass
 
 from contract import paper
 
-from .closed_forms import (MATTIASSON_1981, MATTIASSON_1981_DIGITS, elastica_tip_load, simple_shear_stress,
+from .closed_forms import (MATTIASSON_1981, MATTIASSON_1981_DIGITS, elastica_end_moment, elastica_tip_load,
+                           plane_stress_bending, plane_stress_curvature, rivlin_bending, simple_shear_stress,
                            uniaxial_stretch)
 from .engine.case import make_case
 from .engine.report import Section, Table
@@ -76,10 +105,28 @@ STUDY = {
         "elastica_elements": 32,
         "timoshenko_slenderness": [35.0, 70.0, 140.0],
         "timoshenko_elements": 16,
+        # pure bending: the curvature kappa h of the exact solution per formulation and law (Gent:
+        # below its lock, kappa h = 0.32 in plane strain; plane strain to 0.3: see the module doc),
+        # the two lengths in h, ANCF elements and the continuum's cells per h along (and across)
+        "bending_curvatures": {
+            "plane-stress": {"neo-hookean": [0.2, 0.5], "mooney-rivlin": [0.2, 0.5], "yeoh": [0.2, 0.5],
+                             "gent": [0.1, 0.2]},
+            "plane-strain": {"neo-hookean": [0.2, 0.3], "mooney-rivlin": [0.2, 0.3], "yeoh": [0.2, 0.3],
+                             "gent": [0.1, 0.2]}},
+        "bending_lengths": [8, 16],
+        "bending_elements_per_h": 2,
+        "bending_cells_per_h": 4,
+        # the elastica under an end moment: the arc's angle phi = M L / (E I)
+        "arc_angles": [1.0, 6.283185307179586],
+        "arc_slenderness": [25.0, 50.0, 100.0, 200.0],
+        "arc_elements": 32,
     },
     "tiny": {"elements": ["HB2n-16", "HB2n-12"], "laws": ["neo-hookean"], "codes": ["dolfinx"],
              "shear_gammas": {"neo-hookean": [0.5]}, "elastica_alphas": [1.0], "elastica_slenderness": [25.0, 50.0],
-             "elastica_elements": 8, "timoshenko_slenderness": [35.0], "timoshenko_elements": 8},
+             "elastica_elements": 8, "timoshenko_slenderness": [35.0], "timoshenko_elements": 8,
+             "bending_curvatures": {"plane-stress": {"neo-hookean": [0.5]}, "plane-strain": {}},
+             "arc_angles": [6.283185307179586],
+             "arc_slenderness": [50.0], "arc_elements": 8},
 }
 
 STRIP = {"length": 0.160, "height": 0.005, "width": 0.007}
@@ -219,6 +266,80 @@ def timoshenko_reference(ratio: float) -> float:
     return beam_theory(ratio)[1]
 
 
+# -- 5. pure bending ---------------------------------------------------------------------------
+
+BENDING_TOL = 1e-3      # relative on kappa: a requirement (see the module doc), not a round-off
+
+
+def bending_scene(grid: dict, law: str, form: str, x: float, lengths: int, solver: str) -> dict:
+    """The strip of h = 5 mm, w = 7 mm and ``lengths`` x h on the symmetry plane x = 0 (``slide``)
+    under the end moment of the exact pure bending at kappa h = x."""
+    c, rho = constants(law)
+    h, w = STRIP["height"], STRIP["width"]
+    m = {"law": law, "formulation": form, "density": rho, **c}
+    if form == "plane-strain":
+        m["penalty"] = penalty(grid, law)
+    M = w * bending_reference(law, form, x)["moment_per_width"]
+    d = {"name": f"bench-bending-{law}-{form}-kh{x:g}-L{lengths}h-{solver}",
+         "beam": {"length": lengths * h, "height": h, "width": w}, "material": m,
+         "supports": {"left": "slide"}, "loads": {"end_moment": M},
+         "analysis": {"kind": "static", "load_steps": max(10, math.ceil(2 * x * lengths))}}
+    if solver in grid["codes"]:
+        n = grid["bending_cells_per_h"]
+        d["fem"] = {"model": form, "cells_length": n * lengths, "cells_height": n}
+        if solver != "dolfinx":
+            d["fem"]["backend"] = solver
+    else:
+        d["ancf"] = {"element": solver, "elements": grid["bending_elements_per_h"] * lengths}
+    return d
+
+
+def bending_reference(law: str, form: str, x: float) -> dict:
+    """The exact pure bending at kappa h = x of the strip's section: Rivlin's flexure in plane
+    strain, the plane-stress two-point problem otherwise (:mod:`studies.closed_forms`)."""
+    c, _ = constants(law)
+    h = STRIP["height"]
+    solve = rivlin_bending if form == "plane-strain" else plane_stress_bending
+    return solve(law, c, x / h, h)
+
+
+def bending_tolerance(grid: dict, law: str, form: str, solver: str) -> tuple[float, str]:
+    if form == "plane-strain" and solver not in grid["codes"]:
+        alpha = penalty(grid, law)
+        return BENDING_TOL + 2.0 * mu_of(law) / alpha, "1e-3 (the lock-free class) + 2 mu / alpha (the penalty)"
+    return BENDING_TOL, "1e-3: the accuracy class of the lock-free elements (a requirement)"
+
+
+# -- 6. the elastica under an end moment --------------------------------------------------------
+
+def arc_scene(grid: dict, phi: float, ratio: float, element: str) -> dict:
+    L, w = SLENDER_BEAM["length"], SLENDER_BEAM["width"]
+    h = L / ratio
+    c, rho = constants("neo-hookean")
+    E = 3.0 * mu_of("neo-hookean")
+    n = grid["arc_elements"]
+    return {"name": f"bench-arc-phi{phi:.4g}-Lh{ratio:g}-{element}-{n}",
+            "beam": {"length": L, "height": h, "width": w},
+            "material": {"law": "neo-hookean", "formulation": "plane-stress", "density": rho, **c},
+            "ancf": {"element": element, "elements": n}, "supports": {"left": "slide"},
+            "loads": {"end_moment": phi * E * w * h ** 3 / 12.0 / L},
+            "analysis": {"kind": "static", "load_steps": max(10, math.ceil(2 * phi))}}
+
+
+def arc_departure(phi: float, ratio: float) -> float:
+    """|r_tip(exact pure bending) - r_tip(elastica)| / L: how far the plane-stress strip's own
+    arc (its curvature and its mid-line's stretch, :func:`plane_stress_bending`) lies from
+    Euler's inextensible one at the same couple; the beam's tip is read at r(L, 0)."""
+    L, w = SLENDER_BEAM["length"], SLENDER_BEAM["width"]
+    h = L / ratio
+    c, _ = constants("neo-hookean")
+    M = phi * 3.0 * mu_of("neo-hookean") * h ** 3 / 12.0 / L          # per width
+    k = plane_stress_curvature("neo-hookean", c, M, h)
+    R = plane_stress_bending("neo-hookean", c, k, h)["lambda_mid"] / k   # the mid-line's radius
+    x, y = elastica_end_moment(phi)
+    return math.hypot(R * math.sin(k * L) / L - x, R * (1.0 - math.cos(k * L)) / L - y)
+
+
 # -- cases and report -------------------------------------------------------------------------
 
 def cases(grid: dict, tiny: bool) -> list:
@@ -235,6 +356,17 @@ def cases(grid: dict, tiny: bool) -> list:
             out += [make_case("benchmarks", "ancf", elastica_scene(grid, alpha, ratio, el)) for el in grid["elements"]]
     for ratio in grid["timoshenko_slenderness"]:
         out += [make_case("benchmarks", "ancf", timoshenko_scene(grid, ratio, el)) for el in grid["elements"]]
+    for form in grid["formulations"]:
+        for law, curvatures in grid["bending_curvatures"][form].items():
+            if law not in grid["laws"]:
+                continue
+            for x in curvatures:
+                for solver in [*grid["elements"], *grid["codes"]]:
+                    out += [make_case("benchmarks", "fenicsx" if solver in grid["codes"] else "ancf",
+                                      bending_scene(grid, law, form, x, n, solver)) for n in grid["bending_lengths"]]
+    for phi in grid["arc_angles"]:
+        for ratio in grid["arc_slenderness"]:
+            out += [make_case("benchmarks", "ancf", arc_scene(grid, phi, ratio, el)) for el in grid["elements"]]
     return out
 
 
@@ -271,6 +403,10 @@ SOURCES = {
     "shear": ("closed form", "Ogden 1984, sec. 5.3 (simple shear)"),
     "elastica": ("closed form", "Bisshopp & Drucker 1945, Q. Appl. Math. 3(3) 272-275 (elliptic integrals)"),
     "timoshenko": ("closed form", "Timoshenko & Gere 1972, Mechanics of Materials: q L^4 / 8 EI + q L^2 / 2 kappa G A"),
+    "bending plane-strain": ("closed form", "Rivlin 1949, Proc. R. Soc. A 195, 463-473 (flexure); Ogden 1984, sec. 5.2"),
+    "bending plane-stress": ("closed form (ODE)", "the same flexure for a plane-stress strip: a two-point problem "
+                                                  "across the thickness, shot to round-off (closed_forms)"),
+    "arc": ("closed form", "Euler's elastica under an end couple: x/L = sin(phi)/phi, y/L = (1 - cos phi)/phi"),
 }
 NONCONFORMING = ("HB2n-12", "HB3n-12")
 
@@ -320,6 +456,16 @@ def rows(ctx) -> list[Row]:
                            0.0, *SOURCES["elastica"], elastica_tolerance(alpha, ratio),
                            "2 (0.9 + alpha/12 + alpha^2/4) (h/L)^2: shear, stretch, the law's cubic term",
                            val, f"elastica u/L {u:.6f}, v/L {v:.6f}"))
+        elif name.startswith("bench-arc-"):
+            L, h = s["beam"]["length"], s["beam"]["height"]
+            E = 3.0 * mu_of("neo-hookean")
+            phi = s["loads"]["end_moment"] * L / (E * s["beam"]["width"] * h ** 3 / 12.0)
+            x, y = elastica_end_moment(phi)
+            val = math.hypot(1.0 + r["tip"]["ux"] / L - x, r["tip"]["uy"] / L - y) if ok else None
+            out.append(Row(f"arc phi {phi:.3g} L/h {L / h:g}", _solver_of(r), "|r_tip - r_arc| / L", 0.0,
+                           *SOURCES["arc"], 2.0 * arc_departure(phi, L / h) + NEWTON_TOL,
+                           "2 x the exact pure bending's own departure from the arc (its curvature and its mid-line's "
+                           "stretch, plane stress) + 1e-6", val))
         elif name.startswith("bench-timoshenko-"):
             L, h = s["beam"]["length"], s["beam"]["height"]
             ref = timoshenko_reference(L / h)
@@ -327,7 +473,33 @@ def rows(ctx) -> list[Row]:
                            *SOURCES["timoshenko"], 2.0 * (h / L) ** 2,
                            "2 (h/L)^2: plane-stress elasticity departs from the beam by (h/L)^2",
                            -r["tip"]["uy"] if ok else None))
-    return _beam_notes(out)
+    return _beam_notes(out + bending_rows(ctx))
+
+
+def bending_rows(ctx) -> list[Row]:
+    """kappa = (theta(2 L) - theta(L)) / L of each pair of lengths (the end face's rotation:
+    the couple's end zone, the same in both, cancels) against the exact pure bending's."""
+    g = ctx.study.grid
+    recs = {r["scene"]["name"]: r for r in ctx.records()}
+    out = []
+    for form in g["formulations"]:
+        for law, curvatures in g["bending_curvatures"][form].items():
+            if law not in g["laws"]:
+                continue
+            for x in curvatures:
+                kappa = x / STRIP["height"]
+                for solver in [*g["elements"], *g["codes"]]:
+                    n1, n2 = g["bending_lengths"]
+                    pair = [recs.get(bending_scene(g, law, form, x, n, solver)["name"]) for n in (n1, n2)]
+                    val = None
+                    if all(p is not None and p["status"] == "converged" for p in pair):
+                        dL = (n2 - n1) * STRIP["height"]
+                        val = (pair[1]["tip"]["rotation"] - pair[0]["tip"]["rotation"]) / dL
+                    tol, why = bending_tolerance(g, law, form, solver)
+                    out.append(Row(f"bending {law} {form} kappa h {x:g}", solver,
+                                   f"kappa = (theta({n2}h) - theta({n1}h)) / {n2 - n1}h (1/m)", kappa,
+                                   *SOURCES[f"bending {form}"], tol, why, val))
+    return out
 
 
 def _beam_notes(rows: list[Row]) -> list[Row]:

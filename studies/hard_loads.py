@@ -1,6 +1,6 @@
-"""The static hard-load sweep: the cantilever under a tip force up to 200 N and gravity up
-to 1000 g, every law, every built-in element, in plane stress and in (penalised) plane
-strain, ANCF and the continuum side by side.
+"""The static hard-load sweep: the cantilever under a tip force up to 200 N, gravity up to
+1000 g and an end moment up to a full turn, every law, every built-in element, in plane
+stress and in (penalised) plane strain, ANCF and the continuum side by side.
 
 What it shows: every run ends, converged or failed with a reason (each run carries a
 ``wall_time`` bound, so a run that would hang fails with "wall time" instead), and where
@@ -18,6 +18,8 @@ study's own mesh, said so in the table.
 """
 from __future__ import annotations
 
+import math
+
 from contract import paper
 
 from .engine.case import make_case
@@ -29,11 +31,26 @@ G = paper.GRAVITY
 REFERENCE = "hard-loads-reference"
 
 
-def loads(grid: dict) -> list[tuple[str, float, dict]]:
-    """[(label, magnitude, the scene's [loads] table)]: gravity factors, then tip forces."""
+def loads(grid: dict, law: str) -> list[tuple[str, float, dict]]:
+    """[(label, magnitude, the scene's [loads] table)]: gravity factors, tip forces, then end
+    moments given in turns: M = turns 2 pi E I / L (E = 3 mu, the law's small-strain
+    modulus in plane stress), the couple that rolls the inextensible elastica up by that
+    many turns (:mod:`contract.loads`: it stays a couple at any rotation)."""
     out = [(f"{k:g} g", k, {"gravity": [0.0, -G * k]}) for k in grid["gravity_factors"]]
     out += [(f"{f:g} N tip", f, {"tip_force": [0.0, -f]}) for f in grid["tip_forces"]]
+    out += [(f"{n:g} turn", n, {"end_moment": moment(law, n)}) for n in grid.get("end_moment_turns", [])]
     return out
+
+
+def moment(law: str, turns: float) -> float:
+    """turns 2 pi E I / L (N m) on the paper's strip, E = 3 mu of the law's paper constants."""
+    from mechanics.laws import get_law
+
+    c = dict(paper.materials()[law])
+    c.pop("density")
+    b = paper.cantilever_scene(law, "plane-stress")["beam"]
+    EI = 3.0 * get_law(law).shear_modulus(c) * b["width"] * b["height"] ** 3 / 12.0
+    return turns * 2.0 * math.pi * EI / b["length"]
 
 
 def _scene(grid: dict, law: str, form: str, label: str, load: dict, element: str | None,
@@ -63,7 +80,7 @@ def cases(grid: dict, tiny: bool) -> list:
     out = []
     for form in _forms(grid):
         for law in grid["laws"]:
-            for label, _, load in loads(grid):
+            for label, _, load in loads(grid, law):
                 out.append(make_case("hard-loads", "fenicsx", _scene(grid, law, form, label, load, None)))
                 out += [make_case("hard-loads", "ancf", _scene(grid, law, form, label, load, el))
                         for el in grid["elements"]]
@@ -77,11 +94,11 @@ def reference_cases(grid: dict, tiny: bool) -> list:
     from .engine.catalog import load_catalog
 
     out = [make_case(REFERENCE, "fenicsx", _scene(grid, law, form, label, load, None, cells))
-           for form in _forms(grid) for law in grid["laws"] for label, _, load in loads(grid)
+           for form in _forms(grid) for law in grid["laws"] for label, _, load in loads(grid, law)
            for cells in grid["reference_levels"] if list(cells) != list(grid["continuum_cells"])]
     own = load_catalog(tiny=tiny)["hard-loads"].grid
     return out + [make_case(REFERENCE, "ancf", _scene(own, law, form, label, load, el))
-                  for form in _forms(grid) for law in grid["laws"] for label, _, load in loads(grid)
+                  for form in _forms(grid) for law in grid["laws"] for label, _, load in loads(grid, law)
                   for el in grid.get("elements", [])]
 
 
@@ -123,7 +140,7 @@ def rows_of(ctx) -> list[dict]:
     out = []
     for form in _forms(g):
         for law in g["laws"]:
-            for label, size, load in loads(g):
+            for label, size, load in loads(g, law):
                 ref = continuum_reference(g, recs, law, form, label, load)
                 for el in _elements(ctx):
                     r = recs.get(_scene(g, law, form, label, load, el)["name"])
@@ -152,7 +169,9 @@ def report(ctx) -> Section:
     sec = Section(ctx.study.title,
                   f"The cantilever in {' and '.join(f'`{f}`' for f in _forms(g))} (both models the same 2D "
                   f"assumption; plane strain with the paper's penalty in both), under gravity x {g['gravity_factors']} "
-                  f"and a downward end load of {g['tip_forces']} N (a uniform traction on the end face); ANCF "
+                  f"a downward end load of {g['tip_forces']} N (a uniform traction on the end face) and an end "
+                  f"moment of {g.get('end_moment_turns', [])} turns (x 2 pi E I / L, E = 3 mu: a couple on the end "
+                  "face's rotation, the same in both models); ANCF "
                   f"{g['count']} elements of each kind (default quadrature), the continuum {c[0]} x {c[1]} Q2 cells, and "
                   "its Richardson value where the refinement of hard-loads-reference is recorded. Every run is bounded "
                   f"by wall_time = {g['wall_time']:g} s. Distance: |u_ANCF - u_ref| / |u_ref| over (ux, uy); the 1 g "

@@ -69,3 +69,37 @@ def test_the_elastica_is_the_slender_limit_of_a_lock_free_element():
         err[ratio] = math.hypot(rec["tip"]["ux"] / L + u, rec["tip"]["uy"] / L + v)
         assert err[ratio] <= elastica_tolerance(1.0, ratio)
     assert 3.0 < err[50.0] / err[100.0] < 5.0
+
+
+@pytest.mark.dolfinx
+@pytest.mark.parametrize("solver, form, x", [("HB2n-40p", "plane-stress", 0.5), ("dolfinx", "plane-strain", 0.2),
+                                             ("felupe", "plane-stress", 0.2)])
+def test_pure_bending_is_rivlins_flexure_in_both_solvers(solver, form, x):
+    """The tiny subset of the bending benchmark: the curvature from two lengths (8 h and 16 h,
+    the couple's end zone cancelling) within the benchmark's tolerance of the exact flexure
+    (Rivlin's in plane strain, the plane-stress two-point problem otherwise)."""
+    from studies.benchmarks import STUDY, bending_reference, bending_scene, bending_tolerance
+
+    g = dict(STUDY["grid"])
+    theta = [_run(bending_scene(g, "neo-hookean", form, x, n, solver))["tip"]["rotation"] for n in (8, 16)]
+    kappa = (theta[1] - theta[0]) / (8 * 0.005)
+    ref = bending_reference("neo-hookean", form, x)["kappa"]
+    assert ref == pytest.approx(x / 0.005, rel=1e-12)
+    assert abs(kappa / ref - 1) <= bending_tolerance(g, "neo-hookean", form, solver)[0]
+
+
+def test_a_lock_free_element_rolls_up_on_the_exact_bendings_arc():
+    """HB2n-40p, a full roll-up (phi = 2 pi) at L/h = 50: the tip within the arc benchmark's
+    tolerance (twice the exact plane-stress bending's own departure from Euler's arc)."""
+    from studies.benchmarks import NEWTON_TOL, STUDY, arc_departure, arc_scene
+    from studies.closed_forms import elastica_end_moment
+
+    g = dict(STUDY["grid"])
+    g["arc_elements"] = 16
+    phi = 2 * math.pi
+    rec = _run(arc_scene(g, phi, 50.0, "HB2n-40p"))
+    L = rec["scene"]["beam"]["length"]
+    x, y = elastica_end_moment(phi)
+    err = math.hypot(1 + rec["tip"]["ux"] / L - x, rec["tip"]["uy"] / L - y)
+    assert err <= 2 * arc_departure(phi, 50.0) + NEWTON_TOL
+    assert rec["tip"]["rotation"] > 2 * math.pi              # continued past pi, softer than the arc

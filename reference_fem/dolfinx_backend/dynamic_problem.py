@@ -29,7 +29,11 @@ same equations with the inertia term only (the model's ``start_terms``).
 Pin: the model geometry's pin (2D: the node at the centre of the left face, both
 components zero; the face is otherwise free to rotate and deform). A point support in
 a 2D continuum carries its reaction through a logarithmically singular local field;
-the mesh sensitivity this causes is measured in reports/reference_fem.md.
+the mesh sensitivity this causes is measured in reports/reference_fem.md. Hinge: the left
+face kept straight through its fixed centre, u(0, Y) = Y a, eliminated exactly in the
+step's and the start's Newton systems (:class:`~.fem.FaceHinge`; the constraint is linear
+and homogeneous, so the predictor and the updates of the stepper keep it): a support with
+a mesh limit (tests/test_reference_fem_hinge.py).
 """
 from __future__ import annotations
 
@@ -165,7 +169,7 @@ class DynamicProblem:
 
 
 def build_dynamic_problem(scene, settings) -> DynamicProblem:
-    """The scene's beam (pinned or clamped at x = 0) as a continuum in motion."""
+    """The scene's beam (pinned, hinged or clamped at x = 0) as a continuum in motion."""
     from .problem import set_up
 
     b = scene.beam

@@ -39,6 +39,7 @@ import dolfinx.io
 import dolfinx.io.gmshio
 import dolfinx.mesh
 
+from ..couple import Branches
 from .meshing import structured_box, structured_rectangle
 from .krylov import (AL_GAMMA, ITERATIVE_DEFAULTS, KRYLOV_ATOL_FACTOR, KRYLOV_MAX_IT, KRYLOV_RTOL, OPTIONS_PREFIX,
                      ALPreconditioner, rigid_body_modes, set_defaults)
@@ -262,6 +263,101 @@ def fixed_dof_count(bcs, comm=COMM) -> int:
     return int(comm.allreduce(sum(bc.dof_indices()[1] for bc in bcs)))
 
 
+class FaceFirstMoment:
+    """The first moment of a face about its centre line, per unit ``1 / weight``:
+
+        d = weight * int_face (X + u) Y dA = d0 + G^T w,   G = [g_x, g_y],
+        g_i = weight * int_face v_i Y dA (assembled, zero at the Dirichlet dofs),
+
+    d0 = weight * int_face X Y dA ((0, 1) for the symmetric face with weight = 1 / int Y^2 dA);
+    d is linear in the unknowns w (the pressure components of G are zero). The vectors G
+    are the columns of the end moment's rank-2 tangent (:mod:`contract.loads`)."""
+
+    def __init__(self, disc: Discretisation, where: Locator, weight: float, bcs=()):
+        ds = disc.boundary_measure(where)
+        X = ufl.SpatialCoordinate(disc.mesh)
+        v, _ = disc.split(disc.test)
+        c = disc.constant(weight)
+        self.vectors = []
+        for i in range(2):
+            g = dolfinx.fem.petsc.assemble_vector(dolfinx.fem.form(c * v[i] * X[1] * ds))
+            g.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+            dolfinx.fem.petsc.set_bc(g, list(bcs), scale=0.0)
+            self.vectors.append(g)
+        self.d0 = np.array([Functional(c * X[i] * X[1] * ds)() for i in range(2)])
+
+    def __call__(self, x) -> np.ndarray:
+        """d (2,) at the state x (the PETSc vector of W)."""
+        return self.d0 + np.array([g.dot(x) for g in self.vectors])
+
+
+class FaceHinge:
+    """The face kept straight through its fixed centre: u(0, Y) = Y a, eliminated exactly.
+
+    Each displacement component c of the face's nodes is slaved to the face's top node
+    (Y_m = h/2): u_c(Y_i) = (Y_i / Y_m) u_c(Y_m), so the top node's two components carry
+    a = u(Y_m) / Y_m (for Lagrange elements the face's displacement, interpolating nodal
+    values of a linear function, is then Y a along the whole face; the centre node, if
+    any, is fixed). Written as the square matrix T of W's layout, u = T w_r with
+    T = I but for the slave rows (T_sm = Y_s / Y_m, T_ss = 1: a dummy unknown w_s, held
+    at zero by an identity row): the reduced tangent T^T K T (PETSc's MatPtAP, the
+    product's pattern reused) with the slave rows and columns replaced by the identity,
+    the reduced residual T^T R zero at the slaves, and the increment T dw_r. The pressure
+    dofs of a mixed model are rows of the identity. Serial (the 2D meshes are)."""
+
+    def __init__(self, disc: Discretisation, where: Locator):
+        if disc.comm.size > 1:
+            raise ValueError("the hinge's elimination is serial (2D meshes only)")
+        n = len(disc.w.x.array)
+        fdim = disc.mesh.topology.dim - 1
+        facets = dolfinx.mesh.locate_entities_boundary(disc.mesh, fdim, where)
+        rows = [[(i, 1.0)] for i in range(n)]
+        slaves = []
+        scale = max(1e-300, float(np.ptp(disc.mesh.geometry.x[:, 1])))
+        for c in range(disc.mesh.geometry.dim):
+            sub = disc.Wu.sub(c)
+            V, _ = sub.collapse()
+            dofs, vdofs = dolfinx.fem.locate_dofs_topological((sub, V), fdim, facets)
+            y = V.tabulate_dof_coordinates()[vdofs, 1]
+            m = int(np.argmax(y))
+            if not y[m] > 0:
+                raise ValueError("the hinge's face has no node above its centre")
+            for i, yi in zip(dofs, y):
+                if i == dofs[m]:
+                    continue
+                slaves.append(int(i))
+                if abs(yi) > 1e-12 * scale:
+                    rows[i].append((int(dofs[m]), yi / y[m]))
+        indptr = np.cumsum([0] + [len(r) for r in rows])
+        cols = np.array([j for r in rows for j, _ in r], dtype=PETSc.IntType)
+        vals = np.array([v for r in rows for _, v in r])
+        self.T = PETSc.Mat().createAIJ(size=(n, n), csr=(indptr.astype(PETSc.IntType), cols, vals), comm=COMM)
+        self.T.assemble()
+        self.slaves = np.array(sorted(slaves), dtype=PETSc.IntType)
+        self.n_eliminated = len(self.slaves)     # the face's displacement dofs but the two of a
+        self._Ar = None
+
+    def matrix(self, A):
+        """T^T A T with identity rows and columns at the slaves."""
+        if self._Ar is None:
+            self._Ar = A.PtAP(self.T)
+            self._Ar.setOption(PETSc.Mat.Option.KEEP_NONZERO_PATTERN, True)
+        else:
+            A.PtAP(self.T, result=self._Ar)
+        self._Ar.zeroRowsColumns(self.slaves, 1.0)
+        return self._Ar
+
+    def restrict(self, b, out) -> None:
+        """out = T^T b, zero at the slaves."""
+        self.T.multTranspose(b, out)
+        out.setValues(self.slaves, np.zeros(len(self.slaves)))
+        out.assemble()
+
+    def expand(self, xr, out) -> None:
+        """out = T xr."""
+        self.T.mult(xr, out)
+
+
 def _prolongation(disc: Discretisation, u_map: np.ndarray, bc_dofs: np.ndarray):
     """The interpolation of the vector degree-1 Lagrange space of the mesh into the
     displacement space, as a matrix whose rows are the displacement block's (the owned
@@ -312,6 +408,17 @@ class NonlinearSystem:
     """R(w) = 0 with homogeneous Dirichlet conditions; Newton increments by LU (MUMPS)
     or, with ``linear_solver = "iterative"``, by a Krylov method (:meth:`_iterative`).
 
+    ``low_rank``: a term of rank k outside the forms (the end moment's couple), an object
+    with ``vectors`` (k PETSc vectors U, zero at the Dirichlet dofs) and
+    ``coefficients(x) -> (c (k,), C (k, k))`` at the state x: R += U c, K += U C U^T. The
+    increment solves (K + U C U^T) dw = R exactly by Sherman-Morrison-Woodbury with the
+    one factorisation of K: y = K^-1 R, Z = K^-1 U (k more solves),
+    dw = y - Z C (I + U^T Z C)^-1 U^T y. ``reduction``: an exact elimination of linear
+    constraints (the hinge, :class:`FaceHinge`): the residual T^T R, the tangent
+    T^T K T, the increment T dw_r (direct solver only). ``save`` and ``restore`` keep the
+    low-rank term's path state (``branch``, the end moment's continued rotation) with the
+    state.
+
     ``unknown``: the function of W solved for (default ``disc.w``). ``pressure_scale``:
     the iterative solver's Schur-complement approximation -pressure_scale M (M the mass
     matrix of the scaled pressure; the modulus mu of p = mu phat), or None for PETSc's
@@ -319,9 +426,14 @@ class NonlinearSystem:
     matrix)."""
 
     def __init__(self, disc: Discretisation, residual, bcs, unknown=None, linear_solver: str = "direct",
-                 pressure_scale: float | None = None):
+                 pressure_scale: float | None = None, low_rank=None, reduction: FaceHinge | None = None):
         if linear_solver not in LINEAR_SOLVERS:
             raise ValueError(f"linear_solver: {linear_solver!r}; allowed: {LINEAR_SOLVERS}")
+        if reduction is not None and linear_solver != "direct":
+            raise ValueError("a constraint reduction (the hinge) needs the direct linear solver")
+        self.low_rank, self.reduction = low_rank, reduction
+        self._C = None
+        self._branches = Branches(low_rank)   # the low-rank term's path state beside the saved states
         self.disc = disc
         self.w = disc.w if unknown is None else unknown
         self.bcs = list(bcs)
@@ -334,6 +446,11 @@ class NonlinearSystem:
         self.A = dolfinx.fem.petsc.create_matrix(self.K)
         self.dx = self.b.duplicate()
         self.krylov_iterations: list[int] = []   # per Newton update (iterative solver)
+        if reduction is not None:
+            self.b_r, self.dx_r = self.b.duplicate(), self.b.duplicate()
+        if low_rank is not None:
+            self._U = [self._restricted(u) for u in low_rank.vectors]
+            self._Z = [u.duplicate() for u in self._U]
         self._rhs_max = 0.0
         if linear_solver == "iterative":
             self._split_sets()
@@ -503,40 +620,109 @@ class NonlinearSystem:
     def x(self):
         return self.w.vector
 
+    def _restricted(self, v):
+        """T^T v (a new vector) with a reduction, else v itself."""
+        if self.reduction is None:
+            return v
+        out = v.duplicate()
+        self.reduction.restrict(v, out)
+        return out
+
     def residual_norm(self) -> float:
-        """Assemble R at the current state (zero rows at fixed dofs); its 2-norm."""
+        """Assemble R at the current state (zero rows at fixed dofs; with a low-rank term
+        its U c; with a reduction T^T R); its 2-norm."""
         with self.b.localForm() as loc:
             loc.set(0.0)
         dolfinx.fem.petsc.assemble_vector(self.b, self.R)
         dolfinx.fem.petsc.apply_lifting(self.b, [self.K], bcs=[self.bcs], x0=[self.x], scale=-1.0)
         self.b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         dolfinx.fem.petsc.set_bc(self.b, self.bcs, self.x, -1.0)
+        if self.low_rank is not None:
+            c, self._C = self.low_rank.coefficients(self.x)
+            for ck, u in zip(c, self.low_rank.vectors):
+                self.b.axpy(float(ck), u)
+        if self.reduction is not None:
+            self.reduction.restrict(self.b, self.b_r)
+            return float(self.b_r.norm())
         return float(self.b.norm())
 
-    def newton_update(self) -> float:
-        """Solve K dw = R (R from the last :meth:`residual_norm`), w -= dw; ||dw||."""
+    def _assemble_tangent(self):
+        """K at the current state (identity rows at the fixed dofs), reduced to T^T K T
+        with a reduction: the operator of the linear solves."""
         self.A.zeroEntries()
         dolfinx.fem.petsc.assemble_matrix(self.A, self.K, bcs=self.bcs)
         self.A.assemble()
-        self.ksp.setOperators(self.A)
+        op = self.A if self.reduction is None else self.reduction.matrix(self.A)
+        self.ksp.setOperators(op)
         if self.linear_solver == "iterative":
             if self._rhs_max == 0.0:
                 self._rhs_max = float(self.b.norm())
             self._configure()
-            self.dx.set(0.0)
-        self.ksp.solve(self.b, self.dx)
-        reason = self.ksp.getConvergedReason()
+
+    def _solve_one(self, rhs, out) -> int:
+        """out = K^-1 rhs by the current operator; its Krylov iterations (0 for LU)."""
         if self.linear_solver == "iterative":
-            self.krylov_iterations.append(self.ksp.getIterationNumber())
+            out.set(0.0)
+        self.ksp.solve(rhs, out)
+        reason = self.ksp.getConvergedReason()
         if reason < 0:
             # a failed factorisation (or Krylov solve) sticks to the PC (every later solve
             # fails at once, however small the next load increment): start from a fresh one
             self.ksp.destroy()
             self.ksp = self._new_ksp()
             raise ArithmeticError(f"linear solve failed (PETSc reason {reason})")
+        return self.ksp.getIterationNumber() if self.linear_solver == "iterative" else 0
+
+    def _solve(self, rhs, out) -> None:
+        """out = (K + U C U^T)^-1 rhs: Sherman-Morrison-Woodbury on the factorisation of K
+        (k + 1 solves), or K^-1 rhs without a low-rank term."""
+        its = self._solve_one(rhs, out)
+        if self.low_rank is not None:
+            C = np.asarray(self._C, float)
+            for u, z in zip(self._U, self._Z):
+                its += self._solve_one(u, z)
+            k = len(self._U)
+            UtZ = np.array([[u.dot(z) for z in self._Z] for u in self._U])
+            Uty = np.array([u.dot(out) for u in self._U])
+            coef = C @ np.linalg.solve(np.eye(k) + UtZ @ C, Uty)
+            for cj, z in zip(coef, self._Z):
+                out.axpy(-float(cj), z)
+        if self.linear_solver == "iterative":
+            self.krylov_iterations.append(its)
+
+    def newton_update(self) -> float:
+        """Solve K dw = R (R from the last :meth:`residual_norm`), w -= dw; ||dw||."""
+        self._assemble_tangent()
+        if self.reduction is None:
+            self._solve(self.b, self.dx)
+        else:
+            self._solve(self.b_r, self.dx_r)
+            self.reduction.expand(self.dx_r, self.dx)
         self.x.axpy(-1.0, self.dx)
         self.x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
         return float(self.dx.norm())
+
+    def tangent_solve(self, rhs: np.ndarray) -> np.ndarray:
+        """K_total^-1 rhs at the current state (an array of W, reduced by T^T with a
+        reduction, the answer expanded by T): the Newton increment's linear map, for
+        checking the tangent against differences of the residual. Needs a
+        :meth:`residual_norm` at the current state first (the low-rank coefficients)."""
+        b = self.b.duplicate()
+        b.array[:] = rhs
+        self._assemble_tangent()
+        out = self.b.duplicate()
+        if self.reduction is None:
+            self._solve(b, out)
+            return out.array.copy()
+        br, xr = b.duplicate(), b.duplicate()
+        self.reduction.restrict(b, br)
+        self._solve(br, xr)
+        self.reduction.expand(xr, out)
+        return out.array.copy()
+
+    def residual(self) -> np.ndarray:
+        """The last assembled residual (an array of W; with a reduction T^T R)."""
+        return (self.b if self.reduction is None else self.b_r).array.copy()
 
     def state_norm(self) -> float:
         return float(self.x.norm())
@@ -546,13 +732,17 @@ class NonlinearSystem:
         return self.dx.getArray(readonly=True)
 
     def save(self) -> np.ndarray:
-        return self.w.x.array.copy()
+        saved = self.w.x.array.copy()
+        self._branches.save(saved)
+        return saved
 
     def restore(self, saved: np.ndarray) -> None:
         self.w.x.array[:] = saved
+        self._branches.restore(saved)
 
     def reset(self) -> None:
         self.w.x.array[:] = 0.0
+        self._branches.reset()
 
 
 class Functional:

@@ -12,11 +12,25 @@ nonlinear system of the total potential
 the uniform dead traction tbar = F_tip / (h w) on the end face x = L (its resultant
 over the full width is F_tip). Constants enter as dolfinx Constants.
 
+The end moment M (``loads.end_moment``, static scenes) adds the couple's potential
+-t M_p theta(d) (:class:`reference_fem.couple.EndMoment`; M_p = M / width_factor, per
+unit width in 2D): d the end face's first moment (:class:`~.fem.FaceFirstMoment`,
+linear in the unknowns, d = d0 + G^T w), theta = atan2(-d_x, d_y). Its force
+-t M_p G dtheta/dd enters the residual and its rank-2 tangent -t M_p G H G^T enters the
+Newton solve exactly, by Sherman-Morrison-Woodbury on the factorisation of the forms'
+tangent (two extra solves per iteration; :class:`~.fem.NonlinearSystem`): the couple is
+not a form, so the assembled matrix keeps its sparsity pattern. 2D and 3D (the same
+forms; in 3D d is in-plane, the face's first moment weighted by 1 / (h^3 w / 12)).
+
 Supports: ``clamp`` fixes the whole left face x = 0 (every component, any
 ``supports.clamp``: a continuum has no separate slopes); ``pin`` fixes the model
 geometry's pin (2D: the node at the centre of the left face; 3D: the line across the
-width at mid-height; both need an even number of cells across the height). 3D with
-``side_faces = "plane-strain"`` adds u_z = 0 on both side faces.
+width at mid-height; both need an even number of cells across the height); ``slide``
+fixes u_x on the face and u_y at its centre; ``hinge`` (2D) keeps the face straight
+through its fixed centre, u(0, Y) = Y a, by exact elimination
+(:class:`~.fem.FaceHinge`: u = T w_r, the tangent T^T K T by MatPtAP, the residual
+T^T R; any number of cells across). 3D with ``side_faces = "plane-strain"`` adds
+u_z = 0 on both side faces.
 """
 from __future__ import annotations
 
@@ -25,12 +39,14 @@ from dataclasses import dataclass, field
 import numpy as np
 import ufl
 
-from contract.loads import end_traction
+from contract.errors import SceneError
+from contract.loads import end_traction, face_moment_weight
 from contract.scene import Scene
 from mechanics.laws import Law, get_law
 
 from . import fem as backend
 from .models import ContinuumModel, get_model
+from ..couple import EndMoment
 from ..geometry import check_support
 from ..settings import FemSettings
 
@@ -49,6 +65,9 @@ class Setup:
     width: float = 1.0                    # factor from the problem's energies to the full beam's
     effects: list = field(default_factory=list)
     linear_solver: str = "direct"         # of the Newton increments (FemSettings.linear_solver)
+    moment: float | None = None           # N m (per unit width in 2D): the end moment M_p
+    moment_weight: float = 1.0            # 1 / int Y^2 dA over the end face (1/m^3 in 2D, 1/m^4 in 3D)
+    hinge: backend.FaceHinge | None = None   # the hinge's elimination (supports.left = "hinge")
 
     def __post_init__(self):
         d = self.disc
@@ -62,7 +81,9 @@ class Setup:
 
     @property
     def n_fixed(self) -> int:
-        return backend.fixed_dof_count(self.bcs, self.disc.comm)
+        """Unknowns the supports remove: the Dirichlet dofs, and the hinge's eliminated ones."""
+        n = backend.fixed_dof_count(self.bcs, self.disc.comm)
+        return n + (self.hinge.n_eliminated if self.hinge is not None else 0)
 
     def gradient(self, u):
         return ufl.Identity(self.model.geometry.gdim) + ufl.grad(u)
@@ -98,7 +119,8 @@ class Setup:
 
 
 def supports(disc: backend.Discretisation, scene: Scene, settings: FemSettings, model: ContinuumModel):
-    """The supports of :data:`contract.loads.SUPPORTS` on this discretisation."""
+    """The Dirichlet conditions of the supports of :data:`contract.loads.SUPPORTS` on this
+    discretisation (the hinge has none: :func:`hinge`)."""
     g, b, left = model.geometry, scene.beam, scene.supports.left
     check_support(left, g, settings)
     sides = disc.fix(g.sides(b), components=(2,)) if settings.side_faces == "plane-strain" else []
@@ -106,7 +128,28 @@ def supports(disc: backend.Discretisation, scene: Scene, settings: FemSettings, 
         return disc.fix(g.at_left(b), components=range(g.gdim)) + sides
     if left == "slide":
         return disc.fix(g.at_left(b), components=(0,)) + disc.fix(g.pin(b), components=(1,), on="points") + sides
+    if left == "hinge":
+        return sides
     return disc.fix(g.pin(b), components=range(g.gdim), on="points") + sides
+
+
+def hinge(disc: backend.Discretisation, scene: Scene, settings: FemSettings, model: ContinuumModel):
+    """The hinge's exact elimination (:class:`~.fem.FaceHinge`) for ``supports.left =
+    "hinge"``, else None; the direct solver only (a SceneError naming fem.linear_solver)."""
+    if scene.supports.left != "hinge":
+        return None
+    if settings.linear_solver != "direct":
+        raise SceneError("fem.linear_solver: \"iterative\" with supports.left = \"hinge\" (the hinge is an "
+                         "elimination of the face's unknowns, solved by LU); allowed: 'direct'")
+    return backend.FaceHinge(disc, model.geometry.at_left(scene.beam))
+
+
+def end_moment(scene: Scene, geometry) -> tuple[float | None, float]:
+    """(M_p, weight): the scene's end moment per unit width in 2D (M / width_factor, N m)
+    and 1 / int Y^2 dA of the end face (12 / h^3 per unit width; / w in 3D)."""
+    b, M = scene.beam, scene.loads.end_moment
+    weight = face_moment_weight(b.height) / (b.width if geometry.gdim == 3 else 1.0)
+    return (None if M is None else M / geometry.width_factor(b)), weight
 
 
 def set_up(scene: Scene, settings: FemSettings) -> Setup:
@@ -117,10 +160,12 @@ def set_up(scene: Scene, settings: FemSettings) -> Setup:
                                   settings.quadrature_degree)
     body = None if loads.gravity is None else m.density * g.vector(loads.gravity)
     traction = None if loads.tip_force is None else g.vector(end_traction(loads.tip_force, b.height, b.width))
-    effects = ["elastic", *model.effects] + [k for k in ("gravity", "tip_force") if getattr(loads, k) is not None]
+    effects = ["elastic", *model.effects] + [k for k in ("gravity", "tip_force", "end_moment")
+                                             if getattr(loads, k) is not None]
+    moment, weight = end_moment(scene, g)
     return Setup(model, get_law(m.law), disc, dict(m.constants), supports(disc, scene, settings, model),
                  body, traction, g.at_right(b), m.penalty, g.width_factor(b), effects,
-                 settings.linear_solver)
+                 settings.linear_solver, moment, weight, hinge(disc, scene, settings, model))
 
 
 @dataclass
@@ -129,6 +174,14 @@ class Problem:
     setup: Setup
     system: backend.NonlinearSystem
     load: object                 # the load parameter t (a dolfinx Constant)
+    couple: EndMoment | None = None   # the end moment's term
+
+    end_moment_method = ("DOLFINx: G assembled over the end facets; the rank-2 tangent by "
+                         "Sherman-Morrison-Woodbury on the forms' LU (two extra solves per iteration)")
+
+    def rotation(self) -> float | None:
+        """theta (rad) of the end face, continued along the load path (with an end moment)."""
+        return None if self.couple is None else self.couple.rotation(self.system.x)
 
     @property
     def n_free(self) -> int:
@@ -170,12 +223,19 @@ def static_problem(s: Setup) -> Problem:
     if work is not None:
         Pi = Pi - t * work
     residual = ufl.derivative(Pi, d.w, d.test)
-    return Problem(s, system(s, residual), t)
+    couple = None
+    if s.moment is not None:
+        couple = EndMoment(backend.FaceFirstMoment(d, s.traction_where, s.moment_weight, s.bcs), s.moment,
+                           lambda: float(t.value))
+    return Problem(s, system(s, residual, low_rank=couple), t, couple)
 
 
-def system(s: Setup, residual, unknown=None, pressure_scale: str | None = "mu") -> backend.NonlinearSystem:
-    """The nonlinear system of ``residual`` with the set-up's supports and linear solver;
-    the iterative solver approximates the Schur complement by -mu M (``pressure_scale =
-    "mu"``) or by PETSc's selfp (None)."""
+def system(s: Setup, residual, unknown=None, pressure_scale: str | None = "mu",
+           low_rank=None) -> backend.NonlinearSystem:
+    """The nonlinear system of ``residual`` with the set-up's supports (the hinge's
+    elimination included) and linear solver; the iterative solver approximates the Schur
+    complement by -mu M (``pressure_scale = "mu"``) or by PETSc's selfp (None).
+    ``low_rank``: the end moment's term (:class:`reference_fem.couple.EndMoment`)."""
     return backend.NonlinearSystem(s.disc, residual, s.bcs, unknown=unknown, linear_solver=s.linear_solver,
-                                   pressure_scale=s.mu if pressure_scale == "mu" else None)
+                                   pressure_scale=s.mu if pressure_scale == "mu" else None,
+                                   low_rank=low_rank, reduction=s.hinge)

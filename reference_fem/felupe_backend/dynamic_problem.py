@@ -22,6 +22,10 @@ in reverse Cuthill-McKee order (:func:`.problem.solve_sparse`).
 The Newton scale and test are the DOLFINx backend's (||R|| over the free rows against
 ||f_ext|| + ||M a_n||).
 
+Supports: the fixed dofs removed, or the hinge's exact elimination u = T w_r
+(:class:`.problem.Reduction`; the same T for the step and for the initial acceleration,
+the constraint being linear and homogeneous).
+
 Initial acceleration at rest at u0 (the DOLFINx backend's ``start_terms``): plane stress
 M a0 = f_ext - f_int(u0); mixed plane strain the saddle point [[M, k/mu K_up], [k/mu K_pu, 0]]
 with the multiplier scaled by k = rho hc^2 (then phat0 = k lam0 / mu); penalty the step's
@@ -68,7 +72,7 @@ class StepSystem(NewtonSystem):
     the solve is shared by every step."""
 
     def __init__(self, problem: "DynamicProblem", residual, tangent):
-        super().__init__(problem.n_dof, problem.fixed, problem._order)
+        super().__init__(problem.n_dof, problem.fixed, problem._order, problem.setup.reduction)
         self.residual, self.tangent = residual, tangent
 
 
@@ -138,7 +142,7 @@ class DynamicProblem:
     def initial_acceleration(self, u0: np.ndarray, rtol: float, max_iterations: int) -> np.ndarray:
         """a0 at rest at u0 (pressure components: the multiplier phat0); raises StepFailure."""
         f = self.setup.f_ext
-        nu, free = self.nu, self.free
+        nu = self.nu
         lam = None if self.p_field is None else np.zeros(self.n_dof - nu)
         if self.p_field is None:
             A = self.M
@@ -155,11 +159,11 @@ class DynamicProblem:
             else:
                 scale = 1.0
                 A = bmat([[self.M, Kup], [None, Kpp]])
-        x = solve_sparse(csr_matrix(A)[free][:, free], b[free], {})
+        red = self.setup.reduction
+        x = solve_sparse(red.matrix(csr_matrix(A)), red.vector(b), {})
         if not np.all(np.isfinite(x)):
             raise StepFailure("initial acceleration: singular or failed linear solve (SuperLU)", 1)
-        w0 = np.zeros(self.n_dof)
-        w0[free] = x
+        w0 = red.expand(x)
         w0[self.p_mask] *= scale
         return w0
 
@@ -261,7 +265,7 @@ class DynamicProblem:
 
 
 def build_dynamic_problem(scene, settings) -> DynamicProblem:
-    """The scene's beam (pinned or clamped at x = 0) as a continuum in motion."""
+    """The scene's beam (pinned, hinged or clamped at x = 0) as a continuum in motion."""
     b = scene.beam
     return DynamicProblem(set_up(scene, settings), settings.model, settings.incompressibility,
                           scene.material.density, b.height / settings.cells_height, b.height)

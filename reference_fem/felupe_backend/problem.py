@@ -19,7 +19,16 @@ Dead loads as consistent nodal forces: gravity int N rho g dV (FElupe's shape fu
 and quadrature), the tip traction int N tbar dA on the end face (composite Simpson
 weights, exact for the face's quadratic shape functions). Supports as in the DOLFINx
 backend: clamp = every node of the face x = 0; pin = the nodes at (0, 0) (3D: the line
-(0, 0, z)); ``side_faces = "plane-strain"`` fixes u_z on z = +-w/2.
+(0, 0, z)); ``side_faces = "plane-strain"`` fixes u_z on z = +-w/2; ``hinge`` (2D): the
+face's nodal displacements u = Y a eliminated exactly for the free vector a
+(:class:`Reduction`: u = T w_r, the tangent T^T K T and the residual T^T R by
+scipy.sparse; any number of cells across).
+
+The end moment (``loads.end_moment``, static): the couple -t M theta(d) of
+:mod:`reference_fem.couple`, with the end face's first moment d = d0 + G^T w from the same
+Simpson weights (:class:`FirstMoment`: exact, the face's shape functions times Y are
+cubic); its rank-2 tangent G C G^T is added to the sparse tangent as the dense block of
+the end face's unknowns (exact; the face has 2 (2 n_y + 1) displacement unknowns in 2D).
 """
 from __future__ import annotations
 
@@ -29,10 +38,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from contract.errors import SceneError
-from contract.loads import end_traction
+from contract.loads import end_traction, face_moment_weight
 from contract.scene import Scene
 from mechanics.laws import get_law
 
+from ..couple import Branches, EndMoment
 from ..geometry import check_support
 from ..settings import FemSettings
 from .laws import strain_energy
@@ -130,6 +140,13 @@ class Setup:
     mu: float
     loads: dict = None        # {"gravity" | "tip_force": its nodal forces}, f_ext their sum
     width: float = 1.0        # factor from the problem's energies to the full beam's
+    reduction: "Reduction" = None        # the unknowns of the solve (None: the free dofs)
+    moment: float | None = None          # the end moment M_p (N m; per unit width in 2D)
+    first_moment: "FirstMoment" = None   # the end face's first moment d(w)
+
+    def __post_init__(self):
+        if self.reduction is None:
+            self.reduction = Reduction(self.fixed)
 
     @property
     def ndof(self) -> int:
@@ -137,7 +154,7 @@ class Setup:
 
     @property
     def n_free(self) -> int:
-        return int(self.ndof - self.fixed.sum())
+        return int(self.ndof - self.fixed.sum() - self.reduction.n_eliminated)
 
     def point_displacement(self, point) -> np.ndarray:
         """The displacement of the mesh node at ``point`` (reference coordinates)."""
@@ -147,6 +164,76 @@ class Setup:
         if d[k] > 1e-9 * np.ptp(pts[:, 0]):
             raise SceneError(f"fem: no mesh node at {tuple(point)} (tip); use an even fem.cells_height")
         return self.fields[0].values[k].copy()
+
+
+def _face_weights(pts: np.ndarray, face: np.ndarray, gdim: int) -> np.ndarray:
+    """int N_a dA over a face x = const of the structured Q2 mesh, per face node (the
+    composite Simpson weights of each direction across, multiplied)."""
+    w = np.ones(len(face))
+    for axis in range(1, gdim):
+        c = np.unique(pts[face, axis])
+        w *= _simpson(c)[np.searchsorted(c, pts[face, axis])]
+    return w
+
+
+class FirstMoment:
+    """The end face's first moment d = weight int_face (X + u) Y dA = d0 + G^T w: with the
+    face's Simpson weights w_a (exact: N_a Y is cubic along each cell edge),
+    g_i[(a, i)] = weight w_a Y_a and d0 = weight sum_a w_a X_a Y_a. ``G`` (n, 2) sparse."""
+
+    def __init__(self, pts: np.ndarray, face: np.ndarray, gdim: int, n: int, weight: float):
+        from scipy.sparse import csr_matrix
+
+        wa = weight * _face_weights(pts, face, gdim) * pts[face, 1]
+        rows = np.concatenate([face * gdim + i for i in range(2)])
+        cols = np.repeat([0, 1], len(face))
+        self.G = csr_matrix((np.concatenate([wa, wa]), (rows, cols)), shape=(n, 2))
+        self.vectors = [self.G[:, i].toarray().ravel() for i in range(2)]
+        self.d0 = np.array([wa @ pts[face, i] for i in range(2)])
+
+    def __call__(self, w: np.ndarray) -> np.ndarray:
+        return self.d0 + self.G.T @ w
+
+
+class Reduction:
+    """The unknowns of a Newton solve: w = T w_r. Without a hinge T selects the free dofs
+    (the ``fixed`` ones removed: K[free][:, free], R[free], as before); with the hinge
+    (``hinge`` = the left face's nodes and their Y), each face node's displacement is
+    Y a for the two unknowns a = (a_x, a_y), so T maps (free dofs off the face, a) to w:
+    the tangent T^T K T, the residual T^T R, the increment T dw_r (scipy.sparse), exact.
+    The pressure dofs are identity columns."""
+
+    def __init__(self, fixed: np.ndarray, hinge: tuple[np.ndarray, np.ndarray, int] | None = None):
+        from scipy.sparse import csr_matrix
+
+        self.fixed, self.free = fixed, ~fixed
+        self.T = None
+        self.n_eliminated = 0
+        if hinge is None:
+            return
+        nodes, Y, gdim = hinge
+        face = np.zeros(fixed.size, bool)
+        face_dofs = [nodes * gdim + c for c in range(gdim)]
+        face[np.concatenate(face_dofs)] = True
+        keep = np.flatnonzero(self.free & ~face)
+        rows = np.concatenate([keep] + face_dofs)
+        cols = np.concatenate([np.arange(len(keep))] + [np.full(len(nodes), len(keep) + c) for c in range(gdim)])
+        vals = np.concatenate([np.ones(len(keep))] + [Y] * gdim)
+        self.T = csr_matrix((vals, (rows, cols)), shape=(fixed.size, len(keep) + gdim))
+        self.n_eliminated = int(face.sum()) - gdim
+
+    def matrix(self, K):
+        return K[self.free][:, self.free] if self.T is None else (self.T.T @ K @ self.T).tocsr()
+
+    def vector(self, r: np.ndarray) -> np.ndarray:
+        return r[self.free] if self.T is None else self.T.T @ r
+
+    def expand(self, x: np.ndarray) -> np.ndarray:
+        if self.T is not None:
+            return self.T @ x
+        out = np.zeros(self.fixed.size)
+        out[self.free] = x
+        return out
 
 
 def set_up(scene: Scene, settings: FemSettings) -> Setup:
@@ -182,11 +269,15 @@ def set_up(scene: Scene, settings: FemSettings) -> Setup:
     fixed_u = fixed[:nu].reshape(-1, gdim)
     left = scene.supports.left
     check_support(left, g, settings)
+    hinge = None
     if left == "clamp":
         fixed_u[g.at_left(b)(pts.T)] = True
     elif left == "slide":
         fixed_u[g.at_left(b)(pts.T), 0] = True
         fixed_u[g.pin(b)(pts.T), 1] = True
+    elif left == "hinge":
+        nodes = np.flatnonzero(g.at_left(b)(pts.T))
+        hinge = (nodes, pts[nodes, 1], gdim)
     else:
         fixed_u[g.pin(b)(pts.T)] = True
     if gdim == 3 and settings.side_faces == "plane-strain":
@@ -206,16 +297,19 @@ def set_up(scene: Scene, settings: FemSettings) -> Setup:
         f = np.zeros((quad.npoints, gdim))
         tbar = g.vector(end_traction(loads.tip_force, b.height, b.width))
         end = np.flatnonzero(g.at_right(b)(pts.T))
-        w = np.ones(len(end))
-        for axis in range(1, gdim):
-            c = np.unique(pts[end, axis])
-            w *= _simpson(c)[np.searchsorted(c, pts[end, axis])]
-        f[end] += w[:, None] * tbar
+        f[end] += _face_weights(pts, end, gdim)[:, None] * tbar
         forces["tip_force"] = f
     forces = {k: np.concatenate([f.ravel(), np.zeros(fixed.size - nu)]) for k, f in forces.items()}
     f_ext = sum(forces.values(), np.zeros(fixed.size))
     effects = ["elastic"] + (["penalty"] if alpha is not None else []) + list(forces)
-    return Setup(settings, quad, container, material, fixed, f_ext, effects, mu, forces, g.width_factor(b))
+    moment = first_moment = None
+    if loads.end_moment is not None:
+        moment = loads.end_moment / g.width_factor(b)
+        weight = face_moment_weight(b.height) / (b.width if gdim == 3 else 1.0)
+        first_moment = FirstMoment(pts, np.flatnonzero(g.at_right(b)(pts.T)), gdim, fixed.size, weight)
+        effects.append("end_moment")
+    return Setup(settings, quad, container, material, fixed, f_ext, effects, mu, forces, g.width_factor(b),
+                 Reduction(fixed, hinge), moment, first_moment)
 
 
 def solve_sparse(K, b: np.ndarray, cache: dict) -> np.ndarray:
@@ -241,12 +335,17 @@ def solve_sparse(K, b: np.ndarray, cache: dict) -> np.ndarray:
 class NewtonSystem:
     """A Newton system for :func:`mechanics.newton.newton` (and the static load stepping):
     the unknowns w (all of them, the fixed ones kept as set), ``residual(w)`` and
-    ``tangent(w)`` of a subclass; the fixed rows removed, the increment solved by
-    :func:`solve_sparse`; the state saved, restored and reset for the steppers."""
+    ``tangent(w)`` of a subclass; reduced to the solve's unknowns by ``reduction``
+    (:class:`Reduction`: the fixed rows removed, or the hinge's T^T K T), the increment
+    solved by :func:`solve_sparse`; the state saved, restored and reset for the steppers
+    (with the end moment's branch, ``couple``)."""
 
-    def __init__(self, n: int, fixed: np.ndarray, order: dict | None = None):
+    def __init__(self, n: int, fixed: np.ndarray, order: dict | None = None,
+                 reduction: Reduction | None = None, couple: EndMoment | None = None):
         self.w = np.zeros(n)
         self.fixed, self.free = fixed, ~fixed
+        self.reduction = reduction if reduction is not None else Reduction(fixed)
+        self._branches = Branches(couple)
         self._R = None
         self._dw = np.zeros(n)
         self._order = {} if order is None else order     # the solve's ordering, kept across systems
@@ -261,17 +360,18 @@ class NewtonSystem:
         r = self.residual(self.w)
         r[self.fixed] = 0.0
         self._R = r
+        if self.reduction.T is not None:
+            return float(np.linalg.norm(self.reduction.vector(r)))
         return float(np.linalg.norm(r))
 
     def newton_update(self) -> float:
-        free = self.free
-        dw = solve_sparse(self.tangent(self.w)[free][:, free], self._R[free], self._order)
+        red = self.reduction
+        dw = solve_sparse(red.matrix(self.tangent(self.w)), red.vector(self._R), self._order)
         if not np.all(np.isfinite(dw)):
             raise ArithmeticError("singular or failed linear solve (SuperLU)")
-        self._dw[:] = 0.0
-        self._dw[free] = dw
+        self._dw[:] = red.expand(dw)
         self.w -= self._dw
-        return float(np.linalg.norm(dw))
+        return float(np.linalg.norm(self._dw))
 
     def last_increment(self) -> np.ndarray:
         return self._dw
@@ -280,22 +380,29 @@ class NewtonSystem:
         return float(np.linalg.norm(self.w))
 
     def save(self) -> np.ndarray:
-        return self.w.copy()
+        saved = self.w.copy()
+        self._branches.save(saved)
+        return saved
 
     def restore(self, saved: np.ndarray) -> None:
         self.w[:] = saved
+        self._branches.restore(saved)
 
     def reset(self) -> None:
         self.w[:] = 0.0
+        self._branches.reset()
 
 
 class System(NewtonSystem):
     """The Newton system of the static problem for :func:`reference_fem.statics.solve_static`:
-    R(w) = f_int(w) - t f_ext on the free dofs; K = dR/dw (FElupe's assembly of the
-    material's gradient and hessian)."""
+    R(w) = f_int(w) - t f_ext (+ G c, the end moment) on the free dofs; K = dR/dw (FElupe's
+    assembly of the material's gradient and hessian, + G C G^T: the end face's dense block)."""
 
     def __init__(self, setup: Setup):
-        super().__init__(setup.ndof, setup.fixed)
+        self.couple = None
+        if setup.moment is not None:
+            self.couple = EndMoment(setup.first_moment, setup.moment, lambda: self.t)
+        super().__init__(setup.ndof, setup.fixed, reduction=setup.reduction, couple=self.couple)
         self.s = setup
         self.t = 0.0
         self._offsets = np.cumsum([0] + [f.values.size for f in setup.fields.fields])
@@ -320,10 +427,21 @@ class System(NewtonSystem):
         return np.asarray(fe.IntegralForm(fun=fun, v=fields, dV=dV).assemble().todense()).ravel()
 
     def residual(self, w: np.ndarray) -> np.ndarray:
-        return self._forms(False) - self.t * self.s.f_ext
+        r = self._forms(False) - self.t * self.s.f_ext
+        if self.couple is not None:
+            c, _ = self.couple.coefficients(w)
+            r += self.s.first_moment.G @ c
+        return r
 
     def tangent(self, w: np.ndarray):
-        return self._forms(True)
+        from scipy.sparse import csr_matrix
+
+        K = self._forms(True)
+        if self.couple is not None:
+            G = self.s.first_moment.G
+            _, C = self.couple.coefficients(w)
+            K = (K + G @ csr_matrix(C) @ G.T).tocsr()
+        return K
 
 
 class StaticModel:
@@ -332,6 +450,8 @@ class StaticModel:
     processes (FElupe runs on one), the displacement at a point, the output files."""
 
     ranks = 1
+    end_moment_method = ("FElupe: G from the end face's Simpson weights; the rank-2 tangent added to the "
+                         "sparse tangent as the end face's dense block")
 
     def __init__(self, setup: Setup):
         self.setup = setup
@@ -339,6 +459,11 @@ class StaticModel:
         self.n_free = setup.n_free
         self.effects = setup.effects
         self.set_load = self.system.set_load
+
+    def rotation(self) -> float | None:
+        """theta (rad) of the end face, continued along the load path (with an end moment)."""
+        c = self.system.couple
+        return None if c is None else c.rotation(self.system.w)
 
     def displacement(self, point) -> np.ndarray:
         """u (m) at a mesh node of the reference configuration."""
