@@ -4,8 +4,11 @@ PY := .venv/bin/python
 export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 
-.PHONY: setup test test-full test-slow test-guards study study-full audit loops bench bench-penalty bench-peers clean-venv
+.PHONY: setup test test-full test-slow test-guards study study-full audit loops bench bench-penalty bench-peers docs clean-venv
 
+# The idempotent set-up every target runs first (tools/setup.sh): Debian's packages, the
+# venv .venv with the system's site packages, this project installed editable, FElupe pinned,
+# the solver's compiled code in its cache (`ancf warm`)
 setup:
 	@bash tools/setup.sh
 
@@ -33,6 +36,7 @@ test-full: setup
 	$(PY) -m pytest -q -m "slow and mpi" tests || [ $$? -eq 5 ] || status=1; \
 	exit $$status
 
+# another name of test-full
 test-slow: test-full
 
 # each test of the full tier with the quick test that guards its property (runs nothing)
@@ -72,23 +76,36 @@ study-full: study
 loops: setup
 	$(PY) -m studies.loops
 
+# timings of the paper's cells (Table 3, the pendulum of Table 4) and of the compiled kernels
+# (reports/kernels.md)
 bench: setup
 	$(PY) -m studies.bench table3
 	$(PY) -m studies.bench pendulum
 	$(PY) -m studies.bench kernels
 
+# the penalty sweep: every element x law x penalised formulation x mesh from 10 to 1e5 C10
+# (reports/penalty.md)
 bench-penalty: setup
 	$(PY) -m studies.bench penalty
 
-# Exudyn in a separate venv (.venv-peers), never in .venv
 # the elements of the work-precision diagram: the paper's two and the lock-free ones
 PEER_ELEMENTS = --element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-20xypm --element HB2n-40p --element HB2n-60p
 
+# The pendulum beside a peer, Exudyn's ANCF cable, installed in a separate venv (.venv-peers,
+# never in .venv): the same pendulum side by side, Exudyn against its own published numbers,
+# and the work-precision diagrams of two pendulums (reports/peers*.md)
 bench-peers: setup
 	bash tools/setup_peers.sh && $(PY) -m studies.peers.compare --report
 	$(PY) -m studies.peers.exudyn_published --report && $(PY) -m studies.peers.compare --report-only
 	$(PY) -m studies.peers.work_precision --scene pendulum $(PEER_ELEMENTS)
 	$(PY) -m studies.peers.work_precision --scene thick $(PEER_ELEMENTS)
 
+# The documentation site (Sphinx with MyST Markdown and furo, Debian's packages):
+# docs/ -> docs/_build/html; every warning is an error; the reference pages and the results
+# are drawn from the code, this Makefile and reports/ at every build
+docs: setup
+	$(PY) -m sphinx -W --keep-going -b html docs docs/_build/html
+
+# remove the venv (the next target makes it again)
 clean-venv:
 	rm -rf .venv

@@ -109,9 +109,8 @@ def _list(registry: dict) -> int:
     return 0
 
 
-def main(argv: list[str] | None = None) -> int:
-    from contract.console import command, import_modules
-
+def parser() -> argparse.ArgumentParser:
+    """The command line's parser (importable: the documentation renders it)."""
     p = argparse.ArgumentParser(prog="ancf", description="2D ANCF beams with hyperelastic laws")
     sub = p.add_subparsers(dest="command", required=True)
     r = sub.add_parser("run", help="solve one scene file")
@@ -128,7 +127,13 @@ def main(argv: list[str] | None = None) -> int:
     sub.add_parser("formulations", help="list the 2D formulations")
     sub.add_parser("warm", help="compile (or load) the solver's code for every shipped scene and study variant "
                                 "into numba's cache (the set-up runs it once per clone)")
-    args = p.parse_args(argv)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    from contract.console import command, import_modules
+
+    args = parser().parse_args(argv)
 
     def body() -> int:
         import_modules(getattr(args, "imports", ()))

@@ -6,8 +6,13 @@ The contract both solvers read: the structure and types of a scene are checked h
 resolves (element, law and its constants, formulation, integrator) are kept as
 strings and checked by each solver's ``check`` against its own registries
 (:func:`ancf.build.check`, :func:`reference_fem.simulation.check`), so this module imports no
-solver. Each solver ignores the other's table (``[ancf]``, ``[fem]``). Every key is
-documented in README.md.
+solver. Each solver ignores the other's table (``[ancf]``, ``[fem]``).
+
+Every key this module reads is declared once, in :data:`KEYS` (its table, what it
+accepts, its unit, its default and for which analysis): the parser takes each table's
+required and optional keys from there and the dataclasses their defaults, and the
+documentation's scene reference is drawn from it (the ``[fem]`` table's keys are
+``reference_fem.settings``'s).
 """
 from __future__ import annotations
 
@@ -26,9 +31,6 @@ from .loads import SUPPORTS as _SUPPORT_MEANINGS
 SUPPORTS = tuple(_SUPPORT_MEANINGS)   # what each is: contract.loads.SUPPORTS
 CLAMPS = ("face", "all")
 ANALYSES = ("static", "dynamic")
-STATIC_KEYS = ("kind", "load_steps", "newton_rtol", "max_iterations", "wall_time")
-DYNAMIC_KEYS = ("kind", "t_end", "dt", "dt_min", "tolerance", "output_times", "integrator",
-                "rho_inf", "newton_rtol", "max_iterations", "energy_limit", "max_steps", "wall_time", "newton")
 NEWTON = ("chord", "full", "modified")   # the compiled time loop's Newton (ancf.compiled_steps)
 # Sane ranges: a tolerance outside them answers a different question (1e10 "converges"
 # at the first residual) or none (below round-off Newton never stops).
@@ -38,6 +40,101 @@ MAX_LOAD_STEPS = 10 ** 6
 MAX_STEPS = 10 ** 7          # default bound of a dynamic run's accepted steps
 MAX_GAUSS = 64               # Gauss points per direction (exact to degree 127)
 MAX_NESTING = 32             # tables and arrays inside one another (a scene uses at most 3)
+# The scene language's formulations and whether a scene in that formulation carries a
+# penalty (material.penalty): the one statement both solvers and the paper's scenes read.
+FORMULATIONS = {"paper": True, "plane-strain": True, "plane-stress": False}
+
+
+# -- every key, declared once --------------------------------------------------------------
+REQUIRED = "required"   # a key's default when the file must give it
+
+
+@dataclass(frozen=True)
+class Key:
+    """One key of a scene file.
+
+    ``table``: "" for the top level; ``accepts``: what the parser admits, as (kind,
+    arguments): ("text",), ("name",) (a non-empty string; ("name", what): one a solver
+    resolves against its registry of ``what``: law, formulation, element, integrator), ("table",),
+    ("number",) (finite), ("positive",), ("positive int",), ("range", lo, hi) and
+    ("int range", lo, hi) (inclusive), ("choice", allowed), ("vector",) ([x, y]),
+    ("rule",) ([points along x, across the thickness], each in [1, MAX_GAUSS]),
+    ("times",) (rising, within [0, t_end]), ("limit",) (positive, or "inf"); ``unit``: SI;
+    ``default``: :data:`REQUIRED`, None (unset: the solver's rule applies) or the value;
+    ``analysis``: "static" or "dynamic" for a key of one kind of analysis only."""
+
+    table: str
+    name: str
+    accepts: tuple
+    unit: str = ""
+    default: Any = REQUIRED
+    analysis: str = ""
+
+
+KEYS = (
+    Key("", "name", ("name",)),
+    Key("", "description", ("text",), default=None),
+    Key("", "beam", ("table",)),
+    Key("", "material", ("table",)),
+    Key("", "ancf", ("table",), default=None),
+    Key("", "supports", ("table",)),
+    Key("", "loads", ("table",), default=None),
+    Key("", "analysis", ("table",)),
+    Key("", "fem", ("table",), default=None),
+    Key("beam", "length", ("positive",), "m"),
+    Key("beam", "height", ("positive",), "m"),
+    Key("beam", "width", ("positive",), "m"),
+    # and the law's constants by name (C10, mu, ...): which ones, the law says
+    Key("material", "law", ("name", "law")),
+    Key("material", "formulation", ("name", "formulation")),
+    Key("material", "density", ("positive",), "kg/m^3"),
+    Key("material", "penalty", ("positive",), "Pa", None),
+    Key("ancf", "element", ("name", "element")),
+    Key("ancf", "elements", ("positive int",)),
+    Key("ancf", "quadrature", ("rule",), "", None),
+    Key("supports", "left", ("choice", SUPPORTS)),
+    Key("supports", "clamp", ("choice", CLAMPS), "", "face"),
+    Key("loads", "gravity", ("vector",), "m/s^2", None),
+    Key("loads", "tip_force", ("vector",), "N", None),
+    Key("loads", "end_moment", ("number",), "N m", None, "static"),
+    Key("analysis", "kind", ("choice", ANALYSES)),
+    Key("analysis", "load_steps", ("int range", 1, MAX_LOAD_STEPS), "", 10, "static"),
+    Key("analysis", "newton_rtol", ("range", *NEWTON_RTOL), "", 1e-8),
+    Key("analysis", "max_iterations", ("int range", 1, MAX_ITERATIONS), "", 25),
+    Key("analysis", "wall_time", ("positive",), "s", None),
+    Key("analysis", "t_end", ("positive",), "s", REQUIRED, "dynamic"),
+    Key("analysis", "dt", ("positive",), "s", REQUIRED, "dynamic"),
+    Key("analysis", "dt_min", ("positive",), "s", None, "dynamic"),
+    Key("analysis", "tolerance", ("positive",), "", None, "dynamic"),
+    Key("analysis", "output_times", ("times",), "s", None, "dynamic"),
+    Key("analysis", "integrator", ("name", "integrator"), "", "generalized-alpha", "dynamic"),
+    Key("analysis", "rho_inf", ("range", 0.0, 1.0), "", 0.5, "dynamic"),
+    Key("analysis", "energy_limit", ("limit",), "J", None, "dynamic"),
+    Key("analysis", "max_steps", ("positive int",), "", None, "dynamic"),
+    Key("analysis", "newton", ("choice", NEWTON), "", "chord", "dynamic"),
+)
+
+
+def keys_of(table: str, analysis: str | None = None) -> tuple[Key, ...]:
+    """The keys of one table (of [analysis]: those of one kind of analysis)."""
+    return tuple(k for k in KEYS if k.table == table
+                 and (analysis is None or k.analysis in ("", analysis)))
+
+
+def _required(table: str, analysis: str | None = None) -> set[str]:
+    return {k.name for k in keys_of(table, analysis) if k.default is REQUIRED}
+
+
+def _optional(table: str, analysis: str | None = None) -> set[str]:
+    return {k.name for k in keys_of(table, analysis) if k.default is not REQUIRED}
+
+
+def _default(table: str, name: str):
+    return next(k.default for k in KEYS if k.table == table and k.name == name)
+
+
+STATIC_KEYS = tuple(k.name for k in keys_of("analysis", "static"))
+DYNAMIC_KEYS = tuple(k.name for k in keys_of("analysis", "dynamic"))
 
 
 @dataclass(frozen=True)
@@ -81,20 +178,20 @@ class Loads:
 class Analysis:
     kind: str
     # static
-    load_steps: int = 10
-    newton_rtol: float = 1e-8
-    max_iterations: int = 25
+    load_steps: int = _default("analysis", "load_steps")
+    newton_rtol: float = _default("analysis", "newton_rtol")
+    max_iterations: int = _default("analysis", "max_iterations")
     # dynamic
     t_end: float | None = None
     dt: float | None = None
     dt_min: float | None = None
     tolerance: float | None = None
     output_times: tuple[float, ...] | None = None
-    integrator: str = "generalized-alpha"
-    rho_inf: float = 0.5               # see README: 0.8 gains energy with the paper's penalty
+    integrator: str = _default("analysis", "integrator")
+    rho_inf: float = _default("analysis", "rho_inf")
     energy_limit: float | None = None  # J; None: 1e-3 m |g| L / 2 (with gravity); inf: no check
     max_steps: int | None = None       # None: MAX_STEPS
-    newton: str = "chord"              # one of NEWTON: chord (measured fastest), full, modified
+    newton: str = _default("analysis", "newton")   # one of NEWTON: chord (measured fastest), full, modified
     # both
     wall_time: float | None = None     # s; a run still going then stops, status "failed"
 
@@ -186,8 +283,7 @@ def scene_from_dict(data: Mapping[str, Any]) -> Scene:
     if not isinstance(data, Mapping):
         raise SceneError(f"scene: must be a table of keys, got {type(data).__name__}")
     check_nesting(data, "")
-    _keys("scene", data, required={"name", "beam", "material", "supports", "analysis"},
-          optional={"ancf", "loads", "fem", "description"})
+    _keys("scene", data, required=_required(""), optional=_optional(""))
     name = data["name"]
     if not isinstance(name, str) or not name.strip():
         raise SceneError(f"name: must be a non-empty string, got {name!r}")
@@ -254,18 +350,14 @@ def _vector(field_, value):
 
 
 def _beam(t) -> Beam:
-    _keys("beam", t, required={"length", "height", "width"})
+    _keys("beam", t, required=_required("beam"))
     return Beam(*(_positive(f"beam.{k}", t[k]) for k in ("length", "height", "width")))
 
 
 # a law's constant: a name (C10, C01, mu, Jm, ...); which ones a law needs, and which
 # values it admits, the law says (mechanics.laws), checked by check_names
 CONSTANT = re.compile(r"[A-Za-z][A-Za-z0-9_]*")
-MATERIAL_KEYS = ("law", "formulation", "density", "penalty")
-
-# The scene language's formulations and whether a scene in that formulation carries a
-# penalty (material.penalty): the one statement both solvers and the paper's scenes read.
-FORMULATIONS = {"paper": True, "plane-strain": True, "plane-stress": False}
+MATERIAL_KEYS = tuple(k.name for k in keys_of("material"))
 
 
 def _name(field_, value) -> str:
@@ -275,8 +367,8 @@ def _name(field_, value) -> str:
 
 
 def _material(t) -> MaterialSpec:
-    _keys("material", t, required={"law", "formulation", "density"},
-          optional={"penalty", *(k for k in t if k not in MATERIAL_KEYS and CONSTANT.fullmatch(str(k)))},
+    _keys("material", t, required=_required("material"),
+          optional={*_optional("material"), *(k for k in t if k not in MATERIAL_KEYS and CONSTANT.fullmatch(str(k)))},
           allowed="law, formulation, density, penalty and the law's constants (C10, C01, mu, ...)")
     constants = {k: _number(f"material.{k}", v) for k, v in t.items() if k not in MATERIAL_KEYS}
     return MaterialSpec(_name("material.law", t["law"]), _name("material.formulation", t["formulation"]),
@@ -285,7 +377,7 @@ def _material(t) -> MaterialSpec:
 
 
 def _ancf(t) -> AncfSettings:
-    _keys("ancf", t, required={"element", "elements"}, optional={"quadrature"})
+    _keys("ancf", t, required=_required("ancf"), optional=_optional("ancf"))
     element = _name("ancf.element", t["element"])
     n = _positive("ancf.elements", t["elements"], int)
     if "quadrature" not in t:
@@ -298,17 +390,17 @@ def _ancf(t) -> AncfSettings:
 
 
 def _supports(t) -> Supports:
-    _keys("supports", t, required={"left"}, optional={"clamp"})
+    _keys("supports", t, required=_required("supports"), optional=_optional("supports"))
     left = _choice("supports.left", t["left"], SUPPORTS)
     if left != "clamp":
         if "clamp" in t:
             raise SceneError("supports.clamp: only with left = \"clamp\"")
         return Supports(left)
-    return Supports("clamp", _choice("supports.clamp", t.get("clamp", "face"), CLAMPS))
+    return Supports("clamp", _choice("supports.clamp", t.get("clamp", _default("supports", "clamp")), CLAMPS))
 
 
 def _loads(t) -> Loads:
-    _keys("loads", t, optional={"gravity", "tip_force", "end_moment"})
+    _keys("loads", t, optional=_optional("loads"))
     return Loads(gravity=_vector("loads.gravity", t["gravity"]) if "gravity" in t else None,
                  tip_force=_vector("loads.tip_force", t["tip_force"]) if "tip_force" in t else None,
                  end_moment=_number("loads.end_moment", t["end_moment"]) if "end_moment" in t else None)
@@ -345,10 +437,10 @@ def _common(t) -> dict:
 def _analysis(t) -> Analysis:
     kind = _choice("analysis.kind", t.get("kind"), ANALYSES)
     if kind == "static":
-        _keys("analysis", t, required={"kind"}, optional=set(STATIC_KEYS))
+        _keys("analysis", t, required=_required("analysis", "static"), optional=set(STATIC_KEYS))
         return Analysis(kind, load_steps=_ranged("analysis.load_steps", t.get("load_steps", Analysis.load_steps),
                                                  1, MAX_LOAD_STEPS, int), **_common(t))
-    _keys("analysis", t, required={"kind", "t_end", "dt"}, optional=set(DYNAMIC_KEYS))
+    _keys("analysis", t, required=_required("analysis", "dynamic"), optional=set(DYNAMIC_KEYS))
     t_end = _positive("analysis.t_end", t["t_end"])
     dt = _positive("analysis.dt", t["dt"])
     if dt > t_end:

@@ -198,9 +198,8 @@ def _report(args) -> int:
     return 0
 
 
-def main(argv: list[str] | None = None) -> int:
-    from contract.console import command
-
+def parser() -> argparse.ArgumentParser:
+    """The command line's parser (importable: the documentation renders it)."""
     p = argparse.ArgumentParser(prog="python -m reference_fem",
                                 description="2D and 3D continuum reference (DOLFINx) for the ANCF scenes")
     sub = p.add_subparsers(dest="command", required=True)
@@ -246,7 +245,13 @@ def main(argv: list[str] | None = None) -> int:
     rp.add_argument("gold", nargs="?", default=None,
                     help="default tests/gold/fem_cantilever.json (fem_pendulum.json with --pendulum)")
     rp.add_argument("--pendulum", action="store_true", help="tables of the pendulum gold file")
-    args = p.parse_args(argv)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    from contract.console import command
+
+    args = parser().parse_args(argv)
     run = {"run": _run, "converge": _converge, "gold": _gold, "report": _report, "pendulum": _pendulum}[args.command]
     return command("reference_fem", lambda: run(args), errors=(ValueError,))
 

@@ -177,7 +177,8 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: {message} (-h: usage)\n")
 
 
-def main(argv: list[str] | None = None) -> int:
+def parser() -> argparse.ArgumentParser:
+    """The command line's parser (importable: the documentation renders it)."""
     p = _Parser(prog="python -m studies", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="command", required=True)
     ls = sub.add_parser("list", help="name the studies")
@@ -230,7 +231,11 @@ def main(argv: list[str] | None = None) -> int:
     c.add_argument("--no-progress", action="store_true")
     for sp in (ls, r, rp, au):
         sp.add_argument("--catalog", type=Path, default=CASES_TOML, help="the case list (default studies/cases.toml)")
-    args = p.parse_args(argv)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
     run = {"list": _list, "run": _run, "report": _report, "gold": _gold, "diff": _diff, "card": _card,
            "audit": _audit, "verify": _verify}[args.command]
     return command("studies", lambda: run(args), errors=(ValueError, ImportError),

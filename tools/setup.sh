@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Idempotent set-up on a Debian (bookworm) machine, as root or with sudo:
-#   1. Debian's FEniCSx / scientific stack for /usr/bin/python3 (only what is missing),
+#   1. Debian's FEniCSx / scientific stack for /usr/bin/python3, and Sphinx for the
+#      documentation site (only what is missing),
 #   2. a venv that sees those packages (--system-site-packages),
 #   3. this project installed editable into it, with no dependencies from PyPI
 #      (pip must never shadow Debian's numpy/scipy, or dolfinx breaks).
@@ -9,7 +10,8 @@ cd "$(dirname "$0")/.."
 
 packages="python3-dolfinx python3-gmsh python3-numba python3-mpi4py python3-pandas
 python3-matplotlib python3-pytest python3-tqdm python3-venv python3-scipy openmpi-bin
-python3-threadpoolctl python3-hypothesis python3-meshio python3-pytest-xdist python3-sympy"
+python3-threadpoolctl python3-hypothesis python3-meshio python3-pytest-xdist python3-sympy
+python3-sphinx python3-myst-parser furo python3-sphinx-argparse"
 
 missing=""
 for p in $packages; do
