@@ -76,7 +76,14 @@ def _report(args) -> int:
 def _diff(args) -> int:
     from .engine.diff import diff
 
-    changes, summary = diff(Path(args.old), Path(args.new), args.rtol, args.atol)
+    rename = {}
+    for pair in args.rename:
+        old, sep, new = pair.partition("=")
+        if not (sep and old and new):
+            print(f"--rename: {pair!r}; expected OLD=NEW", file=sys.stderr)
+            return 2
+        rename[old] = new
+    changes, summary = diff(Path(args.old), Path(args.new), args.rtol, args.atol, rename)
     for c in changes:
         print(c)
     print(f"{'study':15s} {'matched':>8s} {'only old':>9s} {'only new':>9s} {'changed':>8s}")
@@ -203,6 +210,9 @@ def parser() -> argparse.ArgumentParser:
     df.add_argument("new")
     df.add_argument("--rtol", type=float, default=1e-6, help="relative tolerance of tips and energies")
     df.add_argument("--atol", type=float, default=1e-9, help="absolute tolerance (m, J)")
+    df.add_argument("--rename", action="append", default=[], metavar="OLD=NEW",
+                    help="a solver or study renamed between the two (repeatable): the old records paired under "
+                         "the new name")
     au = sub.add_parser("audit", help="rebuild every report from its records and compare, naming file and line")
     au.add_argument("--reports", help="the reports directory (default reports/)")
     au.add_argument("--tiny", action="store_true", help="the reports of a tiny run")
