@@ -55,6 +55,7 @@ from typing import Any, Mapping
 from contract.errors import SceneError, UnknownName
 from contract.scene import Scene
 
+from .backends import BACKENDS, DEFAULT as DEFAULT_BACKEND   # the registry of fem.backend
 from .geometry import Geometry, geometry_for
 
 CELLS = ("quadrilateral", "triangle")
@@ -216,9 +217,7 @@ def fem_settings(scene: Scene) -> FemSettings:
     qdeg = _int("quadrature_degree", t.get("quadrature_degree", default_quadrature_degree(degree)), 1,
                 4 * MAX_DEGREE)
     solver = _choice("linear_solver", t.get("linear_solver", "direct"), LINEAR_SOLVERS)
-    from .backends import BACKENDS, DEFAULT
-
-    backend = _choice("backend", t.get("backend", DEFAULT), BACKENDS)
+    backend = _choice("backend", t.get("backend", DEFAULT_BACKEND), BACKENDS)
     if model != "3d":
         return FemSettings(model, incompressibility, nx, ny, cell, degree, qdeg, linear_solver=solver,
                            backend=backend)

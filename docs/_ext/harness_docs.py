@@ -32,6 +32,7 @@ import pkgutil
 import re
 import tomllib
 from pathlib import Path
+from collections.abc import Mapping
 from typing import Callable
 
 DOCS = Path(__file__).resolve().parents[1]
@@ -160,6 +161,8 @@ def _filler(module, warn: Callable[[str], None]) -> Callable[[str], str]:
         if v is None:
             warn(f"scene-keys.toml names {{{m.group(1)}}}, which {module.__name__} does not define")
             return m.group(0)
+        if isinstance(v, Mapping):          # a registry: its names
+            v = tuple(v)
         if isinstance(v, tuple):
             return ", ".join(_code(x) for x in v)
         if isinstance(v, (int, float)) and not isinstance(v, bool):
