@@ -16,6 +16,36 @@ from .grid import DEFAULT, cantilever_case, counts_of, qlabel, takes
 from .reference import short, MATCHING, continuum_references, describe, variant_of
 from .engine.report import GOOD, Section, Table, draw, figure, hollow_legend, marker, pct, vec_error, verdict
 
+
+STUDY = {
+    "name": "accuracy-cost",
+    "title": "Accuracy against cost (static cantilever and pendulum)",
+    # the pendulum half reads Table 4's timed step ladder (no cases of its own)
+    "needs": ["continuum", "table4"],
+    "grid": {
+        "laws": ["neo-hookean", "mooney-rivlin", "yeoh"],
+        "elements": ["HB2n-12", "HB3n-12", "HB2n-16", "LB2n-12", "HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", "HB2n-60p"],
+        "formulations": ["plane-strain", "plane-stress"],
+        # "default": each element's own rule at each mesh's l_e / h; the fixed rules of the paper's
+        # elements are the study accuracy-cost-rules (make study-full), drawn here when recorded
+        "quadratures": ["default"],
+        "counts": [4, 8, 16, 32, 64, 160, 320, 640],
+        "clamp": "face",
+        # serial warm timings: the compiled code loaded, then up to `repeats` runs within `budget_s`
+        "timing": {"repeats": 3, "budget_s": 2.0},
+        # the continuum curve: these levels of the continuum study's variants, timed the same way
+        "continuum_levels": [[16, 1], [32, 2], [64, 4], [128, 8]],
+        "accuracies": [0.01, 0.001],
+    },
+    "tiny": {
+        "laws": ["yeoh"],
+        "elements": ["HB2n-12", "HB3n-12"],
+        "counts": [4, 8],
+        "timing": {"repeats": 2, "budget_s": 0.5},
+        "continuum_levels": [[8, 1]],
+    },
+}
+
 STYLE = {(2, 2): ":", (3, 2): "-", (5, 3): "--", (3, 3): "-.", DEFAULT: "-"}
 # the fixed rules of the paper's elements (make study-full), drawn here when recorded
 RULES = "accuracy-cost-rules"

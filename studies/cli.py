@@ -1,4 +1,4 @@
-"""``python -m studies``: list, run and report the studies of studies/cases.toml.
+"""``python -m studies``: list, run and report the studies (each declared in its module: ``STUDY``).
 
 - ``list``: the studies, their case counts and what each needs;
 - ``run NAME [NAME ...] | all | full``: run the studies (and those they need; ``all``: every
@@ -240,7 +240,9 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--workers", type=int, default=2)
     c.add_argument("--no-progress", action="store_true")
     for sp in (ls, r, rp, au):
-        sp.add_argument("--catalog", type=Path, default=CASES_TOML, help="the case list (default studies/cases.toml)")
+        sp.add_argument("--catalog", type=Path, default=CASES_TOML,
+                        help="a TOML file of study tables to run instead of the studies declared in their modules "
+                             "(a test's case list)")
     return p
 
 

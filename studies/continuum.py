@@ -15,6 +15,23 @@ from .engine.case import make_case
 from .reference import short, VARIANT_LABEL, abaqus, continuum_references, gold_references
 from .engine.report import Section, Table, mm, pct
 
+
+STUDY = {
+    "name": "continuum",
+    "title": "Continuum reference: refinement and Richardson values",
+    "grid": {
+        "laws": ["neo-hookean", "mooney-rivlin", "yeoh"],
+        # gold-file names: plane strain exact (mixed), plane strain with the ANCF penalty, plane stress
+        "variants": ["plane-strain", "plane-strain-penalty", "plane-stress"],
+        # Q2 quadrilaterals, cells along x cells across; each level halves the cell size
+        "levels": [[16, 1], [32, 2], [64, 4], [128, 8], [256, 16]],
+    },
+    "tiny": {
+        "laws": ["neo-hookean", "yeoh"],
+        "levels": [[8, 1], [16, 2], [32, 4]],
+    },
+}
+
 GOLD = Path(__file__).resolve().parent.parent / "tests" / "gold" / "fem_cantilever.json"
 MODELS = {"plane-strain": ("plane-strain", "mixed"), "plane-strain-penalty": ("plane-strain", "penalty"),
           "plane-stress": ("plane-stress", None)}

@@ -38,6 +38,38 @@ from .hard_loads import _scene as hard_scene
 from .hard_loads import loads as hard_loads
 from .reference import GOLD_3D, GOLD_PENDULUM, VARIANT_LABEL, ContinuumReference, continuum_references, short
 
+
+STUDY = {
+    "name": "continuum-agreement",
+    "title": "Continuum agreement: DOLFINx and FElupe on every continuum truth the reports use",
+    "needs": ["continuum", "hard-loads"],
+    "full": True,
+    "grid": {
+        "laws": ["neo-hookean", "mooney-rivlin", "yeoh"],
+        "variants": ["plane-strain", "plane-strain-penalty", "plane-stress"],
+        # FElupe's own sequence of Q2 meshes (no mesh shared with the continuum study's 16 x 1 ...):
+        # cells along x, cells across; each level halves the cell size
+        "levels": [[12, 1], [24, 2], [48, 4], [96, 8]],
+        # the 3D beam (against the committed DOLFINx gold, 16 x 1 x 1 ... 64 x 4 x 4): FElupe's own
+        # graded Q2/Q1 hexahedra, cells along x, across h, across w
+        "solid_laws": ["neo-hookean", "mooney-rivlin", "yeoh"],
+        "solid_levels": [[12, 1, 1], [24, 2, 2], [48, 4, 4]],
+        # (the hard-load rows: the hard-loads study's continuum scenes, its grid)
+        # the pendulum (against tests/gold/fem_pendulum.json, 140 x 4 cells): FElupe's own mesh,
+        # cells_length = aspect x 4 (112 x 4), its own estimate from dt / 2 and 224 x 8
+        "pendulum_laws": ["neo-hookean", "mooney-rivlin", "yeoh"],
+        "pendulum_models": ["plane-stress", "plane-strain"],
+        "pendulum_aspect": 2.5,
+        "timeout_s": 1200.0,  # FElupe's 48 x 4 x 4 hexahedra and 224 x 8 plane-strain pendulum: minutes each
+    },
+    "tiny": {
+        "laws": ["yeoh"],
+        "levels": [[6, 1], [12, 2], [24, 4]],
+        "solid_laws": [],
+        "pendulum_laws": [],
+    },
+}
+
 BACKEND = "felupe"
 # Same mesh, same elements, same quadrature: the two codes' discrete problems are the same,
 # so their tips differ by the Newton tolerance (||R|| <= 1e-8 ||R_ref||): measured 1e-12 to

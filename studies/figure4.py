@@ -18,6 +18,31 @@ from .pendulum_cases import (LENGTH, continuum_pendulum, describe_dynamic, gold_
                        tip_errors)
 from .engine.report import Section, Table, draw, figure, hollow_legend, marker
 
+
+STUDY = {
+    "name": "figure4",
+    "title": "Figure 4: pendulum convergence against the number of elements",
+    "grid": {
+        "elements": ["HB2n-12", "HB3n-12", "HB2n-16", "HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", "HB2n-60p"],
+        "counts": [4, 8, 16, 32, 64],
+        "formulations": ["plane-stress", "paper"],
+        # one fixed step for every mesh: 1 ms is the converged step of 32 x HB2n-12 (Table 4);
+        # the finest mesh of each element runs again at dt / 2 (the step check)
+        "dt": 0.0005,
+        "rho_inf": 0.5,
+        "t_end": 0.5,
+        # the provisional reference while tests/gold/fem_pendulum.json is absent (run at dt / 2)
+        "reference": {"element": "HB3n-12", "elements": 128},
+    },
+    "tiny": {
+        "elements": ["HB2n-12", "HB3n-12"],
+        "counts": [2, 4],
+        "dt": 0.001,
+        "t_end": 0.2,
+        "reference": {"element": "HB3n-12", "elements": 8},
+    },
+}
+
 CONVERGED_M = 1e-3   # "converged at n": within 1 mm of the element's finest mesh at every output time
 CONTINUUM_MODEL = {"plane-stress": "plane-stress", "paper": "plane-stress", "plane-strain": "plane-strain"}
 

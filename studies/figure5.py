@@ -13,6 +13,28 @@ from .pendulum_cases import LENGTH, continuum_pendulum, describe_dynamic, gold_t
 from .reference import short
 from .engine.report import Section, Table, figure, linestyle
 
+
+STUDY = {
+    "name": "figure5",
+    "title": "Figure 5: pendulum configurations at t = 0, 0.1, ..., 0.5 s",
+    "grid": {
+        "laws": ["neo-hookean", "mooney-rivlin", "yeoh"],
+        "elements": ["HB2n-12", "HB3n-12", "HB2n-16"],
+        "elements_count": 32,
+        "formulations": ["plane-stress", "paper"],
+        "dt": 0.0005,
+        "rho_inf": 0.5,
+        "t_end": 0.5,
+    },
+    "tiny": {
+        "laws": ["neo-hookean", "yeoh"],
+        "elements": ["HB3n-12"],
+        "elements_count": 4,
+        "dt": 0.001,
+        "t_end": 0.2,
+    },
+}
+
 CONTINUUM_MODEL = {"plane-stress": "plane-stress", "paper": "plane-stress", "plane-strain": "plane-strain"}
 
 

@@ -15,6 +15,45 @@ from .pendulum_cases import LENGTH, continuum_pendulum, describe_dynamic, gold_t
 from .reference import short, SOLID_LABEL, VARIANT_LABEL, abaqus, continuum_references, describe, solid_references
 from .engine.report import Section, Table, mm, pct, vec_error
 
+
+STUDY = {
+    "name": "formulation",
+    "title": "Which 2D assumption? ANCF formulations against the continuum and ABAQUS",
+    "needs": ["continuum"],
+    "full": True,
+    "grid": {
+        "laws": ["neo-hookean", "mooney-rivlin", "yeoh"],
+        "elements": ["HB2n-12", "HB3n-12", "HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", "HB2n-60p"],
+        "counts": [160, 320],
+        # [formulation, quadrature, clamp]
+        "configurations": [["paper", [2, 2], "all"], ["paper", [3, 2], "face"], ["plane-strain", "default", "face"],
+                           ["plane-stress", "default", "face"]],
+        "per_element": {"HB2n-20xyp": {"quadratures": ["default"]},
+                        "HB2n-20xypm": {"quadratures": ["default"]},
+                        "HB2n-40p": {"quadratures": ["default"]},
+                        "HB2n-60p": {"quadratures": ["default"]}},
+        # the pendulum half: each formulation's ANCF pendulum against the continuum pendulums
+        # (tests/gold/fem_pendulum.json: plane stress, and plane strain exactly incompressible)
+        "pendulum": {"elements": ["HB2n-12", "HB2n-16", "HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", "HB2n-60p"],
+                     "count": 32,
+                     "dt": 0.0005,
+                     "rho_inf": 0.5,
+                     "t_end": 0.5,
+                     "formulations": ["paper", "plane-strain", "plane-stress"]},
+    },
+    "tiny": {
+        "laws": ["neo-hookean", "yeoh"],
+        "elements": ["HB3n-12"],
+        "counts": [8, 16],
+        "pendulum": {"elements": ["HB2n-12"],
+                     "count": 4,
+                     "dt": 0.001,
+                     "rho_inf": 0.5,
+                     "t_end": 0.2,
+                     "formulations": ["paper", "plane-strain", "plane-stress"]},
+    },
+}
+
 VARIANTS = ("plane-strain", "plane-strain-penalty", "plane-stress")
 
 

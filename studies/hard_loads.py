@@ -27,6 +27,39 @@ from .reference import short
 from .engine.report import verdict
 from .engine.report import Section, Table, mm, pct, vec_error
 
+
+STUDY = {
+    "name": "hard-loads",
+    "title": "Hard cases: static loads far beyond the paper's (tip force, gravity)",
+    "grid": {
+        # elements that lock (the paper's LB2n-12): kept out of the findings about the
+        # higher-order elements and out of the golden values, drawn dashed
+        "low_order": ["LB2n-12"],
+        "laws": ["neo-hookean", "mooney-rivlin", "yeoh"],
+        # HB2n-60p (half of this sweep's time, in plane strain) runs in hard-loads-reference
+        "elements": ["HB2n-12", "HB3n-12", "HB2n-16", "LB2n-12", "HB2n-20xyp", "HB2n-20xypm", "HB2n-40p"],
+        "count": 32,
+        "formulations": ["plane-stress", "plane-strain"],
+        "gravity_factors": [1.0, 10.0, 100.0, 1000.0],  # x 9.81 m/s^2; 1 g is the paper's load
+        "tip_forces": [1.0, 20.0, 200.0],  # N, downward at the free end
+        "end_moment_turns": [0.25, 0.5, 1.0],  # x 2 pi E I / L, counter-clockwise (contract.loads)
+        "continuum_cells": [64, 4],
+        # the continuum's refinement (hard-loads-reference, make study-full): cells halving
+        "reference_levels": [[32, 2], [64, 4], [128, 8]],
+        "wall_time": 300.0,  # s per run: a run that would hang fails instead
+    },
+    "tiny": {
+        "laws": ["yeoh"],
+        "elements": ["HB2n-12"],
+        "formulations": ["plane-stress"],
+        "count": 8,
+        "gravity_factors": [100.0],
+        "tip_forces": [20.0],
+        "continuum_cells": [16, 1],
+        "reference_levels": [[16, 1]],
+    },
+}
+
 G = paper.GRAVITY
 REFERENCE = "hard-loads-reference"
 

@@ -23,6 +23,27 @@ from .engine.case import make_case
 from .engine.report import Section, Table, mm, pct
 from .reference import continuum_references, is_continuum
 
+
+STUDY = {
+    "name": "law-card",
+    "title": "Law cards: a law of the shared table run by both solvers",
+    "full": True,
+    "grid": {
+        "laws": ["gent"],
+        "elements": ["HB2n-12", "HB3n-12"],
+        "counts": [16, 64],
+        # the element's default rule, and 3 points across the thickness (Gent's (I1 - 3)^2 ~ y^4)
+        "quadratures": ["default", [3, 3]],
+        # continuum levels (cells along x, across): Richardson over the three
+        "levels": [[32, 2], [64, 4], [128, 8]],
+    },
+    "tiny": {
+        "elements": ["HB2n-12"],
+        "counts": [8],
+        "levels": [[8, 1], [16, 2], [32, 4]],
+    },
+}
+
 VARIANTS = {"plane-stress": ("plane-stress", None), "plane-strain-penalty": ("plane-strain", "penalty")}
 DENSITY = 2150.0      # kg/m^3, the paper's neo-Hookean rubber
 

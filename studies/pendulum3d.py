@@ -24,6 +24,31 @@ from .engine.case import make_case
 from .pendulum_cases import LENGTH, continuum_pendulum, describe_dynamic, tip_errors
 from .engine.report import Section, Table
 
+
+STUDY = {
+    "name": "pendulum-3d",
+    "title": "The pendulum as the real 3D beam",
+    "needs": ["figure4"],
+    # heavy (minutes per level): not in `make study`; `make study-full` runs it by name
+    "full": True,
+    "grid": {
+        "laws": ["yeoh"],
+        # Q2/Q1 hexahedra along x, across h (even: the pin is at mid-height), across the width;
+        # the step and rho_inf of the continuum pendulum gold (tests/gold/fem_pendulum.json)
+        "meshes": [[35, 2, 1], [70, 2, 1], [70, 4, 2]],
+        # a case may run this long (s) before the runner stops it (the default is 300 s)
+        "timeout_s": 7200,
+        "dt": 0.001,
+        "rho_inf": 0.8,
+        "t_end": 0.5,
+    },
+    "tiny": {
+        "meshes": [[8, 2, 1]],
+        "dt": 0.005,
+        "t_end": 0.1,
+    },
+}
+
 MODELS = ("plane-stress", "plane-strain")
 
 

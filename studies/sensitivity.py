@@ -13,6 +13,24 @@ from .reference import short, describe, paper_tip, stability_mark
 from .engine.report import Section, Table, mm, pct, vec_error, verdict
 
 
+STUDY = {
+    "name": "sensitivity",
+    "title": "Table 3, `paper` cells: clamp and quadrature",
+    "full": True,
+    "grid": {
+        "laws": ["neo-hookean", "mooney-rivlin", "yeoh"],
+        "elements": ["HB2n-12", "HB3n-12", "HB2n-16", "LB2n-12"],
+        "counts": "paper",
+        "clamps": ["face", "all"],
+        "quadratures": [[2, 2], [3, 2], [5, 3], [3, 3]],
+    },
+    "tiny": {
+        "counts": {"HB2n-12": 8, "HB3n-12": 8, "HB2n-16": 16, "LB2n-12": 8},
+        "quadratures": [[2, 2], [3, 3]],
+    },
+}
+
+
 def settings(grid: dict) -> list[tuple[str, tuple[int, int]]]:
     return [(c, tuple(q)) for c in grid["clamps"] for q in grid["quadratures"]]
 

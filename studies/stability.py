@@ -25,6 +25,51 @@ from .pendulum_cases import describe_dynamic, gold_tips, pendulum_dict
 from .engine.case import make_case
 from .engine.report import Section, Table
 
+
+STUDY = {
+    "name": "stability",
+    "title": "Hard cases: integrator stability and energy (pendulum)",
+    "grid": {
+        # one change at a time from the base pendulum (Yeoh); dt 1 ms: the converged step of
+        # 32 x HB2n-12 (Table 4)
+        "base": {"law": "yeoh",
+                 "formulation": "plane-stress",
+                 "element": "HB2n-12",
+                 "elements": 16,
+                 "dt": 0.001,
+                 "t_end": 0.5,
+                 "rho_inf": 0.5},
+        # every hard case again with each of these (stability-elements: the lock-free ones)
+        "elements": ["HB2n-12"],
+        "integrators": ["generalized-alpha", "newmark", "discrete-gradient"],
+        "rho_inf": [0.0, 0.5, 0.8, 1.0],
+        "penalty_factors": [10.0, 1000.0, 100000.0],  # alpha = factor x C10
+        "penalty_formulations": ["paper", "plane-strain"],
+        "long_t_end": 5.0,
+        "many_elements": 128,
+        "softer": 0.1,
+        "larger_step": 10,
+        "energy_every": 0.01,  # s: output times, where E is sampled
+        "long_energy_every": 0.05,
+        "timing": {"repeats": 1, "budget_s": 0.0},
+    },
+    "tiny": {
+        "elements": ["HB2n-12"],
+        "base": {"law": "yeoh",
+                 "formulation": "plane-stress",
+                 "element": "HB2n-12",
+                 "elements": 4,
+                 "dt": 0.001,
+                 "t_end": 0.1,
+                 "rho_inf": 0.5},
+        "rho_inf": [0.0, 1.0],
+        "penalty_factors": [10.0, 100000.0],
+        "penalty_formulations": ["paper"],
+        "long_t_end": 0.3,
+        "many_elements": 8,
+    },
+}
+
 CONSERVATIVE = ("newmark", "discrete-gradient")
 HOLDS = ("holds", "no growth (dissipative)")
 

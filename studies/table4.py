@@ -19,6 +19,31 @@ from contract import paper
 from .pendulum_cases import LADDER, converged_rung, describe_dynamic, gold_tips, ladder, pendulum_case
 from .engine.report import Section, Table, figure
 
+
+STUDY = {
+    "name": "table4",
+    "title": "Table 4: pendulum time per element type and count",
+    "grid": {
+        "elements": ["HB2n-12", "HB3n-12", "HB2n-16"],
+        "counts": [4, 8, 16, 32],
+        "formulations": ["plane-stress", "paper"],
+        "rho_inf": 0.5,
+        "t_end": 0.5,
+        # the step ladder of studies.bench.converged_step (8 ms halving), cut at dt_last: every
+        # rung is timed; the report picks the converged one (within 0.1 mm of the dt/2 rung)
+        "dt_last": 0.00025,
+        # serial warm timings: one warm-up run, then up to `repeats` runs within `budget_s`
+        "timing": {"repeats": 3, "budget_s": 1.5},
+    },
+    "tiny": {
+        "elements": ["HB2n-12"],
+        "counts": [8],
+        "formulations": ["plane-stress"],
+        "dt_last": 0.0005,
+        "timing": {"repeats": 1, "budget_s": 0.0},
+    },
+}
+
 DT0, TOL = LADDER["dt0"], LADDER["tol"]
 
 

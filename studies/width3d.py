@@ -27,6 +27,30 @@ from .engine.case import make_case
 from .reference import GOLD_3D, continuum_references, short
 from .engine.report import Section, Table, figure, mm, pct, verdict
 
+
+STUDY = {
+    "name": "width-3d",
+    "title": "The 2D-assumption map: the 3D beam against plane stress and plane strain by width",
+    "needs": ["continuum"],
+    "full": True,
+    "grid": {
+        "laws": ["neo-hookean", "mooney-rivlin", "yeoh"],
+        # widths in units of h = 5 mm (1.4 h = 7 mm: the paper's beam); the real beam in 3D
+        "widths_h": [0.2, 0.5, 1.0, 1.4, 2.0, 5.0, 10.0, 20.0],
+        # the 3D mesh: Q2/Q1 cells 10 x 5 mm in x-y (0.05 % of the tip at w = 7 mm), across the
+        # width at most `cell_width` (m) wide; against the continuum study's converged 2D tips.
+        # `mpi_ranks = N` would launch each case by mpiexec on N ranks instead of the pool
+        "xy": [16, 1],
+        "cell_width": 0.01,
+    },
+    "tiny": {
+        "laws": ["yeoh"],
+        "widths_h": [1.4, 5.0],
+        "xy": [8, 1],
+        "cell_width": 0.02,
+    },
+}
+
 ROOT = Path(__file__).resolve().parent.parent
 GOLD_2D = ROOT / "tests" / "gold" / "fem_cantilever.json"
 

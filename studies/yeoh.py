@@ -3,7 +3,7 @@
 Our `paper` Yeoh cells sit +0.44 % / +0.16 % off the paper for all three higher-order
 elements alike, while Neo-Hookean and Mooney-Rivlin match within 0.02 % in the same
 setting (quadrature 2 x 2, clamp "all"). Each hypothesis is a change of constants or
-load in the scene (cases.toml ``hypotheses``: a name, what it changes, and the changed
+load in the scene (the grid's ``hypotheses``: a name, what it changes, and the changed
 [material] constants (Pa) and/or gravity (m/s^2)). An energy change that is a change of
 constants is written as one: eq. 13's exponent typo C30 (tr C - 3)^2 is C20 -> C20 + C30,
 C30 -> 0. A hypothesis that is not specific to Yeoh (``all_laws``) runs on the
@@ -18,6 +18,36 @@ from contract import paper
 from .engine.case import make_case
 from .reference import short
 from .engine.report import Section, Table, mm, pct, rel_dev, verdict as run_verdict
+
+
+STUDY = {
+    "name": "yeoh-hypotheses",
+    "title": "Table 3's Yeoh cells: which slip reproduces them?",
+    "full": True,
+    "grid": {
+        "elements": {"HB2n-12": 160, "HB3n-12": 160, "HB2n-16": 640},
+        # name, what it changes, and the change: Yeoh constants (Pa), gravity (m/s^2), penalty (Pa);
+        # all_laws: the change applies to every law, so NH and MR must still match
+        "hypotheses": [{"name": "as-printed", "what": "Table 2 constants, eq. 13 with (tr C - 3)^3"},
+                       {"name": "no-C30", "what": "C30 = 0", "constants": {"C30": 0.0}},
+                       {"name": "C30-in-Pa", "what": "C30 read as -0.000802537 Pa", "constants": {"C30": -0.000802537}},
+                       {"name": "C30-sign", "what": "C30 = +0.000802537 MPa", "constants": {"C30": 802.537}},
+                       {"name": "eq13-typo",
+                        "what": "C30 (tr C - 3)^2, i.e. C20 + C30 and no cubic term",
+                        "constants": {"C20": 60247.263, "C30": 0.0}},
+                       {"name": "rounded-4sf",
+                        "what": "C10 0.5452, C20 0.06105, C30 -0.0008025 MPa",
+                        "constants": {"C10": 545200.0, "C20": 61050.0, "C30": -802.5}},
+                       {"name": "g-9.8", "what": "gravity 9.8 m/s^2", "gravity": 9.8, "all_laws": True},
+                       {"name": "penalty-x2",
+                        "what": "penalty alpha (J - 1)^2 without the 1/2: 2000 MPa",
+                        "penalty": 2000000000.0,
+                        "all_laws": True}],
+    },
+    "tiny": {
+        "elements": {"HB2n-12": 8, "HB3n-12": 8, "HB2n-16": 16},
+    },
+}
 
 LAWS = ("neo-hookean", "mooney-rivlin", "yeoh")
 

@@ -1,6 +1,6 @@
 """The study engine: cases -> runs -> JSON-line records -> reports, for every study.
 
-- :mod:`.catalog`: the study list (``studies/cases.toml``) as :class:`~.catalog.Study` objects;
+- :mod:`.catalog`: the study list (every module that declares ``STUDY``) as :class:`~.catalog.Study` objects;
 - :mod:`.case`: a case (one solver run of one scene) as data with an identity;
 - :mod:`.solvers`: the solvers a case can name (check, run, source hash);
 - :mod:`.worker`: one case run in any process; :mod:`.scheduler`: a study's cases over

@@ -1,9 +1,10 @@
-"""The study list: ``studies/cases.toml`` read into :class:`Study` objects.
+"""The study list: every study module's declaration read into :class:`Study` objects.
 
-A study is a name, a grid (its table of cases.toml, with the ``[NAME.tiny]`` overrides
-merged in tiny mode, over the keys of the ``[common]`` table that every study shares),
-the studies whose records it reads (``needs``), and a module
-(``studies/<module>.py``) with two functions:
+A study is one module ``studies/<module>.py`` that declares itself with a module-level
+``STUDY = {"name": ..., "title": ..., "grid": {...}, "tiny": {...}, "needs": [...],
+"full": False}``: a name, a grid (with the ``tiny`` overrides merged in tiny mode), the
+studies whose records it reads (``needs``), whether it is heavy (``full``: left out of
+``make study``), and beside it two functions:
 
 - ``cases(grid: dict, tiny: bool) -> list[Case]``: the grid expanded into cases;
 - ``report(ctx: studies.engine.report.Context) -> studies.engine.report.Section``: tables and
@@ -13,12 +14,11 @@ Optionally ``gold_values(ctx) -> {name: (value, tolerance)}`` for the tiny-mode
 regression (tests/gold/studies_tiny.json), and ``audit(ctx) -> [problem]``: the study's
 own consistency rules, run by ``python -m studies audit`` (:mod:`.audit`).
 
-The registry: a study is either a table of cases.toml naming its module, or one file
-``studies/<module>.py`` that declares itself with a module-level ``STUDY = {"name": ...,
-"title": ..., "grid": {...}, "tiny": {...}, "needs": [...], "full": False}`` beside its
-``cases``, ``report`` (and optional ``gold_values``, ``audit``): :func:`load_catalog` finds
-such files (a text scan, no import) and appends them after the cases.toml studies; ``list``,
-``run``, ``report`` and ``audit`` see them like any other.
+:func:`load_catalog` finds the declaring modules by a text scan (only they are imported),
+in file order. A TOML file of study tables (``--catalog FILE``: one table per study naming
+its ``module``, ``[NAME.tiny]`` overrides, ``[common]`` keys every table gets) replaces the
+list for a test or a one-off run; the project's own studies are declared in their modules
+only.
 """
 from __future__ import annotations
 
@@ -29,7 +29,7 @@ from functools import cached_property
 from pathlib import Path
 from types import ModuleType
 
-CASES_TOML = Path(__file__).resolve().parent.parent / "cases.toml"
+CASES_TOML = None    # the default catalog: the studies declared in their modules (no file)
 META_KEYS = ("module", "title", "needs", "tiny", "full")
 COMMON = "common"   # not a study: grid keys every study gets unless it sets its own
 
@@ -61,12 +61,12 @@ class Study:
             raise ValueError(f"study {self.name!r}: its grid needs the key {e}") from None
 
 
-STUDIES_DIR = CASES_TOML.parent
+STUDIES_DIR = Path(__file__).resolve().parent.parent
 
 
 def declared_studies(folder: Path = STUDIES_DIR) -> dict[str, dict]:
     """{name: table} of the study modules that declare ``STUDY = {...}`` (found by a
-    text scan of studies/*.py; only those modules are imported), as cases.toml tables."""
+    text scan of studies/*.py; only those modules are imported), as catalog tables."""
     out = {}
     for f in sorted(folder.glob("*.py")):
         if not any(line.startswith("STUDY = ") for line in f.read_text().splitlines()):
@@ -78,16 +78,11 @@ def declared_studies(folder: Path = STUDIES_DIR) -> dict[str, dict]:
     return out
 
 
-def load_catalog(tiny: bool = False, path: Path = CASES_TOML) -> dict[str, Study]:
-    """{name: Study}: the tables of ``path`` in their order, then (for the default
-    cases.toml) the studies declared in their own module (:func:`declared_studies`)."""
-    data = _read(Path(path))
+def load_catalog(tiny: bool = False, path: Path | None = CASES_TOML) -> dict[str, Study]:
+    """{name: Study}: the studies declared in their modules (:func:`declared_studies`), or
+    the tables of the TOML file ``path`` in their order (a test's own case list)."""
+    data = declared_studies() if path is None else _read(Path(path))
     common = data.pop(COMMON, {})
-    # (a test's own case list stands alone)
-    for name, t in (declared_studies().items() if Path(path) == CASES_TOML else ()):
-        if name in data:
-            raise ValueError(f"study {name!r}: declared both in {Path(path).name} and in studies/{t['module']}.py")
-        data[name] = t
     out = {}
     for name, t in data.items():
         grid = {**common, **{k: v for k, v in t.items() if k not in META_KEYS}}
@@ -98,7 +93,7 @@ def load_catalog(tiny: bool = False, path: Path = CASES_TOML) -> dict[str, Study
     for s in out.values():
         unknown = [n for n in s.needs if n not in out]
         if unknown:
-            raise ValueError(f"{CASES_TOML.name}: study {s.name!r} needs unknown {unknown}; "
+            raise ValueError(f"{Path(path).name if path else 'studies'}: study {s.name!r} needs unknown {unknown}; "
                              f"studies: {', '.join(out)}")
     return out
 

@@ -8,7 +8,7 @@ it passes, :func:`write` stores a stamp (``<reports>/data/audit-stamp.json``) of
   every module of ``studies/`` and of all it imports (:mod:`.fingerprint`, whole
   modules), the versions of the packages that code uses (matplotlib draws the figures),
   and the bytes of every data file the reports read (``reports/data`` but this stamp,
-  ``tests/gold``, ``contract/paper_data``, ``scenes``, ``studies/cases.toml``);
+  ``tests/gold``, ``contract/paper_data``, ``scenes``);
 - the **outputs**: the sha256 of every report file (everything under ``<reports>`` but
   ``data/``).
 
@@ -28,7 +28,7 @@ from . import fingerprint as fp
 
 ROOT = Path(__file__).resolve().parents[2]
 NAME = "audit-stamp.json"
-DATA = ("tests/gold", "contract/paper_data", "scenes", "studies/cases.toml")
+DATA = ("tests/gold", "contract/paper_data", "scenes")
 SKIPPED = (".lock", ".tmp", ".changed")
 
 

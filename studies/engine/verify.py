@@ -114,7 +114,7 @@ def todays_cases(reports: Path, catalog_path=None) -> dict[str, dict[str, Case]]
     every registered case source (the element cards), as today's code makes them."""
     from .catalog import CASES_TOML, load_catalog
 
-    out = {s.name: {c.id: c for c in s.cases()} for s in load_catalog(False, catalog_path or CASES_TOML).values()}
+    out = {s.name: {c.id: c for c in s.cases()} for s in load_catalog(False, catalog_path).values()}
     for source in CASE_SOURCES.values():
         out.update(source(Path(reports)))
     return out
