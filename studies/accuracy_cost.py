@@ -102,36 +102,34 @@ def cheapest(pts: list[dict], target: float) -> dict | None:
     return min(ok, key=lambda p: p["time"]) if ok else None
 
 
-def report(ctx) -> Section:
-    g = ctx.study.grid
-    pts = points(ctx)
-    sec = Section(ctx.study.title,
-                  "Error |u - u_ref| / |u_ref| of the static tip against the median wall time of serial warm runs "
-                  "(build + solve), for every element, formulation, quadrature and mesh, and for the continuum "
-                  "model's own refinement levels; u_ref is the converged continuum value of the matching model.")
-    models = [MATCHING[f] for f in g["formulations"]]
+def _panel(ax, g: dict, sel: list[dict]) -> None:
+    """One law and model: a curve per configuration (ANCF element and rule) over its meshes,
+    and the continuum's own levels in black."""
+    for cfg in dict.fromkeys(p["config"] for p in sel):
+        ser = [p for p in sel if p["config"] == cfg and p["error"] is not None and p["time"]]
+        ser.sort(key=lambda p: p["ndof"] or 0)  # along the refinement
+        if not ser:
+            continue
+        xs, ys, vs = [p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], [p["verdict"] for p in ser]
+        if cfg.startswith("continuum"):
+            draw(ax, xs, ys, vs, "continuum Q2 (levels)", color="k", marker="D", lw=2, ms=5)
+            continue
+        el, q = ser[0]["element"], ser[0]["quadrature"]
+        draw(ax, xs, ys, vs, cfg, marker=marker(el, g["elements"]), ls=STYLE.get(q, "-"), lw=1, ms=3.5)
+    for a in g["accuracies"]:
+        ax.axhline(a, color="grey", lw=0.6, ls=":")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.grid(True, which="major", alpha=0.3)
+
+
+def _figure(ctx, sec: Section, g: dict, pts: list[dict], models: list[str]) -> None:
     fig, axes = figure(len(models), len(g["laws"]), figsize=(4.6 * len(g["laws"]), 4.0 * len(models)),
                        squeeze=False, sharey=True)
     for i, (f, m) in enumerate(zip(g["formulations"], models)):
         for j, law in enumerate(g["laws"]):
             ax = axes[i][j]
-            sel = [p for p in pts if p["law"] == law and p["model"] == m]
-            for cfg in dict.fromkeys(p["config"] for p in sel):
-                ser = [p for p in sel if p["config"] == cfg and p["error"] is not None and p["time"]]
-                ser.sort(key=lambda p: p["ndof"] or 0)  # along the refinement
-                if not ser:
-                    continue
-                xs, ys, vs = [p["time"] for p in ser], [max(p["error"], 1e-7) for p in ser], [p["verdict"] for p in ser]
-                if cfg.startswith("continuum"):
-                    draw(ax, xs, ys, vs, "continuum Q2 (levels)", color="k", marker="D", lw=2, ms=5)
-                    continue
-                el, q = ser[0]["element"], ser[0]["quadrature"]
-                draw(ax, xs, ys, vs, cfg, marker=marker(el, g["elements"]), ls=STYLE.get(q, "-"), lw=1, ms=3.5)
-            for a in g["accuracies"]:
-                ax.axhline(a, color="grey", lw=0.6, ls=":")
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            ax.grid(True, which="major", alpha=0.3)
+            _panel(ax, g, [p for p in pts if p["law"] == law and p["model"] == m])
             ax.set_title(f"{law}\nANCF {f} vs continuum {m}", fontsize=9)
             ax.set_xlabel("wall time, serial warm (s)")
             if j == 0:
@@ -142,6 +140,10 @@ def report(ctx) -> Section:
                "lower left is better. Hollow markers: runs that converged to a singular or indefinite state, or "
                "carry a warning (verdict column of the points table). The ANCF curves level off at the beam model's "
                "distance from the continuum.")
+
+
+def _cheapest_rows(g: dict, pts: list[dict], models: list[str]) -> list[list]:
+    """Per law, formulation and accuracy: the cheapest settled ANCF run and continuum level."""
     rows = []
     for f, m in zip(g["formulations"], models):
         for law in g["laws"]:
@@ -155,31 +157,52 @@ def report(ctx) -> Section:
                              best_a["time"] if best_a else None, pct(best_a["error"]) if best_a else None,
                              f"{best_c['mesh']} Q2" if best_c else "none",
                              best_c["time"] if best_c else None, pct(best_c["error"]) if best_c else None])
-    sec.table(ctx, Table("accuracy_cost", ["law", "formulation", "accuracy", "cheapest ANCF", "verdict", "time (s)",
-                                           "error (%)", "cheapest continuum", "time (s)", "error (%)"], rows,
-                         {5: ".3f", 6: ".3f", 8: ".3f", 9: ".3f"}),
-              "For 1 % and 0.1 % accuracy, the cheapest configuration (median serial warm wall time) of ANCF and of "
-              "the continuum model that reaches it and stays within it on every finer mesh of the same configuration "
-              "(a curve that crosses the target on its way to a plateau above it, or through zero error, does not "
-              "count), counting only stable, unwarned runs whose finer meshes are stable and unwarned too; 'none' "
-              "where no configuration of the grid does.")
+    return rows
+
+
+def _points_table(ctx, sec: Section, pts: list[dict]) -> None:
     long = [[p["law"], p["model"], p["solver"], p["config"], p["mesh"], p["ndof"], p["status"], p["verdict"],
              p["time"], pct(p["error"])] for p in pts]
     t = Table("accuracy_cost_points", ["law", "model", "solver", "configuration", "mesh", "ndof", "status",
                                        "verdict", "time (s)", "error (%)"], long, {8: ".4f", 9: ".4f"})
     t.write(ctx.out)
     sec.items.append(("link", t.name + ".md", "Every point of the diagram."))
-    pendulum_part(ctx, sec)
-    choose_element(ctx, sec, pts)
+
+
+def _verdicts_prose(pts: list[dict]) -> str:
     ancf = [p for p in pts if p["solver"] == "ancf"]
     counts = {v: sum(1 for p in ancf if p["verdict"] == v) for v in dict.fromkeys(p["verdict"] for p in ancf)}
-    sec.text += (f"\nVerdicts of the {len(ancf)} static ANCF runs: "
-                 + ", ".join(f"{n} {v}" for v, n in sorted(counts.items(), key=lambda kv: -kv[1]))
-                 + "; only stable, unwarned runs count for the cheapest cells.")
+    text = (f"\nVerdicts of the {len(ancf)} static ANCF runs: "
+            + ", ".join(f"{n} {v}" for v, n in sorted(counts.items(), key=lambda kv: -kv[1]))
+            + "; only stable, unwarned runs count for the cheapest cells.")
     failed = [p for p in pts if p["status"] != "converged"]
     if failed:
-        sec.text += f"\n{len(failed)} of {len(pts)} static runs failed: " + "; ".join(
+        text += f"\n{len(failed)} of {len(pts)} static runs failed: " + "; ".join(
             f"{short(p['law'])} {p['model']} {p['config']} x {p['mesh']}" for p in failed)
+    return text
+
+
+def report(ctx) -> Section:
+    g = ctx.study.grid
+    pts = points(ctx)
+    sec = Section(ctx.study.title,
+                  "Error |u - u_ref| / |u_ref| of the static tip against the median wall time of serial warm runs "
+                  "(build + solve), for every element, formulation, quadrature and mesh, and for the continuum "
+                  "model's own refinement levels; u_ref is the converged continuum value of the matching model.")
+    models = [MATCHING[f] for f in g["formulations"]]
+    _figure(ctx, sec, g, pts, models)
+    sec.table(ctx, Table("accuracy_cost", ["law", "formulation", "accuracy", "cheapest ANCF", "verdict", "time (s)",
+                                           "error (%)", "cheapest continuum", "time (s)", "error (%)"],
+                         _cheapest_rows(g, pts, models), {5: ".3f", 6: ".3f", 8: ".3f", 9: ".3f"}),
+              "For 1 % and 0.1 % accuracy, the cheapest configuration (median serial warm wall time) of ANCF and of "
+              "the continuum model that reaches it and stays within it on every finer mesh of the same configuration "
+              "(a curve that crosses the target on its way to a plateau above it, or through zero error, does not "
+              "count), counting only stable, unwarned runs whose finer meshes are stable and unwarned too; 'none' "
+              "where no configuration of the grid does.")
+    _points_table(ctx, sec, pts)
+    pendulum_part(ctx, sec)
+    choose_element(ctx, sec, pts)
+    sec.text += _verdicts_prose(pts)
     return sec
 
 

@@ -82,66 +82,88 @@ def series(descs, formulation, element, dt) -> list[dict]:
                   key=lambda d: d["elements"])
 
 
+def _element(g: dict, descs: list[dict], f: str, el: str, ref) -> dict:
+    """One element's runs in one formulation: each run with its error against the reference
+    and against the element's own finest mesh, the table rows, the smallest converged mesh,
+    the step check's row and the summary line."""
+    t_end = round(g["t_end"], 9)
+    ser = series(descs, f, el, g["dt"])
+    ok = [d for d in ser if d["ok"]]
+    finest = ok[-1] if ok else None
+    pts, rows = [], []
+    for d in ser:
+        e = tip_errors(d["tips"], ref) if (ref and d["ok"]) else {}
+        s = tip_errors(d["tips"], finest["tips"]) if (finest and d["ok"] and d is not finest) else {}
+        pts.append((d, e, s))
+        rows.append([f, el, d["elements"], d["ndof"], d["status"],
+                     100 * e[t_end] if t_end in e else None, 100 * max(e.values()) if e else None,
+                     1e3 * LENGTH * max(e.values()) if e else None,
+                     100 * max(s.values()) if s else None, d["steps"], d["newton"], d["verdict"]])
+    good = [(d, e, s) for d, e, s in pts if e]
+    conv = next((d["elements"] for d, _, s in pts
+                 if d["ok"] and (d is finest or (s and max(s.values()) * LENGTH <= CONVERGED_M))), None)
+    half = [d for d in descs if (d["formulation"], d["element"], d["elements"], d["dt"]) ==
+            (f, el, max(g["counts"]), g["dt"] / 2) and d["ok"]]
+    dstep = tip_errors(finest["tips"], half[0]["tips"]) if (half and finest and
+                                                             finest["elements"] == max(g["counts"])) else {}
+    summary = [f"{d['elements']}: {1e3 * LENGTH * max(e.values()):.2f}" for d, e, _ in good]
+    line = (f"  - {el}, max tip error over t (mm) at n = " + ", ".join(summary)
+            + (f"; within 1 mm of its own finest mesh from n = {conv}." if conv else ".")) if summary else None
+    step = [f, el, max(g["counts"]), 1e3 * g["dt"], 1e3 * LENGTH * max(dstep.values()) if dstep else None, conv]
+    return {"pts": pts, "good": good, "rows": rows, "line": line, "step": step}
+
+
+def _draw_element(ax, g: dict, el: str, data: dict) -> None:
+    """The element's error at t_end (solid), its maximum over t (dashed) and against its own
+    finest mesh (dotted)."""
+    t_end = round(g["t_end"], 9)
+    good = data["good"]
+    if not good:
+        return
+    ns, vs = [d["elements"] for d, _, _ in good], [d["verdict"] for d, _, _ in good]
+    draw(ax, ns, [max(e[t_end], 1e-9) for _, e, _ in good], vs, f"{el} at {g['t_end']:g} s",
+         marker=marker(el, g["elements"]), ls="-", lw=1.2)
+    draw(ax, ns, [max(max(e.values()), 1e-9) for _, e, _ in good], vs, f"{el} max over t",
+         marker=marker(el, g["elements"]), ls="--", lw=0.8, ms=3, color=ax.lines[-1].get_color())
+    selfc = [(d, s) for d, _, s in data["pts"] if s]
+    if selfc:
+        ax.plot([d["elements"] for d, _ in selfc], [max(max(s.values()), 1e-9) for _, s in selfc],
+                ls=":", lw=1, color=ax.lines[-1].get_color())
+
+
+def _axes(ax, g: dict, f: str, label: str, first: bool) -> None:
+    ax.set_xscale("log", base=2)
+    ax.set_xticks(g["counts"], [str(n) for n in g["counts"]])
+    ax.set_yscale("log")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.set_xlabel("number of elements")
+    ax.set_title(f"`{f}` vs {label}", fontsize=8)
+    if first:
+        ax.set_ylabel("|r - r_ref| / L")
+
+
 def report(ctx) -> Section:
     g = ctx.study.grid
     descs = [describe_dynamic(r) for r in ctx.records()]
-    t_end = round(g["t_end"], 9)
     sec = Section(ctx.study.title,
-                  f"The pendulum ({g.get('law', paper.PENDULUM_LAW)}, {g['t_end']:g} s, generalized-alpha rho_inf = {g['rho_inf']}, dt = "
-                  f"{1e3 * g['dt']:g} ms) at 4 to {max(g['counts'])} elements: tip error |r - r_ref| / L (L = "
-                  f"{1e3 * LENGTH:g} mm) at t = {g['t_end']:g} s and the maximum over the output times, against the "
-                  "converged continuum plane-stress tip; dotted: each element against its own finest mesh.")
+                  f"The pendulum ({g.get('law', paper.PENDULUM_LAW)}, {g['t_end']:g} s, generalized-alpha rho_inf = "
+                  f"{g['rho_inf']}, dt = {1e3 * g['dt']:g} ms) at 4 to {max(g['counts'])} elements: tip error "
+                  f"|r - r_ref| / L (L = {1e3 * LENGTH:g} mm) at t = {g['t_end']:g} s and the maximum over the output "
+                  "times, against the converged continuum plane-stress tip; dotted: each element against its own "
+                  "finest mesh.")
     forms = g["formulations"]
     fig, axes = figure(1, len(forms), figsize=(5.2 * len(forms), 4.2), squeeze=False, sharey=True)
     rows, steprows, lines = [], [], []
     for j, f in enumerate(forms):
         ref, label, provisional = reference_for(ctx, f, descs)
-        ax = axes[0][j]
         block = []
         for el in g["elements"]:
-            ser = series(descs, f, el, g["dt"])
-            ok = [d for d in ser if d["ok"]]
-            finest = ok[-1] if ok else None
-            pts = []
-            for d in ser:
-                e = tip_errors(d["tips"], ref) if (ref and d["ok"]) else {}
-                s = tip_errors(d["tips"], finest["tips"]) if (finest and d["ok"] and d is not finest) else {}
-                pts.append((d, e, s))
-                rows.append([f, el, d["elements"], d["ndof"], d["status"],
-                             100 * e[t_end] if t_end in e else None, 100 * max(e.values()) if e else None,
-                             1e3 * LENGTH * max(e.values()) if e else None,
-                             100 * max(s.values()) if s else None, d["steps"], d["newton"], d["verdict"]])
-            good = [(d, e, s) for d, e, s in pts if e]
-            if good:
-                ns, vs = [d["elements"] for d, _, _ in good], [d["verdict"] for d, _, _ in good]
-                draw(ax, ns, [max(e[t_end], 1e-9) for _, e, _ in good], vs, f"{el} at {g['t_end']:g} s",
-                     marker=marker(el, g["elements"]), ls="-", lw=1.2)
-                draw(ax, ns, [max(max(e.values()), 1e-9) for _, e, _ in good], vs, f"{el} max over t",
-                     marker=marker(el, g["elements"]), ls="--", lw=0.8, ms=3, color=ax.lines[-1].get_color())
-                selfc = [(d, s) for d, _, s in pts if s]
-                if selfc:
-                    ax.plot([d["elements"] for d, _ in selfc], [max(max(s.values()), 1e-9) for _, s in selfc],
-                            ls=":", lw=1, color=ax.lines[-1].get_color())
-            conv = next((d["elements"] for d, _, s in pts
-                         if d["ok"] and (d is finest or (s and max(s.values()) * LENGTH <= CONVERGED_M))), None)
-            half = [d for d in descs if (d["formulation"], d["element"], d["elements"], d["dt"]) ==
-                    (f, el, max(g["counts"]), g["dt"] / 2) and d["ok"]]
-            dstep = tip_errors(finest["tips"], half[0]["tips"]) if (half and finest and
-                                                                     finest["elements"] == max(g["counts"])) else {}
-            summary = [f"{d['elements']}: {1e3 * LENGTH * max(e.values()):.2f}" for d, e, _ in good]
-            if summary:
-                block.append(f"  - {el}, max tip error over t (mm) at n = " + ", ".join(summary)
-                             + (f"; within 1 mm of its own finest mesh from n = {conv}." if conv else "."))
-            steprows.append([f, el, max(g["counts"]), 1e3 * g["dt"],
-                             1e3 * LENGTH * max(dstep.values()) if dstep else None, conv])
-        ax.set_xscale("log", base=2)
-        ax.set_xticks(g["counts"], [str(n) for n in g["counts"]])
-        ax.set_yscale("log")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.set_xlabel("number of elements")
-        ax.set_title(f"`{f}` vs {label}", fontsize=8)
-        if j == 0:
-            ax.set_ylabel("|r - r_ref| / L")
+            data = _element(g, descs, f, el, ref)
+            rows += data["rows"]
+            _draw_element(axes[0][j], g, el, data)
+            block += [data["line"]] if data["line"] else []
+            steprows.append(data["step"])
+        _axes(axes[0][j], g, f, label, j == 0)
         lines += [f"- `{f}` against {label}:"] + block
     axes[0][-1].legend(*hollow_legend(axes[0][-1]), fontsize=6, loc="best")
     sec.figure(ctx, fig, "figure4_pendulum_convergence",
@@ -158,7 +180,8 @@ def report(ctx) -> Section:
                                           f"converged at n (within {1e3 * CONVERGED_M:g} mm of finest)"],
                          steprows, {3: "g", 4: ".4f"}),
               "The step check: the finest mesh of each element again at dt/2 (the largest tip change over the output "
-              "times), and the smallest mesh whose tip stays within 1 mm of that element's finest mesh at every output time.")
+              "times), and the smallest mesh whose tip stays within 1 mm of that element's finest mesh at every output "
+              "time.")
     sec.text = "\n".join(lines)
     return sec
 

@@ -70,16 +70,9 @@ def selected(ctx) -> list[dict]:
     return out
 
 
-def report(ctx) -> Section:
-    g = ctx.study.grid
-    sel = selected(ctx)
-    ptab = paper.table4()
-    sec = Section(ctx.study.title,
-                  f"Time of the pendulum ({paper.PENDULUM_LAW}, {g['t_end']:g} s; generalized-alpha, rho_inf = {g['rho_inf']}) per "
-                  f"element and count, each at its converged step (largest dt of the ladder {DT0 * 1e3:g} ms, halving, "
-                  f"whose tip positions are within {TOL * 1e3:g} mm of the dt/2 run); wall time = median of serial warm "
-                  f"runs in one process and one thread (compile time and warm-up apart; the first run of the process, shown beside it, loads the compiled code from the numba cache and does not include compiling it; the first run after installing, compiling included, is the study table4-cold). The paper's CPU time is from an "
-                  "Intel i5-5200U laptop.")
+def _rows(sel: list[dict], ptab: dict) -> tuple[list[list], dict]:
+    """The table's rows, one per (formulation, element, n) at its converged step, and the
+    figure's points {(formulation, element): [(n, median wall s)]}."""
     rows, plot = [], {}
     for s in sel:
         r = s["rung"]
@@ -92,13 +85,10 @@ def report(ctx) -> Section:
                      p / med if (p and med) else None, r["verdict"] if r else "failed"])
         if med:
             plot.setdefault((s["formulation"], s["element"]), []).append((s["n"], med))
-    sec.table(ctx, Table("table4", ["formulation", "element", "n", "ndof", "converged dt (ms)",
-                                    "tip change at dt/2 (mm)", "steps", "Newton", "wall s (median)",
-                                    "first run s (compiled code from the cache)", "paper CPU s", "paper / ours",
-                                    "verdict"], rows,
-                         {4: "g", 5: ".4f", 8: ".3f", 9: ".2f", 10: ".2f", 11: ".0f"}),
-              "Table 4 beside the paper's: our median serial warm wall time of the pendulum at each case's converged "
-              "step, with the steps, Newton iterations and ndof of that run, and the ratio of the paper's CPU time to ours.")
+    return rows, plot
+
+
+def _ladder_table(ctx, sec: Section, sel: list[dict]) -> None:
     long = []
     for s in sel:
         for d in s["rungs"]:
@@ -109,23 +99,51 @@ def report(ctx) -> Section:
                                 "wall s (median)", "converged step", "verdict"], long, {3: "g", 8: ".4f"})
     t.write(ctx.out)
     sec.items.append(("link", t.name + ".md", "Every rung of the step ladder (status, steps, time)."))
+
+
+def _figure(ctx, sec: Section, g: dict, plot: dict, ptab: dict) -> None:
+    fig, ax = figure(1, 1, figsize=(5.5, 4.0))
+    for (f, el), pts in plot.items():
+        ax.plot([n for n, _ in pts], [m for _, m in pts], marker="o", ls="-" if f == "plane-stress" else "--",
+                label=f"ours {el} `{f}`")
+    for el in g["elements"]:
+        pp = [(n, ptab[(el, n)]) for n in g["counts"] if (el, n) in ptab]
+        ax.plot([n for n, _ in pp], [v for _, v in pp], marker="x", ls=":", color="grey", lw=0.8)
+    ax.plot([], [], "x:", color="grey", label="paper (CPU s, i5-5200U)")
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    ax.set_xlabel("number of elements")
+    ax.set_ylabel("time for 0.5 s of motion (s)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=6)
+    sec.figure(ctx, fig, "table4_times", "Our wall times (median of serial warm runs, at each converged step) and "
+               "the paper's CPU times, against the number of elements, log scales: the gap is the ratio column.")
+
+
+def report(ctx) -> Section:
+    g = ctx.study.grid
+    sel = selected(ctx)
+    ptab = paper.table4()
+    sec = Section(ctx.study.title,
+                  f"Time of the pendulum ({paper.PENDULUM_LAW}, {g['t_end']:g} s; generalized-alpha, rho_inf = "
+                  f"{g['rho_inf']}) per element and count, each at its converged step (largest dt of the ladder "
+                  f"{DT0 * 1e3:g} ms, halving, whose tip positions are within {TOL * 1e3:g} mm of the dt/2 run); wall "
+                  "time = median of serial warm runs in one process and one thread (compile time and warm-up apart; "
+                  "the first run of the process, shown beside it, loads the compiled code from the numba cache and "
+                  "does not include compiling it; the first run after installing, compiling included, is the study "
+                  "table4-cold). The paper's CPU time is from an Intel i5-5200U laptop.")
+    rows, plot = _rows(sel, ptab)
+    sec.table(ctx, Table("table4", ["formulation", "element", "n", "ndof", "converged dt (ms)",
+                                    "tip change at dt/2 (mm)", "steps", "Newton", "wall s (median)",
+                                    "first run s (compiled code from the cache)", "paper CPU s", "paper / ours",
+                                    "verdict"], rows,
+                         {4: "g", 5: ".4f", 8: ".3f", 9: ".2f", 10: ".2f", 11: ".0f"}),
+              "Table 4 beside the paper's: our median serial warm wall time of the pendulum at each case's converged "
+              "step, with the steps, Newton iterations and ndof of that run, and the ratio of the paper's CPU time to "
+              "ours.")
+    _ladder_table(ctx, sec, sel)
     if plot:
-        fig, ax = figure(1, 1, figsize=(5.5, 4.0))
-        for (f, el), pts in plot.items():
-            ax.plot([n for n, _ in pts], [m for _, m in pts], marker="o", ls="-" if f == "plane-stress" else "--",
-                    label=f"ours {el} `{f}`")
-        for el in g["elements"]:
-            pp = [(n, ptab[(el, n)]) for n in g["counts"] if (el, n) in ptab]
-            ax.plot([n for n, _ in pp], [v for _, v in pp], marker="x", ls=":", color="grey", lw=0.8)
-        ax.plot([], [], "x:", color="grey", label="paper (CPU s, i5-5200U)")
-        ax.set_xscale("log", base=2)
-        ax.set_yscale("log")
-        ax.set_xlabel("number of elements")
-        ax.set_ylabel("time for 0.5 s of motion (s)")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=6)
-        sec.figure(ctx, fig, "table4_times", "Our wall times (median of serial warm runs, at each converged step) and "
-                   "the paper's CPU times, against the number of elements, log scales: the gap is the ratio column.")
+        _figure(ctx, sec, g, plot, ptab)
     ratios = [r[11] for r in rows if r[11]]
     sec.text = (f"Paper / ours ranges from {min(ratios):.0f} to {max(ratios):.0f} over the {len(ratios)} timed cells "
                 "(different machines and compilers; same physics, element and step rule)." if ratios else "")
