@@ -79,14 +79,14 @@ loops: setup
 # timings of the paper's cells (Table 3, the pendulum of Table 4) and of the compiled kernels
 # (reports/kernels.md)
 bench: setup
-	$(PY) -m studies.bench table3
-	$(PY) -m studies.bench pendulum
-	$(PY) -m studies.bench kernels
+	$(PY) -m studies.design.bench table3
+	$(PY) -m studies.design.bench pendulum
+	$(PY) -m studies.design.bench kernels
 
 # the penalty sweep: every element x law x penalised formulation x mesh from 10 to 1e5 C10
 # (reports/penalty.md)
 bench-penalty: setup
-	$(PY) -m studies.bench penalty
+	$(PY) -m studies.design.bench penalty
 
 # the elements of the work-precision diagram: the paper's two and the lock-free ones
 PEER_ELEMENTS = --element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-20xypm --element HB2n-40p --element HB2n-60p

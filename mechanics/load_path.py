@@ -25,7 +25,7 @@ GROW = 1.5
 # Grow after at most 6 iterations (was 4): full Newton on the near-singular [2,2] tangents
 # of Table 3 takes 5 to 7 iterations per increment whatever its size, so 4 never let the
 # increments grow there (640 x HB2n-16 Mooney-Rivlin: 37 increments, 235 iterations; with
-# 6: 20 and 183). The twelve Table 3 tips moved by less than 1e-5 mm (studies.bench).
+# 6: 20 and 183). The twelve Table 3 tips moved by less than 1e-5 mm (studies.design.bench).
 EASY = 6
 MIN_STEP = 1e-6
 

@@ -5,7 +5,7 @@ A backend is one folder, ``reference_fem/<name>_backend/``, whose package offers
 system the shared :mod:`reference_fem.statics` drives), ``dynamic_model(scene, settings)``
 (one time step's equations for :class:`reference_fem.stepper.ContinuumStepper`) and
 ``manufactured(solution, cells)`` (one level of a manufactured solution,
-:mod:`reference_fem.mms`). Adding one is that folder and one line here
+:mod:`reference_fem.manufactured`). Adding one is that folder and one line here
 (:func:`register_backend`); a scene names it in ``[fem] backend``, and everything else
 (the settings' check, the record's label, the study engine's fingerprint of the code a
 run reaches, the studies) asks :data:`BACKENDS`. A backend package is imported only when

@@ -44,8 +44,8 @@ from contract import paper
 from .engine.audit import register_prebuild
 from .engine.verify import register_case_source
 from .engine.case import Case, make_case
-from .grid import DEFAULT, cantilever_case
-from .pendulum_cases import pendulum_dict
+from .common.grid import DEFAULT, cantilever_case
+from .common.pendulum_cases import pendulum_dict
 from .engine.scheduler import run_cases
 from .engine import fingerprint as fp
 from .engine.store import store_for

@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 
 from .card import beam_theory, cases, checks_path, element_imports, grid_for, slug
-from .pendulum_cases import FEM_GOLD, continuum_pendulum, describe_dynamic, tip_errors
-from .reference import MATCHING, gold_references, short
+from .common.pendulum_cases import FEM_GOLD, continuum_pendulum, describe_dynamic, tip_errors
+from .common.gold import MATCHING, gold_references, short
 from .engine.report import FIGURE_DATA, figure, mm, vec_error, write_figure_data
 from .engine.store import RecordStore, store_for
 

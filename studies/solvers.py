@@ -10,8 +10,8 @@
   (``fem.backend``, :data:`reference_fem.backends.BACKENDS`; not the other ones); its
   records are labelled with that backend's name.
 
-A study's own solver is registered by the study (``mms`` by :mod:`studies.mms`,
-``ancf-material`` by :mod:`studies.benchmarks`).
+A study's own solver is registered by the study (``mms`` by :mod:`studies.verification.manufactured`,
+``ancf-material`` by :mod:`studies.verification.benchmarks`).
 """
 from __future__ import annotations
 

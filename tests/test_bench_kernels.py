@@ -1,4 +1,4 @@
-"""The kernel benchmark's table (studies.bench kernels): generated from its CSV rows, every
+"""The kernel benchmark's table (studies.design.bench kernels): generated from its CSV rows, every
 built-in element x law x formulation has a material, and one timed row is sane. Times are
 printed by the benchmark, never asserted here."""
 import csv
@@ -7,8 +7,8 @@ import io
 from ancf.elements import ELEMENTS
 from contract.scene import FORMULATIONS, scene_from_dict
 from mechanics.laws import LAWS
-from studies import bench
-from studies.pendulum_cases import pendulum_dict
+from studies.design import bench
+from studies.common.pendulum_cases import pendulum_dict
 
 
 def test_every_element_law_and_formulation_has_a_material():

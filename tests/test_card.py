@@ -164,7 +164,7 @@ def test_the_clamp_sets_hb2n16s_order():
 def test_a_card_names_why_a_pendulum_run_has_no_result():
     """A failed run is a row with '-' and a line with its record's reason."""
     from studies.card_report import _pendulum
-    from studies.pendulum_cases import pendulum_dict
+    from studies.common.pendulum_cases import pendulum_dict
 
     scene = pendulum_dict("HB2n-16", 8, "plane-stress", 5e-4)
     rec = {"scene": scene, "status": "failed", "reason": "step below dt_min at t = 0 s: det F <= 0",

@@ -1,4 +1,4 @@
-"""Rivlin's plane-strain flexure (studies.closed_forms.rivlin_bending) against its limits and an
+"""Rivlin's plane-strain flexure (studies.verification.closed_forms.rivlin_bending) against its limits and an
 independent route. Every tolerance is derived from the numerics in the comment above it.
 
 The laws' constants: the paper's (Table 2) for neo-Hookean, Mooney-Rivlin and Yeoh, Gent's example
@@ -11,7 +11,7 @@ import pytest
 
 from contract import paper
 from mechanics.laws import get_law
-from studies.closed_forms import (DERIVATIVES, plane_stress_bending, plane_stress_curvature, rivlin_bending,
+from studies.verification.closed_forms import (DERIVATIVES, plane_stress_bending, plane_stress_curvature, rivlin_bending,
                                   rivlin_curvature, rivlin_moment_mooney_rivlin)
 
 H = 0.005                                            # m, the paper's section height

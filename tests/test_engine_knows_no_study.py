@@ -46,5 +46,5 @@ def test_what_the_engine_runs_is_registered_by_its_owners():
     assert {"ancf", "ancf-effects", "ancf-cold", "continuum"} <= set(SOLVERS)
     assert SOLVERS.origin["ancf"] == "studies.solvers"
     assert "cards" in PREBUILD and "cards" in CASE_SOURCES and "peers" in RULES
-    from studies import benchmarks, mms  # noqa: F401  (a study registers its own solver on import)
-    assert SOLVERS.origin["mms"] == "studies.mms" and SOLVERS.origin["ancf-material"] == "studies.benchmarks"
+    from studies.verification import benchmarks, manufactured  # noqa: F401  (a study registers its own solver)
+    assert SOLVERS.origin["mms"] == "studies.verification.manufactured" and SOLVERS.origin["ancf-material"] == "studies.verification.benchmarks"

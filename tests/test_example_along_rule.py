@@ -1,4 +1,4 @@
-"""examples/along_rule.py: HB2n-20xyp with three Gauss points along the beam. On the slender
+"""experiments/along_rule.py: HB2n-20xyp with three Gauss points along the beam. On the slender
 pendulum's 4-element mesh the rule [3, 2] removes most of the default rule's error. The
 small-strain cantilever does not see the rule at all. The rank test rejects [3, 2] through
 a transverse-stretch mode that the rule hardly sees."""

@@ -1,4 +1,4 @@
-"""examples/assumed_membrane.py: the prototype that finds which strain the three points
+"""experiments/assumed_membrane.py: the prototype that finds which strain the three points
 along the beam relieve. It is checked against the harness, then its finding is held: on 4
 elements of HB2n-20xyp, an assumed membrane stretch C_xx removes most of the slender
 pendulum's error. An assumed thickness stretch C_yy, the mode for which the rank tests
@@ -7,7 +7,7 @@ import pytest
 
 from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
-from examples.assumed_membrane import ELEMENT, AssumedStrain, pendulum_error
+from experiments.assumed_membrane import ELEMENT, AssumedStrain, pendulum_error
 from studies.peers.work_precision import error, scene_dict
 
 

@@ -72,7 +72,7 @@ def test_the_plane_strain_error_falls_as_the_penalty_stiffens():
 
 
 def _pendulum(n: int, t_end: float) -> dict:
-    from studies.pendulum_cases import pendulum_dict
+    from studies.common.pendulum_cases import pendulum_dict
     return pendulum_dict(ELEMENT, n, "plane-stress", 5e-4, t_end=t_end)
 
 

@@ -9,7 +9,7 @@ from ancf import checks
 from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
 from studies.peers.work_precision import error
-from studies.pendulum_cases import pendulum_dict
+from studies.common.pendulum_cases import pendulum_dict
 
 ELEMENT = "HB2n-20xy"
 

@@ -1,9 +1,9 @@
-"""The continuum-agreement check (studies/continuum_agreement.py) on made-up records:
+"""The continuum-agreement check (studies/verification/continuum_agreement.py) on made-up records:
 two codes agree when their Richardson values are within the sum of their estimates."""
 import pytest
 
-from studies.continuum_agreement import agreement, scene as felupe_scene
-from studies.continuum import scene as dolfinx_scene
+from studies.verification.continuum_agreement import agreement, scene as felupe_scene
+from studies.verification.continuum import scene as dolfinx_scene
 
 
 def _records(make, tips):

@@ -167,7 +167,7 @@ def test_felupe_sequence_reproduces_its_committed_levels_and_richardson():
     tests/test_reference_fem_cantilever.py); the Richardson value of the last three agrees
     with DOLFINx's committed one (tests/gold) within the two estimates."""
     from reference_fem.convergence import richardson
-    from studies.continuum_agreement import scene as felupe_scene
+    from studies.verification.continuum_agreement import scene as felupe_scene
 
     tips = []
     for cells in ((12, 1), (24, 2), (48, 4), (96, 8)):

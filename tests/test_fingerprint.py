@@ -73,7 +73,7 @@ def test_each_backend_counts_its_own_code_and_packages():
     assert "fenics-dolfinx" in pd and "felupe" not in pd and "tensortrax" not in pd
     assert "felupe" in pf and "tensortrax" in pf and "fenics-dolfinx" not in pf
     mms_d = _modules("mms", {"mms": {"code": "dolfinx"}})
-    assert "reference_fem.dolfinx_backend.mms" in mms_d and "reference_fem.felupe_backend.mms" not in mms_d
+    assert "reference_fem.dolfinx_backend.manufactured" in mms_d and "reference_fem.felupe_backend.manufactured" not in mms_d
 
 
 def test_ancf_records_depend_on_no_continuum_code_and_no_report_code():

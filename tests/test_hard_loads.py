@@ -8,7 +8,7 @@ from __future__ import annotations
 import pytest
 
 from studies.engine.catalog import load_catalog
-from studies.hard_loads import rows_of
+from studies.verification.hard_loads import rows_of
 from studies.engine.pipeline import run_studies
 from studies.engine.report import Context
 

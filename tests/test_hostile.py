@@ -516,10 +516,10 @@ def test_fuzz_small_random_runs_end_with_a_status(p):
     (b"x = 5\n", "x: must be a table"),
     (b"[x]\ntitle = 't'\n", "x.module: must name a module"),
     (b"[x]\nmodule = '../etc'\n", "x.module: must name a module"),
-    (b"[x]\nmodule = 'table3'\nneeds = 5\n", "x.needs: must be a list"),
-    (b"[x]\nmodule = 'table3'\nneeds = ['y']\n", "needs unknown"),
-    (b"[x]\nmodule = 'table3'\ntiny = 3\n", "x.tiny: must be a table"),
-    (b"[x]\nmodule = 'table3'\n", "its grid needs the key 'formulations'"),
+    (b"[x]\nmodule = 'paper.table3'\nneeds = 5\n", "x.needs: must be a list"),
+    (b"[x]\nmodule = 'paper.table3'\nneeds = ['y']\n", "needs unknown"),
+    (b"[x]\nmodule = 'paper.table3'\ntiny = 3\n", "x.tiny: must be a table"),
+    (b"[x]\nmodule = 'paper.table3'\n", "its grid needs the key 'formulations'"),
 ])
 def test_a_bad_catalog_is_one_line(tmp_path, capsys, content, message):
     from studies.cli import main as studies_main

@@ -1,4 +1,4 @@
-"""Manufactured solutions (reference_fem/mms.py and each backend's mms.py): the body force
+"""Manufactured solutions (reference_fem/manufactured.py and each backend's manufactured.py): the body force
 by a second route, and each code's observed orders on two small levels.
 
 The second route: P from FElupe's material (tensortrax's derivatives of the backend's
@@ -14,10 +14,10 @@ from .conftest import tiered
 
 from contract import paper
 from contract.errors import SceneError, UnknownName
-from reference_fem.mms import EXPECTED_ORDER, MODELS, manufactured, observed_orders
+from reference_fem.manufactured import EXPECTED_ORDER, MODELS, manufactured, observed_orders
 
 LAWS = ("neo-hookean", "mooney-rivlin", "yeoh")
-TOL = 0.3     # the study's bar: observed >= expected - 0.3 (studies/mms.py ORDER_TOLERANCE)
+TOL = 0.3     # the study's bar: observed >= expected - 0.3 (studies/verification/manufactured.py ORDER_TOLERANCE)
 
 
 def constants(law: str) -> dict:
@@ -84,7 +84,7 @@ def test_bad_input_names_the_field():
         manufactured("yeoh", constants("yeoh"), "plane-strain-exact")
     with pytest.raises(ValueError, match="penalty alpha"):
         manufactured("yeoh", constants("yeoh"), "plane-strain-penalty")
-    from studies.mms import check, scene
+    from studies.verification.manufactured import check, scene
     sc = scene("felupe", "plane-strain", "yeoh", [4, 8])
     sc["mms"]["levels"] = [8, 4]
     with pytest.raises(SceneError, match="mms.levels"):
@@ -119,7 +119,7 @@ def _orders(solve, model):
 @pytest.mark.parametrize("model", tiered(list(SMALL), lambda m: m in ("3d", "plane-strain-penalty"), "test_felupe_orders"))
 def test_felupe_orders(model):
     pytest.importorskip("felupe")
-    from reference_fem.felupe_backend.mms import solve
+    from reference_fem.felupe_backend.manufactured import solve
 
     _orders(solve, model)
 
@@ -130,11 +130,11 @@ def test_dolfinx_orders_and_the_same_errors_as_felupe(model):
     """Both codes discretise alike (Q2/Q1 on the same grid, the same quadrature): their
     errors agree to the Newton tolerance (measured: 1e-9 relative and below)."""
     pytest.importorskip("dolfinx")
-    from reference_fem.dolfinx_backend.mms import solve
+    from reference_fem.dolfinx_backend.manufactured import solve
 
     res = _orders(solve, model)
     try:
-        from reference_fem.felupe_backend.mms import solve as solve_felupe
+        from reference_fem.felupe_backend.manufactured import solve as solve_felupe
     except ImportError:
         return
     law, levels = SMALL[model]

@@ -68,7 +68,7 @@ def test_missing_output_time_is_an_error():
 
 # -- work-precision (studies.peers.work_precision), without Exudyn ----------------------------
 def test_work_precision_error_is_zero_on_the_reference_and_the_report_picks_the_cheapest(tmp_path):
-    from studies.pendulum_cases import continuum_pendulum
+    from studies.common.pendulum_cases import continuum_pendulum
     from studies.peers import precision_report as pr, work_precision as wp
 
     ref = continuum_pendulum()[("yeoh", "plane-stress")]
@@ -394,7 +394,7 @@ def test_a_run_whose_tip_leaves_the_pendulum_is_diverged_whatever_its_solver_say
     """Exudyn's linear-solve runs on fine meshes at 10 ms report success with tips 1e10 L
     from the pin: such a run is scored "diverged", with no error, and counts for nothing."""
     from studies.peers import precision_report as pr, work_precision as wp
-    from studies.pendulum_cases import LENGTH
+    from studies.common.pendulum_cases import LENGTH
 
     def rec(tips):
         return {"scene": "pendulum", "solver": "exudyn", "element": "ANCFCable2D-linear", "elements": 64,

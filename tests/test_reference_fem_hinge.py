@@ -43,7 +43,7 @@ def test_hinged_strip_in_tension_is_homogeneous_uniaxial_tension(backend, cells_
     """A tip traction P = 0.5 MPa along x on the hinged plane-stress strip (4 x n Q2 cells; 1
     and 3 cells across have no node at the face centre, which the hinge does not need): the
     hinge lets the face contract uniformly, so the state is homogeneous uniaxial tension,
-    lambda from :func:`studies.closed_forms.uniaxial_stretch` and lambda_2 = lambda^(-1/2).
+    lambda from :func:`studies.verification.closed_forms.uniaxial_stretch` and lambda_2 = lambda^(-1/2).
     The homogeneous field is in Q2 and its discrete residual vanishes at every quadrature
     point, so the FE state equals it to Newton's tolerance (rtol 1e-10 on the residual: a
     stretch error ~1e-10; allowed 1e-8, as tests/test_reference_fem_tension.py). (The
@@ -52,7 +52,7 @@ def test_hinged_strip_in_tension_is_homogeneous_uniaxial_tension(backend, cells_
     centre fixed, its corners moved by (0, +-(lambda_2 - 1) h / 2); the record's ndof is
     the unknowns less the face's displacements plus a's two, and its pin note names the hinge."""
     from reference_fem.simulation import run_scene
-    from studies.closed_forms import uniaxial_stretch
+    from studies.verification.closed_forms import uniaxial_stretch
 
     P = 0.5e6
     lam = uniaxial_stretch("neo-hookean", {"C10": C10}, "plane-stress", P)

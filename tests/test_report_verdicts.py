@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from studies.engine.report import VERDICTS, verdict
-from studies.pendulum_cases import describe_dynamic
+from studies.common.pendulum_cases import describe_dynamic
 
 REPORTS = Path(__file__).resolve().parents[1] / "reports"
 TABLES = {  # table -> verdict column header

@@ -39,7 +39,7 @@ def _catalog(tmp_path: Path, count: int) -> Path:
     if count == LONG:
         p.write_text("""
 [faults]
-module = "figure5"
+module = "paper.figure5"
 laws = ["neo-hookean", "mooney-rivlin", "yeoh"]
 elements = ["HB2n-12", "HB3n-12"]
 elements_count = 32
@@ -51,7 +51,7 @@ t_end = 0.5
         return p
     p.write_text(f"""
 [faults]
-module = "table3"
+module = "paper.table3"
 laws = ["yeoh", "neo-hookean"]
 elements = ["HB3n-12", "HB2n-12"]
 formulations = ["plane-stress", "paper", "plane-strain"]

@@ -2,7 +2,7 @@
 
 An element with a pressure field refuses a rule that cannot resolve it (a SceneError from
 :func:`ancf.build.check`); a grid lists the rules such an element takes under
-``per_element`` (:func:`studies.grid.takes`). Here every ANCF case of every study, full
+``per_element`` (:func:`studies.common.grid.takes`). Here every ANCF case of every study, full
 and tiny, passes the same check a run starts with."""
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import pytest
 from ancf.build import check
 from contract.scene import scene_from_dict
 from studies.engine.catalog import load_catalog
-from studies.grid import counts_of, takes
+from studies.common.grid import counts_of, takes
 
 
 @pytest.mark.parametrize("tiny", [False, True], ids=["full", "tiny"])

@@ -1,5 +1,5 @@
 """The pendulum studies (Figure 4, Figure 5, Table 4, stability) in tiny mode: the step
-rule of Table 4 against studies.bench.converged_step, errors against the continuum gold
+rule of Table 4 against studies.design.bench.converged_step, errors against the continuum gold
 recomputed here, the provisional reference without it, and the hard-case report's
 honest failures and its bound."""
 from __future__ import annotations
@@ -12,8 +12,10 @@ import shutil
 import pytest
 
 from contract import paper
-from studies import figure4, pendulum_cases as pendulum, stability, table4
-from studies.bench import converged_step
+from studies.common import pendulum_cases as pendulum
+from studies.paper import figure4, table4
+from studies.verification import dynamics_stability as stability
+from studies.design.bench import converged_step
 from studies.engine.catalog import load_catalog
 from studies.engine.pipeline import build_reports, run_studies
 from studies.engine.report import Context
@@ -143,7 +145,7 @@ def test_stability_report_states_the_bound_first_and_shows_failures_honestly(tin
 
 
 def test_the_pendulum_work_precision_points_are_table4_rungs_against_the_continuum(tiny):
-    from studies.accuracy_cost import pendulum_points
+    from studies.design.accuracy_cost import pendulum_points
 
     out, cat = tiny
     if not pendulum.FEM_GOLD.exists():

@@ -15,7 +15,7 @@ import pytest
 
 from studies.engine import solvers
 from studies.engine.case import make_case
-from studies.grid import cantilever_case
+from studies.common.grid import cantilever_case
 from studies.engine.scheduler import run_cases
 from studies.engine.store import RecordStore
 
@@ -194,7 +194,7 @@ def _catalog(tmp_path: Path, counts=(2, 3, 4, 6, 8, 12)) -> Path:
     p = tmp_path / "cases.toml"
     p.write_text(f"""
 [table3]
-module = "table3"
+module = "paper.table3"
 laws = ["yeoh", "neo-hookean"]
 elements = ["HB3n-12", "HB2n-12"]
 formulations = ["plane-stress", "paper", "plane-strain"]

@@ -9,7 +9,7 @@ import pytest
 
 from studies.engine.catalog import load_catalog
 from studies.engine.solvers import get_solver
-from studies.table4_cold import COLD
+from studies.paper.table4_cold import COLD
 
 
 def test_one_cold_case_per_element_in_the_full_grid_none_in_tiny():
@@ -27,7 +27,7 @@ def test_one_cold_case_per_element_in_the_full_grid_none_in_tiny():
 def test_a_cold_run_returns_the_solvers_record_and_its_process_times():
     """About 17 s: the solver's own record, with the process's times beside it (measured,
     never compared here)."""
-    from studies.pendulum_cases import pendulum_dict
+    from studies.common.pendulum_cases import pendulum_dict
 
     rec = get_solver(COLD).run(pendulum_dict("HB2n-12", 4, "plane-stress", 1e-3, rho_inf=0.5, t_end=0.05))
     assert rec["status"] == "converged"

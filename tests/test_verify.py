@@ -10,7 +10,7 @@ import pytest
 from studies.engine.scheduler import run_cases
 from studies.engine.store import store_for
 from studies.engine.verify import compare, verify
-from studies.grid import cantilever_case
+from studies.common.grid import cantilever_case
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -40,6 +40,6 @@ def dynamic_model(scene, settings):
 
 def manufactured(solution, cells: int) -> dict:
     """One level of a manufactured solution on ``cells`` cells (:func:`.mms.solve`)."""
-    from .mms import solve
+    from .manufactured import solve
 
     return solve(solution, cells)

@@ -1,6 +1,7 @@
 """The study list: every study module's declaration read into :class:`Study` objects.
 
-A study is one module ``studies/<module>.py`` that declares itself with a module-level
+A study is one module ``studies/<group>/<module>.py`` (grouped by what it is for: ``paper``,
+``design``, ``verification``) that declares itself with a module-level
 ``STUDY = {"name": ..., "title": ..., "grid": {...}, "tiny": {...}, "needs": [...],
 "full": False}``: a name, a grid (with the ``tiny`` overrides merged in tiny mode), the
 studies whose records it reads (``needs``), whether it is heavy (``full``: left out of
@@ -14,8 +15,8 @@ Optionally ``gold_values(ctx) -> {name: (value, tolerance)}`` for the tiny-mode
 regression (tests/gold/studies_tiny.json), and ``audit(ctx) -> [problem]``: the study's
 own consistency rules, run by ``python -m studies audit`` (:mod:`.audit`).
 
-:func:`load_catalog` finds the declaring modules by a text scan (only they are imported),
-in file order. A TOML file of study tables (``--catalog FILE``: one table per study naming
+:func:`load_catalog` finds the declaring modules by a text scan of ``studies/`` (only they
+are imported), in path order. A TOML file of study tables (``--catalog FILE``: one table per study naming
 its ``module``, ``[NAME.tiny]`` overrides, ``[common]`` keys every table gets) replaces the
 list for a test or a one-off run; the project's own studies are declared in their modules
 only.
@@ -68,13 +69,14 @@ def declared_studies(folder: Path = STUDIES_DIR) -> dict[str, dict]:
     """{name: table} of the study modules that declare ``STUDY = {...}`` (found by a
     text scan of studies/*.py; only those modules are imported), as catalog tables."""
     out = {}
-    for f in sorted(folder.glob("*.py")):
+    for f in sorted(folder.rglob("*.py"), key=lambda p: p.relative_to(folder).parts):
         if not any(line.startswith("STUDY = ") for line in f.read_text().splitlines()):
             continue
-        decl = dict(importlib.import_module(f"studies.{f.stem}").STUDY)
+        module = ".".join(f.relative_to(folder).with_suffix("").parts)
+        decl = dict(importlib.import_module(f"studies.{module}").STUDY)
         name = decl.pop("name")
         grid = decl.pop("grid", {})
-        out[name] = {"module": f.stem, **grid, **decl}
+        out[name] = {"module": module, **grid, **decl}
     return out
 
 
@@ -116,7 +118,7 @@ def _read(path: Path) -> dict:
             raise ValueError(f"{path.name}: {name}: must be a table ([{name}]) of a study's grid")
         if name == COMMON:
             continue
-        if not isinstance(t.get("module"), str) or not t["module"].isidentifier():
+        if not isinstance(t.get("module"), str) or not all(p.isidentifier() for p in t["module"].split(".")):
             raise ValueError(f"{path.name}: {name}.module: must name a module of studies/ "
                              f"(e.g. \"table3\"), got {t.get('module')!r}")
         for key, kind, what in (("title", str, "a string"), ("full", bool, "true or false"),

@@ -75,7 +75,7 @@ def scene_dict(element: str, n: int, dt: float, rho_inf: float, scene: str = SCE
     """Our run of a point: the scene's plane-stress Yeoh pendulum on n elements, without
     the energy guard (Exudyn's run has none: :data:`ENERGY_GUARD`); ``element`` is a label
     of :func:`our_element` (an element, and the settings its suffix names)."""
-    from ..pendulum_cases import pendulum_dict
+    from ..common.pendulum_cases import pendulum_dict
 
     name, settings = our_element(element)
     d = pendulum_dict(name, n, "plane-stress", dt, rho_inf=rho_inf)
@@ -119,7 +119,7 @@ def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path, scene:
 def reference(scene: str = SCENE) -> tuple[dict | None, float | None]:
     """The scene's continuum reference: ({t: (x, y)} or None, its largest error estimate / L
     or None)."""
-    from ..pendulum_cases import LENGTH, continuum_pendulum
+    from ..common.pendulum_cases import LENGTH, continuum_pendulum
     from . import thick_reference
 
     if scene == "thick":
@@ -134,7 +134,7 @@ def reference(scene: str = SCENE) -> tuple[dict | None, float | None]:
 def error(tips: list[dict] | None, scene: str = SCENE) -> float | None:
     """max over the output times after 0 of |r - r_ref| / L against the scene's continuum
     plane-stress Yeoh pendulum; None without tips or reference."""
-    from ..pendulum_cases import tip_errors
+    from ..common.pendulum_cases import tip_errors
 
     ref = reference(scene)[0]
     if not tips or ref is None:
@@ -209,7 +209,7 @@ def retime(recs: list[dict], a, path: Path) -> list[dict]:
 def errors_by_pin(tips: list[dict] | None, scene: str) -> dict[str, float] | None:
     """Thick scene: {pin size in mm: the error against the continuum with that pin}
     (:func:`studies.peers.thick_reference.pin_references`); None for other scenes."""
-    from ..pendulum_cases import tip_errors
+    from ..common.pendulum_cases import tip_errors
     from .thick_reference import pin_references
 
     if scene != "thick" or not tips:
@@ -222,7 +222,7 @@ def left(tips: list[dict] | None) -> float | None:
     """The tip's largest distance from the pin over the outputs, / L, where it is more than
     :data:`REACH` (or not finite): the run has left the pendulum whatever its solver says.
     None: it has not."""
-    from ..pendulum_cases import LENGTH
+    from ..common.pendulum_cases import LENGTH
 
     d = [math.hypot(h["x"], h["y"]) / LENGTH for h in tips or []]
     worst = max(d, key=lambda x: x if math.isfinite(x) else math.inf, default=None)

@@ -1,0 +1,1 @@
+"""Element design: what an element's accuracy costs in time, what each effect costs, the timings."""
