@@ -4,7 +4,7 @@ small-strain cantilever does not see the rule at all. The rank test rejects [3, 
 a transverse-stretch mode that the rule hardly sees."""
 import pytest
 
-from examples import along_rule
+from experiments import along_rule
 
 
 def test_the_small_strain_cantilever_converges_to_timoshenko_and_does_not_see_the_rule():

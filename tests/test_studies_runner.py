@@ -113,8 +113,9 @@ def test_a_source_edit_during_a_run_loses_no_record_and_the_next_run_redoes_them
 
 
 def test_unknown_solver_names_the_valid_ones():
-    with pytest.raises(ValueError, match="solver: unknown value .abaqus.; allowed: .ancf., .ancf-cold., .ancf-effects., .continuum."):
+    with pytest.raises(ValueError, match="solver: unknown value 'abaqus'; allowed: 'ancf', 'ancf-cold', 'ancf-effects', ") as e:
         make_case("t", "abaqus", small_cases()[0].scene)
+    assert "'continuum'" in str(e.value)
 
 
 def test_a_raising_case_is_recorded_as_failed_and_the_others_finish(tmp_path, fake_solver):
