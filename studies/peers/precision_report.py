@@ -265,6 +265,7 @@ def make_figure(recs: list[dict], scene: str = SCENE):
     """The work-precision figure of one scene's records (a matplotlib Figure)."""
     import matplotlib
     matplotlib.use("Agg")
+    import matplotlib.lines
     import matplotlib.pyplot as plt
 
     els = list(dict.fromkeys(r["element"] for r in recs if r["solver"] == "ancf"))
@@ -272,16 +273,24 @@ def make_figure(recs: list[dict], scene: str = SCENE):
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
     markers = {**{e: m for e, m in zip(cables, itertools.cycle("sx+"))},
                **{e: m for e, m in zip(els, itertools.cycle("o^vDpXh*P<>"))}}
+    colors = dict(zip([("exudyn", e) for e in cables] + [("ancf", e) for e in els],
+                      itertools.cycle(plt.rcParams["axes.prop_cycle"].by_key()["color"])))
+    handles = []
     for solver, element in [("exudyn", e) for e in cables] + [("ancf", e) for e in els]:
+        style = dict(marker=markers[element], color=colors[(solver, element)],
+                     ls="--" if solver == "exudyn" else ":" if element != our_element(element)[0] else "-")
         for n in sorted({r["elements"] for r in recs if (r["solver"], r["element"]) == (solver, element)}):
             ser = sorted([r for r in recs if (r["solver"], r["element"], r["elements"]) == (solver, element, n)
                           and r["error"] is not None and r["time_s"]], key=lambda r: -r["dt"])
             if ser:
-                ax.plot([r["time_s"] for r in ser], [r["error"] for r in ser], marker=markers[element], ms=3, lw=0.8,
-                        ls="--" if solver == "exudyn" else ":" if element != our_element(element)[0] else "-",
+                ax.plot([r["time_s"] for r in ser], [r["error"] for r in ser], ms=3, lw=0.8, **style,
                         label=f"{'Exudyn ' + element if solver == 'exudyn' else 'ours ' + element} x {n}")
+                ax.annotate(str(n), (ser[0]["time_s"], ser[0]["error"]), fontsize=4, color=style["color"],
+                            xytext=(2, 2), textcoords="offset points")
+        handles.append(matplotlib.lines.Line2D([], [], ms=3, lw=0.8, **style,
+                                               label=f"{'Exudyn ' if solver == 'exudyn' else 'ours '}{element}"))
     for a in ACCURACIES:
-        ax.axhline(a, color="grey", lw=0.6, ls=":")
+        ax.axhline(a, color="grey", lw=0.6, ls=":", label=f"_accuracy {a:g}")   # (not in the legend)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.grid(True, alpha=0.3)
@@ -290,6 +299,9 @@ def make_figure(recs: list[dict], scene: str = SCENE):
     h = SCENES.get(scene, {}).get("height")
     ax.set_title(f"{scene}" + (f" (h = {h * 1e3:g} mm)" if h else "") + ", Yeoh: ours (plane stress) vs Exudyn "
                  f"ANCF cable; step {1e3 * max(r['dt'] for r in recs):g} ms halving", fontsize=9)
-    ax.legend(fontsize=5, ncol=3)
+    # one entry per element and solver (its meshes share its colour; each curve's element count
+    # is written at its largest step, every curve runs over the steps, halving)
+    ax.legend(handles=handles, fontsize=5, ncol=2, title="curve = one mesh (n at its largest step); "
+              "dashed: Exudyn, dotted: ours at cheap settings", title_fontsize=5)
     fig.tight_layout()
     return fig
