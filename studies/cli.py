@@ -100,9 +100,10 @@ def _audit(args) -> int:
 
     reports = Path(args.reports) if args.reports else REPORTS
     if not args.reports:      # the README's quotes of the reports and the loops record, at every audit
+        from .engine import claims
         from .engine.readme import problems
         from .loops import record_problems
-        quote = problems() + record_problems()
+        quote = problems() + record_problems() + claims.problems()
         for p in quote:
             print(p)
         if quote:
