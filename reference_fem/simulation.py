@@ -153,6 +153,35 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
     if res.unloaded:
         rec["note"] = "no load: an unloaded static scene is valid, its answer is the reference state"
     _notes(rec, scene, settings.geometry, model)
+    if hasattr(model, "admissibility"):
+        # det F over the cells of the final (or last accepted) state: an inverted cell hides
+        # between the quadrature points (the clamp's compressed corner under the hard loads)
+        rec["admissibility"] = model.admissibility()
+        if rec["admissibility"]["det_F"] <= 0:
+            rec.setdefault("warnings", []).append(
+                f"inverted cell: det F = {rec['admissibility']['det_F']:.3g} at "
+                f"({', '.join(f'{1e3 * c:.3g}' for c in rec['admissibility']['at'])}) mm (between the quadrature points)")
+    if res.status == "converged" and not res.unloaded and hasattr(model.system, "unstable_directions"):
+        # Newton does not see stability: past a bifurcation it converges as readily to the
+        # unstable branch (512 x 16 cells at 20 N: one unstable direction, the compressed face
+        # at the clamp); one LDL^T factorization tells
+        rec["unstable_directions"] = model.system.unstable_directions()
+        if rec["unstable_directions"] > 0:
+            rec.setdefault("warnings", []).append(
+                f"unstable equilibrium: the tangent has {rec['unstable_directions']} unstable direction(s)")
+    if res.status != "converged" and res.last_failure is not None and hasattr(model, "diagnose"):
+        t1, state, inc = res.last_failure
+        accepted = model.system.save()
+        model.system.restore(state)
+        model.set_load(t1)
+        rec["failure"] = {"t": t1, **model.diagnose(inc if inc is not None else state * 0)}
+        model.system.restore(accepted)
+        model.set_load(res.t_reached)
+        f = rec["failure"]
+        if f["unstable_directions"] > 0:
+            rec["reason"] += (f"; at the failed iterate the tangent has {f['unstable_directions']} unstable "
+                              f"direction(s) (a critical point of the load path), Newton's corrections peak at "
+                              f"({', '.join(f'{1e3 * c:.3g}' for c in f['correction_peak'])}) mm")
     if res.status == "converged":
         u = model.displacement(settings.geometry.tip_point(scene.beam))
         rec["tip"] = {"ux": float(u[0]), "uy": float(u[1])}

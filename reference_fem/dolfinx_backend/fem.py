@@ -217,6 +217,44 @@ class Discretisation:
             raise ValueError("a point is outside the mesh")
         return out
 
+    def cell_minimum(self, expr, n: int = 10) -> tuple[float, np.ndarray]:
+        """The minimum of a scalar UFL expression over an equispaced lattice of every owned
+        cell (n intervals per edge, the cell's boundary included), and the point where it
+        is (reference coordinates); global over the ranks. Not only at the quadrature
+        points: a cell can be inverted (det F < 0) between them, which the discrete energy
+        does not see (the clamp's compressed corner under the hard loads)."""
+        import basix
+
+        key = (id(expr), n)
+        cache = self.__dict__.setdefault("_cell_minimum", {})
+        if key not in cache:
+            cell = basix.cell.string_to_type(self.mesh.topology.cell_type.name)
+            pts = basix.create_lattice(cell, n, basix.LatticeType.equispaced, True)
+            cache[key] = (expr, dolfinx.fem.Expression(expr, pts),
+                          dolfinx.fem.Expression(ufl.SpatialCoordinate(self.mesh), pts), len(pts))
+        _, e, ex, npts = cache[key]
+        tdim = self.mesh.topology.dim
+        cells = np.arange(self.mesh.topology.index_map(tdim).size_local, dtype=np.int32)
+        v = np.asarray(e.eval(cells)).reshape(len(cells), npts) if len(cells) else np.full((1, 1), np.inf)
+        i = np.unravel_index(np.argmin(v), v.shape)
+        gdim = self.mesh.geometry.dim
+        x = (np.asarray(ex.eval(cells[i[0]:i[0] + 1])).reshape(npts, gdim)[i[1]] if len(cells)
+             else np.zeros(gdim))
+        best = (float(v[i]), x)
+        if self.comm.size > 1:
+            best = min(self.comm.allgather(best), key=lambda b: b[0])
+        return best
+
+    def dof_point(self, values: np.ndarray) -> np.ndarray:
+        """The reference point of the displacement node where |values| (an array of W, e.g.
+        a Newton increment) is largest (this rank's share)."""
+        dofs = self.displacement_dofs()
+        gdim = self.mesh.geometry.dim
+        V = self.W.sub(0).collapse()[0] if self.pressure else self.W
+        x = V.tabulate_dof_coordinates()[:, :gdim]
+        mag = np.linalg.norm(np.asarray(values)[dofs].reshape(-1, gdim), axis=1)
+        return x[int(np.argmax(mag))]
+
     def positions(self, w: np.ndarray, points) -> np.ndarray:
         """Deformed positions (n, gdim) in m of reference points (n, gdim) at the state w
         (an array of W); the current state is kept."""
@@ -726,6 +764,34 @@ class NonlinearSystem:
 
     def state_norm(self) -> float:
         return float(self.x.norm())
+
+    def unstable_directions(self) -> int:
+        """How many directions the tangent at the current state is not positive definite in:
+        the negative pivots of its LDL^T (MUMPS, INFOG(12)), less the pressure unknowns'
+        own (a saddle-point tangent has one negative eigenvalue per free pressure unknown
+        where the constrained stiffness is positive definite). 0: a stable equilibrium."""
+        self.residual_norm()
+        self.A.zeroEntries()
+        dolfinx.fem.petsc.assemble_matrix(self.A, self.K, bcs=self.bcs)
+        self.A.assemble()
+        self.A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
+        ksp = PETSc.KSP().create(self.disc.comm)
+        ksp.setType("preonly")
+        pc = ksp.getPC()
+        pc.setType("cholesky")
+        pc.setFactorSolverType("mumps")
+        ksp.setOperators(self.A)
+        pc.setUp()
+        neg = int(pc.getFactorMatrix().getMumpsInfog(12))
+        ksp.destroy()
+        if self.disc.pressure:
+            _, pdofs = self.disc.W.sub(1).collapse()
+            pdofs = np.asarray(pdofs)
+            n_owned = self.disc.W.dofmap.index_map.size_local * self.disc.W.dofmap.index_map_bs
+            fixed = np.concatenate([bc.dof_indices()[0][:bc.dof_indices()[1]] for bc in self.bcs] or [[]])
+            free_p = np.setdiff1d(pdofs[pdofs < n_owned], fixed)
+            neg -= int(self.disc.comm.allreduce(len(free_p)))
+        return neg
 
     def last_increment(self) -> np.ndarray:
         """The last Newton increment dw (array of W)."""

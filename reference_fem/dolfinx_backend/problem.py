@@ -209,6 +209,36 @@ class Problem:
         """The mesh with its displacement (and pressure) as ``fmt`` ("vtk" | "xdmf")."""
         return self.setup.disc.write(path, fmt, scale=self.setup.mu)
 
+    def admissibility(self) -> dict:
+        """{"det_F": min det F over the cells (not only the quadrature points), "at": where
+        (reference point, m)} at the current state: <= 0 is an inverted cell, a state no
+        continuum can take, which the discrete energy did not see (it is evaluated at the
+        quadrature points only)."""
+        d = self.setup.disc
+        if not hasattr(self, "_detF"):
+            self._detF = ufl.det(self.setup.gradient(d.u))
+        v, x = d.cell_minimum(self._detF)
+        return {"det_F": v, "at": [float(c) for c in x]}
+
+    def diagnose(self, increment) -> dict:
+        """At a state where Newton failed: how many unstable directions the tangent has (a
+        critical point of the load path when > 0 from a stable accepted state), and where
+        Newton's last correction ``increment`` peaks (reference point, m)."""
+        found = self.system.unstable_directions()
+        peak = self.setup.disc.dof_point(increment)
+        if found == 0:
+            # Newton near a critical point alternates between iterates on either side of
+            # it (a 2-cycle): look at the next iterate too
+            self.system.residual_norm()
+            try:
+                self.system.newton_update()
+                found = self.system.unstable_directions()
+                peak = self.setup.disc.dof_point(self.system.last_increment())
+            except ArithmeticError:
+                pass
+        return {"unstable_directions": found, "correction_peak": [float(c) for c in peak],
+                **{f"{k}": v for k, v in self.admissibility().items()}}
+
 
 def static_model(scene: Scene, settings: FemSettings) -> Problem:
     """The backend's static model of the scene (:func:`reference_fem.simulation.run_scene`)."""
