@@ -170,17 +170,13 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
             rec.setdefault("warnings", []).append(
                 f"unstable equilibrium: the tangent has {rec['unstable_directions']} unstable direction(s)")
     if res.status != "converged" and res.last_failure is not None and hasattr(model, "diagnose"):
-        t1, state, inc = res.last_failure
-        accepted = model.system.save()
-        model.system.restore(state)
-        model.set_load(t1)
-        rec["failure"] = {"t": t1, **model.diagnose(inc if inc is not None else state * 0)}
-        model.system.restore(accepted)
-        model.set_load(res.t_reached)
+        # the path failed: from the last accepted state toward the failed increment's load
+        t1 = res.last_failure[0]
+        rec["failure"] = {"t": t1, **model.diagnose(t1)}
         f = rec["failure"]
         if f["unstable_directions"] > 0:
-            rec["reason"] += (f"; at the failed iterate the tangent has {f['unstable_directions']} unstable "
-                              f"direction(s) (a critical point of the load path), Newton's corrections peak at "
+            rec["reason"] += (f"; the tangent turns indefinite on the way ({f['unstable_directions']} unstable "
+                              f"direction(s): a critical point of the load path), Newton's corrections peak at "
                               f"({', '.join(f'{1e3 * c:.3g}' for c in f['correction_peak'])}) mm")
     if res.status == "converged":
         u = model.displacement(settings.geometry.tip_point(scene.beam))

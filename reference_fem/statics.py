@@ -45,8 +45,8 @@ class StaticResult:
     wall_s: float = 0.0
     history: list = field(default_factory=list)   # (t, iterations) of the accepted increments
     unloaded: bool = False                        # no load: the answer is the reference state
-    # the last failed increment's target load, its final Newton iterate and last correction
-    # (arrays of the system), for a diagnosis of a failed path; not part of a record
+    # (the last failed increment's target load,): for a diagnosis of a failed path; not
+    # part of a record
     last_failure: tuple | None = field(default=None, repr=False)
 
 
@@ -84,8 +84,7 @@ def solve_static(system, set_load, steps: int, rtol: float, max_iterations: int,
         try:
             its, _ = newton(system, r_ref, rtol, max_iterations, static_correction(rtol, r_ref))
         except StepFailure as e:
-            inc = getattr(system, "last_increment", None)
-            result.last_failure = (t1, system.save(), None if inc is None else inc().copy())
+            result.last_failure = (t1,)
             system.restore(saved)
             set_load(t0)
             return Attempt(False, e.iterations, str(e))

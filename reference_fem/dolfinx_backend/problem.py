@@ -220,24 +220,37 @@ class Problem:
         v, x = d.cell_minimum(self._detF)
         return {"det_F": v, "at": [float(c) for c in x]}
 
-    def diagnose(self, increment) -> dict:
-        """At a state where Newton failed: how many unstable directions the tangent has (a
-        critical point of the load path when > 0 from a stable accepted state), and where
-        Newton's last correction ``increment`` peaks (reference point, m)."""
-        found = self.system.unstable_directions()
-        peak = self.setup.disc.dof_point(increment)
-        if found == 0:
-            # Newton near a critical point alternates between iterates on either side of
-            # it (a 2-cycle): look at the next iterate too
-            self.system.residual_norm()
-            try:
+    def diagnose(self, t1: float, iterations: int = 3) -> dict:
+        """Why the increment from the current (accepted) state to load ``t1`` failed: a few
+        Newton iterates toward t1, and at each the unstable directions of the tangent (from
+        a stable accepted state, > 0 means the path meets a critical point there: Newton
+        2-cycles across it) and where the correction peaks (reference point, m); the
+        largest count and its place. The current state and load are restored."""
+        saved = self.system.save()
+        t0 = float(self.load.value)
+        found, peak = 0, None
+        try:
+            self.set_load(t1)
+            for _ in range(iterations):
+                self.system.residual_norm()
                 self.system.newton_update()
-                found = self.system.unstable_directions()
-                peak = self.setup.disc.dof_point(self.system.last_increment())
-            except ArithmeticError:
-                pass
-        return {"unstable_directions": found, "correction_peak": [float(c) for c in peak],
-                **{f"{k}": v for k, v in self.admissibility().items()}}
+                n = self.system.unstable_directions()
+                if peak is None or n > found:
+                    found, peak = n, self.setup.disc.dof_point(self.system.last_increment())
+                if n > 0:
+                    # the correction from the indefinite iterate: it points at the critical
+                    # mode (the first one is the load increment's global response)
+                    self.system.residual_norm()
+                    self.system.newton_update()
+                    peak = self.setup.disc.dof_point(self.system.last_increment())
+                    break
+        except ArithmeticError:
+            pass
+        finally:
+            self.system.restore(saved)
+            self.set_load(t0)
+        return {"unstable_directions": found,
+                "correction_peak": None if peak is None else [float(c) for c in peak]}
 
 
 def static_model(scene: Scene, settings: FemSettings) -> Problem:
