@@ -166,7 +166,7 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
         # unstable branch (512 x 16 cells at 20 N: one unstable direction, the compressed face
         # at the clamp); one LDL^T factorization tells
         rec["unstable_directions"] = model.system.unstable_directions()
-        if rec["unstable_directions"] > 0:
+        if rec["unstable_directions"] is not None and rec["unstable_directions"] > 0:
             rec.setdefault("warnings", []).append(
                 f"unstable equilibrium: the tangent has {rec['unstable_directions']} unstable direction(s)")
     if res.status != "converged" and res.last_failure is not None and hasattr(model, "diagnose"):
@@ -174,7 +174,7 @@ def run_scene(scene: Scene, settings: FemSettings | None = None, output: Path | 
         t1 = res.last_failure[0]
         rec["failure"] = {"t": t1, **model.diagnose(t1)}
         f = rec["failure"]
-        if f["unstable_directions"] > 0:
+        if (f["unstable_directions"] or 0) > 0:
             rec["reason"] += (f"; the tangent turns indefinite on the way ({f['unstable_directions']} unstable "
                               f"direction(s): a critical point of the load path), Newton's corrections peak at "
                               f"({', '.join(f'{1e3 * c:.3g}' for c in f['correction_peak'])}) mm")

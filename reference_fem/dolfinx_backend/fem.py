@@ -765,11 +765,15 @@ class NonlinearSystem:
     def state_norm(self) -> float:
         return float(self.x.norm())
 
-    def unstable_directions(self) -> int:
+    def unstable_directions(self) -> int | None:
         """How many directions the tangent at the current state is not positive definite in:
         the negative pivots of its LDL^T (MUMPS, INFOG(12)), less the pressure unknowns'
         own (a saddle-point tangent has one negative eigenvalue per free pressure unknown
-        where the constrained stiffness is positive definite). 0: a stable equilibrium."""
+        where the constrained stiffness is positive definite). 0: a stable equilibrium.
+        None for a system with a low-rank term or a reduction (the end moment's couple, the
+        hinge): K's pivots are not those of the system's tangent there."""
+        if self.low_rank is not None or self.reduction is not None:
+            return None
         self.residual_norm()
         self.A.zeroEntries()
         dolfinx.fem.petsc.assemble_matrix(self.A, self.K, bcs=self.bcs)
