@@ -242,7 +242,7 @@ RECORD_GROUPS = {
     "dynamic": "Added by a dynamic run, both solvers",
     "study": "Added by the study runner (`python -m studies`) to the records in `reports/data`",
 }
-RECORD_SOLVERS = {"ancf": "ancf", "fenicsx": "continuum"}
+RECORD_SOLVERS = {"ancf": "ancf", "dolfinx": "continuum", "felupe": "continuum"}
 
 
 def observed_record_keys() -> dict[str, set[str]]:
