@@ -24,6 +24,13 @@ point: the u-p mixed form with its pressure condensed per element
 
 An element may take components of C from fewer points along the beam (``assumed``:
 an assumed strain, :mod:`ancf.assumed`), the remedy for membrane locking.
+
+An element declares its kinematics (``kinematics``, :data:`KINEMATICS`): "continuum"
+(the default: its shape functions span the plane, F = I + grad u at every point, the
+elements above) or "cable" (a centre line r(x) alone, basis and kinds in x only: the
+section is no field but is integrated, fibre by fibre, from the centre line's stretch and
+curvature, :mod:`ancf.cable`). The model, the supports, the end face and the contract
+checks read it; the compiled loops see it only as data (:mod:`ancf.element_kernels`).
 """
 from __future__ import annotations
 
@@ -59,6 +66,13 @@ class _Kinds(dict):
 
 KINDS: dict[str, tuple[int, int]] = _Kinds({"r": (0, 0)})
 
+# An element's kinematics -> what it is (``ElementSpec.kinematics``).
+KINEMATICS = {
+    "continuum": "continuum-based: shape functions in (x, y), F = I + grad u at points of the section",
+    "cable": "cable: a centre line in x alone (Euler-Bernoulli); the section integrated fibre by fibre "
+             "from its stretch and curvature with the law's uniaxial energy (plane stress only)",
+}
+
 
 @dataclass(frozen=True)
 class ElementSpec:
@@ -79,8 +93,21 @@ class ElementSpec:
     # C at the rule's points
     assumed: tuple[str, ...] = ()
     assumed_points: int = 3
+    # :data:`KINEMATICS`: "continuum" (shape functions in x and y) or "cable" (a centre line:
+    # basis and kinds in x only, the section integrated by the rule's points across it)
+    kinematics: str = "continuum"
 
     def __post_init__(self):
+        if self.kinematics not in KINEMATICS:
+            raise ValueError(f"element {self.name}: kinematics {self.kinematics!r}; allowed: "
+                             f"{', '.join(KINEMATICS)}")
+        if self.kinematics == "cable":
+            ybasis = [b for b in self.basis if "y" in b]
+            ykinds = [k for k in self.kinds if k in KINDS and KINDS[k][1] > 0]
+            if ybasis or ykinds or self.pressure or self.assumed:
+                raise ValueError(f"element {self.name}: a cable's basis and kinds are in x alone, with no pressure "
+                                 f"field or assumed strain; got basis in y {ybasis}, kinds in y {ykinds}, "
+                                 f"pressure {list(self.pressure)}, assumed {list(self.assumed)}")
         from .assumed import COMPONENTS
         bad = [c for c in self.assumed if c not in COMPONENTS]
         if bad or len(set(self.assumed)) != len(self.assumed) or self.assumed_points < 1:
@@ -130,6 +157,17 @@ class ElementSpec:
             raise ValueError(f"element {self.name}: nodal coordinates do not determine the basis")
         return polys, np.linalg.inv(A)
 
+    @property
+    def cable(self) -> bool:
+        """A centre-line element (``kinematics = "cable"``)?"""
+        return self.kinematics == "cable"
+
+    @property
+    def formulations(self) -> tuple[str, ...] | None:
+        """The formulations the element can run (None: every one). A cable integrates the
+        law's incompressible uniaxial energy, with free lateral faces: plane stress alone."""
+        return ("plane-stress",) if self.cable else None
+
     def degree(self) -> tuple[int, int]:
         d = np.array([p.degree() for p in self.polys])
         return int(d[:, 0].max()), int(d[:, 1].max())
@@ -151,6 +189,17 @@ class ElementSpec:
         N = (B @ C) * scale
         dN = np.stack([(Bx @ C) * scale, (By @ C) * scale], axis=-1)
         return N, dN
+
+    def tabulate_derivative(self, xi, eta, length: float, height: float, dx: int, dy: int = 0) -> np.ndarray:
+        """The physical shape functions' derivative d^(dx + dy) N / dx^dx dy^dy at points
+        (xi, eta), (npts, n_shape) in 1/m^(dx + dy) (:meth:`tabulate` has the first ones;
+        a cable's curvature needs N_xx)."""
+        xi, eta = np.ravel(xi), np.ravel(eta)
+        polys, C = self.dimensionless(float(length), float(height))
+        scale = np.array([length ** KINDS[k][0] * height ** KINDS[k][1]
+                          for _ in self.nodes for k in self.kinds])
+        B = np.stack([p(xi, eta, dx, dy) for p in polys], axis=-1) / (length ** dx * height ** dy)
+        return (B @ C) * scale
 
     def reference_coordinates(self, x_node: float) -> np.ndarray:
         """Nodal coordinates (n_kinds, 2) of a straight, unstressed beam at node x."""
@@ -295,6 +344,19 @@ register_element(ElementSpec(
     "this harness: HB2n-20xyp with an assumed membrane stretch C_xx (3 points along)",
     rules((SLENDER, (5, 2)), (1.0, (4, 2)), (0.0, (3, 3))),
     pressure=("1", "y"), assumed=("xx",)))
+
+# Found with the harness (issue: the cheapest element at every accuracy): the planar ANCF
+# cable (r and r_x at two nodes, cubic Hermite along: Gerstmayr & Irschik 2008's centre
+# line, Exudyn's ObjectANCFCable2D's dofs) whose section integrates the law's exact
+# incompressible uniaxial energy fibre by fibre (ancf.cable), instead of a linear
+# EA eps^2 / 2 + EI kappa^2 / 2. H: its section law is the hyperelastic one (beside the
+# linear cable of the peers' runs); C: a cable (centre line only, Euler-Bernoulli, no
+# section coordinates, so the B of the continuum-based elements' names does not fit);
+# 2n, 8: two nodes, 8 dof. Its rule: points along x points across the section.
+register_element(ElementSpec(
+    "HC2n-8", ("1", "x", "x^2", "x^3"), (0.0, 1.0), ("r", "r_x"),
+    "this harness: ANCF cable (cubic Hermite centre line), section integrated with the law's incompressible "
+    "uniaxial energy", rules((0.0, (3, 3))), kinematics="cable"))
 
 # the elements of this package; any other was registered by a user's module
 BUILTIN = frozenset(ELEMENTS)
