@@ -60,10 +60,7 @@ class CableModel(ElementModel):
     def _dN(self) -> np.ndarray:
         """(nq, ns, 2): N_s'(X_p) and Y_p N_s''(X_p) at the rule's points (1/m, -)."""
         m = self.mesh
-        xi, eta = self.rule.xi, self.rule.eta
-        _, d1 = m.element.tabulate(xi, eta, m.element_length, m.height)
-        d2 = m.element.tabulate_derivative(xi, eta, m.element_length, m.height, 2)
-        return np.ascontiguousarray(np.stack([d1[..., 0], (eta * m.height)[:, None] * d2], axis=-1))
+        return m.element.cable_gradients(self.rule.xi, self.rule.eta, m.element_length, m.height)
 
     @cached_property
     def _tape(self):
