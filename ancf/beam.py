@@ -145,12 +145,12 @@ class ElementModel:
         (:func:`ancf.element_kernels.element_energy`, the energy the compiled loops check);
         :meth:`strain_energy_numpy` is the reference. InadmissibleState at an inadmissible
         state (det F <= 0 at a point; a cable: a fibre's stretch <= 0)."""
-        from .element_kernels import element_energy
-        from .kernels import live_tape, step_scratch
+        from .element_kernels import element_energy, element_work
+        from .kernels import live_tape
         if "_energy_data" not in self.__dict__:
             dN, w, dofs, ops, consts, pr, _ = self.fused
             ops, consts = live_tape(ops, consts)
-            self._energy_data = (dN, w, dofs, ops, consts, pr, *step_scratch(ops.shape[0], dN, pr))
+            self._energy_data = (dN, w, dofs, ops, consts, pr, *element_work(ops, dN, pr))
         U = element_energy(np.ascontiguousarray(u, dtype=float), *self._energy_data)
         if not np.isfinite(U):
             self._admissible(u)                        # names the point
@@ -185,13 +185,13 @@ class ElementModel:
         """:meth:`_kernel` by the compiled loops' assembly (:func:`ancf.element_kernels.element_assemble`),
         its upper column band made a general band: the route of an assumed strain and of a
         cable."""
-        from .element_kernels import element_assemble
-        from .kernels import OK, step_scratch
+        from .element_kernels import element_assemble, element_work
+        from .kernels import OK
         dN, w, dofs, ops, consts, pr, _ = self.fused
         m, b = self.mesh, self.mesh.bandwidth
         u = np.ascontiguousarray(u, dtype=float)
         f, Kc = np.zeros(m.n_dof), np.zeros((m.n_dof, b + 1))
-        scratch = step_scratch(ops.shape[0], dN, pr)
+        scratch = element_work(ops, dN, pr)
         if element_assemble(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, Kc, with_tangent, *scratch) != OK:
             raise InadmissibleState(self.INADMISSIBLE)
         if not with_tangent:

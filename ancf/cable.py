@@ -15,11 +15,13 @@ energy is
 W_u the law's exact incompressible uniaxial energy (free lateral faces: the lateral
 stretches lambda^-1/2 follow from incompressibility), every law through its plane-stress
 formulation (:func:`ancf.tape.trace_uniaxial`). The rule is Gauss along (the element's
-points along) times Gauss across the section (its points across): at each point the
-kernels see e = r_x and g = Y r_xx as the two columns of a "gradient" (:attr:`CableModel._dN`:
-dN[p, s] = (N_s'(X), Y N_s''(X))), so the cable runs through the same compiled loops,
-the same B and the same element interface as the continuum-based elements
-(:mod:`ancf.element_kernels`, :mod:`ancf.cable_kernels`).
+points along) times Gauss across the section (its points across). The numpy reference
+(``*_numpy``) sees at each fibre e = r_x and g = Y r_xx as the two columns of a "gradient"
+(:attr:`CableModel._dN`: dN[p, s] = (N_s'(X), Y N_s''(X))); the compiled kernels
+(:mod:`ancf.cable_kernels`, through the same element interface as the continuum-based
+elements, :mod:`ancf.element_kernels`) take G = [r_x | r_xx] once per point along and the
+section's resultants of W_u' and W_u'' over its fibres (:attr:`CableModel.fused`: N', N''
+at the points along, the section rule as the element's fields), the same B for both.
 
 What the model leaves out, by construction: shear (Euler-Bernoulli), the section's change
 of thickness (eta = Y; with the thickness change d eta / dY = lambda^-1/2 the fibres move,
@@ -69,15 +71,39 @@ class CableModel(ElementModel):
         return trace_uniaxial(self.material)
 
     @cached_property
+    def tensor(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The rule as points along times points across: (xi (nx,), weights along (nx,),
+        eta (ny,), weights across (ny,)), the weights summing to 1 each; ValueError for a
+        rule that is not a tensor product (gauss makes them, point along outer)."""
+        r = self.rule
+        nx = len(np.unique(r.xi))
+        ny = len(r.xi) // nx
+        xi, eta, W = r.xi.reshape(nx, ny), r.eta.reshape(nx, ny), r.weight.reshape(nx, ny)
+        wx, wy = W.sum(axis=1), W[0] / W[0].sum()
+        if nx * ny != len(r.xi) or np.ptp(xi, axis=1).max() > 0 or np.ptp(eta, axis=0).max() > 0 \
+                or not np.allclose(W, np.outer(wx, wy), rtol=1e-14, atol=0):
+            raise ValueError(f"element {self.mesh.element.name}: a cable's rule is points along times points across")
+        return xi[:, 0], wx, eta[0], wy
+
+    @cached_property
     def fused(self) -> tuple:
-        """What the compiled loops read: the points' (N', Y N''), weights times l_e h w_b,
-        element dofs, the uniaxial tape, no element fields (empty), the band envelope."""
+        """What the compiled loops read (:mod:`ancf.cable_kernels`): N' and N'' at the points
+        along (nx, ns, 2), their weights times l_e, element dofs, the uniaxial tape, the
+        section rule as the element's fields (pr[0] = (Y_j, w_j h w_b), :func:`section_fields`),
+        the band envelope."""
         from .bandsolve import envelope
-        from .element_fields import pressure_arrays
+        from .cable_kernels import section_fields
+        m = self.mesh
+        xi, wx, eta, wy = self.tensor
+        z = np.zeros_like(xi)
+        _, d1 = m.element.tabulate(xi, z, m.element_length, m.height)
+        d2 = m.element.tabulate_derivative(xi, z, m.element_length, m.height, 2)
         ops, consts = self._tape
-        return (self._dN, np.ascontiguousarray(self._w, dtype=float),
+        return (np.ascontiguousarray(np.stack([d1[..., 0], d2], axis=-1)),
+                np.ascontiguousarray(wx * m.element_length, dtype=float),
                 np.ascontiguousarray(self._dofs, dtype=np.int64), np.ascontiguousarray(ops),
-                np.ascontiguousarray(consts, dtype=float), pressure_arrays(None, self._dN.shape[0]),
+                np.ascontiguousarray(consts, dtype=float),
+                section_fields(eta * m.height, wy * m.height * m.width, len(xi)),
                 envelope(self._dofs, self.mesh.n_dof))
 
     @property

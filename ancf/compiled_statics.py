@@ -30,8 +30,8 @@ from numba import njit
 
 from .bandsolve import col_constrain, col_ldlt, col_ldlt_solve
 from .couple import add_couple
-from .element_kernels import element_assemble, element_force_magnitude
-from .kernels import OK, live_tape, step_scratch
+from .element_kernels import element_assemble, element_force_magnitude, element_work
+from .kernels import OK, live_tape
 
 # Outcomes of :func:`newton` (a converged attempt is CONVERGED).
 CONVERGED, NON_FINITE, DIVERGING, NO_CONVERGENCE, UNPIVOTED, NOT_ADMISSIBLE = range(6)
@@ -122,7 +122,7 @@ def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, couple, u, ato
     S = np.empty((n, b + 1))
     f, r, du, ut = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     wk = np.empty((2, n))
-    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
+    chunk, R, Fb, ab, Jb, ew = element_work(ops, dN, pr)
     nres = 0
     for it in range(max_it + 1):
         if _assemble(u, dN, w, dofs, ops, consts, pr, couple, f, S, b, True, chunk, R, Fb, ab, Jb, ew) != OK:

@@ -71,9 +71,8 @@ from mechanics import alpha_family, time_loop
 from .bandsolve import col_constrain, col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split, same_component_only
 from .beam import refuse_discrete_gradient
 from .dgkernel import dg_scratch
-from .element_kernels import element_assemble, element_assemble_dg, element_energy
-from .kernels import (INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, live_tape,
-                      step_scratch)
+from .element_kernels import element_assemble, element_assemble_dg, element_energy, element_work
+from .kernels import INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, live_tape
 
 NEWTON = ("chord", "full", "modified")
 STATUS = {NEWTON_FAILED: "Newton failed", SINGULAR: "singular step matrix", INADMISSIBLE: "det F <= 0"}
@@ -185,7 +184,8 @@ def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, i
          u_n, v_n, a_n, h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, ew, full):
     """One step u_n, v_n, a_n -> u, v, a of size h. S holds the current factorisation
     (modified Newton), fstate = [h of that factorisation, 1 if valid]; wk: work (7, n);
-    chunk, R, Fb, ab, Jb, ew: :func:`step_scratch`; full: full Newton whatever inewton says.
+    chunk, R, Fb, ab, Jb, ew: :func:`ancf.element_kernels.element_work`; full: full Newton whatever
+    inewton says.
     Returns (status, iterations)."""
     am, af, beta, gamma = coef[0], coef[1], coef[2], coef[3]
     max_it, modified = inewton[I_MAX_IT], inewton[I_MODIFIED] != 0 and not full
@@ -302,7 +302,8 @@ def step_dg(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, inew
 @njit(cache=True)
 def energies(u, v, dN, w, dofs, ops, consts, pr, Mc, first, tmp, chunk, R, Fb, ab, Jb, ew):
     """(kinetic, strain) energy (J); the strain energy is nan if det F <= 0 somewhere
-    (:func:`ancf.element_kernels.element_energy`). tmp: work (n,); chunk .. ew: :func:`step_scratch`."""
+    (:func:`ancf.element_kernels.element_energy`). tmp: work (n,); chunk .. ew:
+    :func:`ancf.element_kernels.element_work`."""
     col_matvec(Mc, first, v, tmp)
     return 0.5 * np.dot(v, tmp), element_energy(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, ew)
 
@@ -312,7 +313,7 @@ def observed_energies(u, v, dN, w, dofs, ops, consts, pr, Mc, first):
     """:func:`energies` with its work arrays made here (an output's call: fewer arguments
     to pass cost less than the arrays to make)."""
     return energies(u, v, dN, w, dofs, ops, consts, pr, Mc, first, np.empty(u.shape[0]),
-                    *step_scratch(ops.shape[0], dN, pr))
+                    *element_work(ops, dN, pr))
 
 
 @njit(cache=True)
@@ -344,7 +345,7 @@ def advance(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, fixed, coef, 
     for k in fixed:
         is_free[k] = False
     wk = np.empty((7, n))
-    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
+    chunk, R, Fb, ab, Jb, ew = element_work(ops, dN, pr)
     dg = inewton[I_SCHEME] == DISCRETE_GRADIENT
     scratch = dg_scratch(ops.shape[0] if dg else 1, dN, pr)   # (unused without dg: one op)
     un, vn, an = np.empty(n), np.empty(n), np.empty(n)
@@ -430,7 +431,7 @@ def start(u, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, a):
 @njit(cache=True)
 def internal_force(u, dN, w, dofs, ops, consts, pr, f):
     """f = f_int(u) by the element's assembly (force only); returns its status."""
-    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
+    chunk, R, Fb, ab, Jb, ew = element_work(ops, dN, pr)
     return element_assemble(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, np.empty((0, 0)), False, chunk, R, Fb, ab, Jb, ew)
 
 

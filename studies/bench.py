@@ -172,8 +172,8 @@ def kernel_rows(calls: int = 100, repeats: int = 10, elements: int = KERNEL_ELEM
 
     from ancf.build import build_model
     from ancf.elements import ELEMENTS
-    from ancf.element_kernels import element_assemble
-    from ancf.kernels import live_tape, step_scratch
+    from ancf.element_kernels import element_assemble, element_work
+    from ancf.kernels import live_tape
     from contract.scene import FORMULATIONS
     from mechanics.laws import LAWS
 
@@ -192,7 +192,7 @@ def kernel_rows(calls: int = 100, repeats: int = 10, elements: int = KERNEL_ELEM
         dN, w, dofs, ops, consts, pr, _ = model.fused
         ops, consts = live_tape(ops, consts)
         f, K = np.empty(n), np.empty((n, model.mesh.bandwidth + 1))
-        scratch = step_scratch(ops.shape[0], dN, pr)
+        scratch = element_work(ops, dN, pr)
         for name, tangent in (("force", False), ("tangent", True)):
             def call():
                 return element_assemble(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, K, tangent, *scratch)

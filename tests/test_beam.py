@@ -180,8 +180,8 @@ def test_fused_kernel_matches_the_numpy_reference(element, law, form, rng):
     the loops' entry, ancf.element_kernels.element_assemble, which sends a cable to its own
     kernel (ancf.cable_kernels; its reference is CableModel's numpy chain rule)."""
     from ancf.bandsolve import col_matvec
-    from ancf.element_kernels import element_assemble as assemble_fused
-    from ancf.kernels import OK, step_scratch
+    from ancf.element_kernels import element_assemble as assemble_fused, element_work
+    from ancf.kernels import OK
 
     model = make_model(element, law, form)
     u = bent_state(model, rng)
@@ -190,7 +190,7 @@ def test_fused_kernel_matches_the_numpy_reference(element, law, form, rng):
     n, b = u.size, int(model.mesh.bandwidth)
     f, Kc = np.empty(n), np.zeros((n, b + 1))
     assert assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, Kc, True,
-                          *step_scratch(ops.shape[0], dN, pr)) == OK
+                          *element_work(ops, dN, pr)) == OK
     f_ref, K_ref = model.internal_force_and_tangent_numpy(u)
     K_ref = K_ref.to_sparse()
     np.testing.assert_allclose(f, f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())

@@ -192,8 +192,8 @@ def test_the_loops_kernel_equals_the_numpy_reference_at_a_large_deformation(rng)
     alpha_f blending two states) against CableModel's numpy chain rule at the same blended
     state: round-off, 1e-12 of the largest term."""
     from ancf.bandsolve import col_matvec
-    from ancf.element_kernels import element_assemble, element_energy
-    from ancf.kernels import OK, live_tape, step_scratch
+    from ancf.element_kernels import element_assemble, element_energy, element_work
+    from ancf.kernels import OK, live_tape
 
     model = small_model(CABLE, "mooney-rivlin", "plane-stress", n=4)
     u, un = bent_state(model, rng, angle=2.5), bent_state(model, rng, angle=2.0)
@@ -201,7 +201,7 @@ def test_the_loops_kernel_equals_the_numpy_reference_at_a_large_deformation(rng)
     ops, consts = live_tape(ops, consts)
     n, b = u.size, model.mesh.bandwidth
     f, Kc = np.empty(n), np.empty((n, b + 1))
-    sc = step_scratch(ops.shape[0], dN, pr)
+    sc = element_work(ops, dN, pr)
     assert element_assemble(u, un, 0.3, dN, w, dofs, ops, consts, pr, f, Kc, True, *sc) == OK
     ue = 0.7 * u + 0.3 * un
     f_ref, K_ref = model.internal_force_and_tangent_numpy(ue)

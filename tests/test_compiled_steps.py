@@ -159,10 +159,10 @@ def test_a_user_registered_element_and_law_run_through_the_compiled_loop(user_el
 @pytest.mark.parametrize("element", sorted(ELEMENTS))
 def test_fused_tangent_of_every_element_in_either_dof_numbering(element):
     """The fused kernel (the loops' entry, ancf.element_kernels.element_assemble) gives the
-    model's force and upper band for every registered element, with the mesh's numbering (each element's dofs contiguous: the
-    kernel's direct scatter) and with the numbering reversed (dofs descending: its
-    general scatter), which permutes f and K."""
-    from ancf.element_kernels import element_assemble as assemble_fused
+    model's force and upper band for every registered element, with the mesh's numbering
+    (each element's dofs contiguous: the kernel's direct scatter) and with the numbering
+    reversed (dofs descending: its general scatter), which permutes f and K."""
+    from ancf.element_kernels import element_assemble as assemble_fused, element_work
     sc = scene(material=paper.material_table("mooney-rivlin", "plane-stress"), element=element, n=3)
     model = build_model(sc)
     n, b = model.mesh.n_dof, model.mesh.bandwidth
@@ -170,7 +170,7 @@ def test_fused_tangent_of_every_element_in_either_dof_numbering(element):
     f_ref, K_ref = model.internal_force_and_tangent(0.6 * u + 0.4 * un)
     ops, consts = model._tape
     dN, w = model.fused[:2]                         # with an assumed strain, the sample points too
-    scratch = step_scratch(ops.shape[0], dN, model.fused[5])
+    scratch = element_work(ops, dN, model.fused[5])
     rev = n - 1 - np.arange(n)
     for dofs, perm in ((model._dofs.astype(np.int64), np.arange(n)), ((n - 1 - model._dofs).astype(np.int64), rev)):
         f, Kc = np.empty(n), np.empty((n, b + 1))
