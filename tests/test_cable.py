@@ -20,9 +20,9 @@ import pytest
 from ancf import checks
 from ancf.beam import model_for
 from ancf.build import build_model, external_loads, static_loading
-from ancf.cable import CableModel, section_moment
+from ancf.cable import section_moment
 from ancf.checks import bent_state, paper_material, small_model
-from ancf.elements import ELEMENTS, ElementSpec, get_element
+from ancf.elements import ElementSpec, get_element
 from ancf.mesh import Mesh, fixed_dofs
 from ancf.quadrature import gauss
 from ancf.simulation import run_scene
@@ -478,3 +478,24 @@ def test_the_element_converges_to_its_own_limit_fast_on_the_cantilever():
         tips.append(np.array([rec["tip"]["ux"], rec["tip"]["uy"]]))
     d = [np.linalg.norm(tips[i + 1] - tips[i]) for i in range(3)]
     assert d[0] / d[1] > 8 and d[1] / d[2] > 8, d
+
+
+def test_the_slender_limit_is_the_elastica_and_eulers_arc_within_the_benchmarks_tolerances():
+    """The benchmark suite's slender cases (studies.benchmarks, their tolerances fixed there:
+    the elastica 2 (0.9 + alpha/12 + alpha^2/4) (h/L)^2; the arc twice the exact plane-stress
+    bending's own departure from it, + 1e-6) on the cable, 32 elements, L / h = 50: the
+    elastica under alpha = 5 (measured 1.8e-4 of L against 6.1e-3) and the full roll-up under
+    an end couple, phi = 2 pi (5.3e-4 against 6.1e-3). The cable has no shear, so its
+    distance is its stretch and its law's."""
+    from studies import benchmarks as B
+    from studies.closed_forms import elastica_end_moment, elastica_tip_load
+
+    g, L = B.STUDY["grid"], B.SLENDER_BEAM["length"]
+    rec, _ = run_scene(scene_from_dict(B.elastica_scene(g, 5.0, 50.0, CABLE)))
+    u, v, _ = elastica_tip_load(5.0)
+    assert math.hypot(rec["tip"]["ux"] / L + u, rec["tip"]["uy"] / L + v) < B.elastica_tolerance(5.0, 50.0)
+    phi = 2 * math.pi
+    rec, _ = run_scene(scene_from_dict(B.arc_scene(g, phi, 50.0, CABLE)))
+    x, y = elastica_end_moment(phi)
+    assert rec["status"] == "converged" and rec["tip"]["rotation"] == pytest.approx(phi, rel=0.01)
+    assert math.hypot(1 + rec["tip"]["ux"] / L - x, rec["tip"]["uy"] / L - y) < 2 * B.arc_departure(phi, 50.0) + 1e-6
