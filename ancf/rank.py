@@ -250,7 +250,9 @@ def rule_warnings(element: ElementSpec, rule: tuple[int, int], penalised: bool, 
                    f"sees {100 * lin['mu_min']:.2g} % of its energy; rank test)")
     fs = strain_test(element.name, rule, aspect) if lin["spurious"] == 0 else None
     if fs is not None and not fs["passes"]:
+        default = default_quadrature(element, penalised, aspect)
+        has = not strain_test(element.name, default, aspect)["passes"]     # (a cable's [3, 3], slender: kept)
         out.append(f"quadrature {list(rule)}: a near-spurious finite-strain family at l_e/h = {aspect:.3g} (the "
-                   f"rule sees {100 * fs['ratio']:.2g} % of its Green strain); the default "
-                   f"{list(default_quadrature(element, penalised, aspect))} does not have it")
+                   f"rule sees {100 * fs['ratio']:.2g} % of its Green strain); the default {list(default)} "
+                   + ("has it too (the element's note says why it is kept)" if has else "does not have it"))
     return out
