@@ -17,7 +17,7 @@ from .integrators import INTEGRATORS
 from mechanics.laws import LAWS, get_law
 from .material import Material
 from .mesh import Mesh, fixed_dofs
-from .beam import BeamModel
+from .beam import BeamModel, model_for
 from .couple import Loading, end_face
 from .quadrature import gauss
 from .rank import default_quadrature, rule_warnings
@@ -29,8 +29,26 @@ def check(scene: Scene) -> Scene:
     if scene.ancf is None:
         raise SceneError("ancf: the scene has no [ancf] table (element, elements)")
     check_names(scene, laws=LAWS, formulations=FORMULATIONS, integrators=INTEGRATORS, elements=ELEMENTS)
+    _check_kinematics(scene)
     _check_pressure_rule(scene)
     return scene
+
+
+def _check_kinematics(scene: Scene) -> None:
+    """What an element's kinematics cannot run: a cable (``ElementSpec.formulations``)
+    integrates the law's uniaxial energy, with free lateral faces, so plane stress alone;
+    and its fibre stretch is not quadratic in u, so it has no discrete gradient."""
+    el = get_element(scene.ancf.element)
+    allowed = el.formulations
+    if allowed is not None and scene.material.formulation not in allowed:
+        raise SceneError(f"material.formulation: {scene.material.formulation!r} cannot run element {el.name} "
+                         f"({el.kinematics}: the section's fibres in uniaxial stress with free faces); "
+                         f"allowed for it: {', '.join(repr(f) for f in allowed)}")
+    if el.cable and scene.analysis.kind == "dynamic" and scene.analysis.integrator == "discrete-gradient":
+        others = sorted(i for i in INTEGRATORS if i != "discrete-gradient")
+        raise SceneError(f"analysis.integrator: 'discrete-gradient' cannot run element {el.name} (a cable's fibre "
+                         f"stretch is not quadratic in u: no exact discrete gradient here); allowed for it: "
+                         f"{', '.join(repr(i) for i in others)}")
 
 
 def _check_pressure_rule(scene: Scene) -> None:
@@ -115,7 +133,7 @@ def build_model(scene: Scene) -> BeamModel:
     s = check(scene).ancf
     mesh = Mesh(get_element(s.element), s.elements, scene.beam.length,
                 scene.beam.height, scene.beam.width)
-    return BeamModel(mesh, build_material(scene.material), gauss(*_quadrature(scene)),
+    return model_for(mesh, build_material(scene.material), gauss(*_quadrature(scene)),
                      fixed_dofs(mesh, scene.supports.left, scene.supports.clamp))
 
 

@@ -29,7 +29,7 @@ from mechanics.laws import get_law
 from .build import build_material
 from .elements import KINDS, ElementSpec, get_element
 from .rank import default_quadrature
-from .beam import BeamModel
+from .beam import BeamModel, model_for
 from .formulations import FORMULATIONS
 from .mesh import Mesh, fixed_dofs
 from .quadrature import gauss
@@ -67,7 +67,13 @@ def small_model(element, law: str = "yeoh", formulation: str = "plane-stress", n
     material = paper_material(law, formulation, penalty)
     rule = (3, 2) if not mesh.element.pressure else \
         default_quadrature(mesh.element, material.formulation.penalised, mesh.element_length / mesh.height)
-    return BeamModel(mesh, material, gauss(*rule), fixed_dofs(mesh, "clamp", "face"))
+    return model_for(mesh, material, gauss(*rule), fixed_dofs(mesh, "clamp", "face"))
+
+
+def runs(element, formulation: str) -> bool:
+    """Can the element run the formulation (a cable: plane stress alone)?"""
+    allowed = _spec(element).formulations
+    return allowed is None or formulation in allowed
 
 
 def bent_state(model: BeamModel, rng, angle: float = 0.2, noise: float = 1e-6) -> np.ndarray:
@@ -82,9 +88,22 @@ def bent_state(model: BeamModel, rng, angle: float = 0.2, noise: float = 1e-6) -
     q[:, kinds.index("r")] = np.c_[R * np.sin(th), R * (1 - np.cos(th))]
     if "r_x" in kinds:
         q[:, kinds.index("r_x")] = 1.01 * np.c_[np.cos(th), np.sin(th)]
-    q[:, kinds.index("r_y")] = 0.99 * np.c_[-np.sin(th), np.cos(th)]
+    if "r_y" in kinds:                      # (a cable has no section coordinates)
+        q[:, kinds.index("r_y")] = 0.99 * np.c_[-np.sin(th), np.cos(th)]
     u = q.reshape(-1) - m.reference
     return u + noise * rng.standard_normal(m.n_dof) if noise else u
+
+
+def inadmissible_state(model) -> np.ndarray:
+    """A state no point may take: the beam mirrored x -> -x (det F = -1 everywhere) for a
+    continuum-based element; for a cable (a mirrored or folded cable is admissible: its
+    fibres keep their stretch) the bent arc of :func:`bent_state` (1 rad) shrunk 1000 times,
+    |r_x| = 0.001 at the curvature 1 / L, where the outer points of any rule with two or more
+    across (|Y| >= h / (2 sqrt 3)) have the stretch 0.001 - |Y| / L < 0 (L / h < 290)."""
+    ref = model.mesh.reference
+    if model.mesh.element.cable:
+        return 0.001 * (ref + bent_state(model, None, angle=1.0, noise=0.0)) - ref
+    return np.where(np.arange(ref.size) % 2 == 0, -2.0 * ref, 0.0)
 
 
 def rotate(model: BeamModel, u: np.ndarray, t: float, shift=(0.0, 0.0)):
@@ -119,13 +138,19 @@ def nodality(element, geometries=GEOMETRIES, seed: int = 0) -> dict:
 
 
 def reference_state(element) -> dict:
-    """max |F - I| at points of an element in its reference coordinates."""
+    """max |F - I| at points of an element in its reference coordinates (a cable: its
+    centre line r = (x, 0) with r_x = (1, 0) and r_xx = 0)."""
     spec = _spec(element)
     le, h = 0.01, 0.005
     q = np.concatenate([spec.reference_coordinates(x * le) for x in spec.nodes])
     xi = np.linspace(0, 1, 7)
     N, dN = spec.tabulate(xi, np.full(7, 0.3), le, h)
     F = np.einsum("ai,paj->pij", q, dN)
+    if spec.cable:
+        F[:, :, 1] = spec.tabulate_derivative(xi, np.full(7, 0.3), le, h, 2) @ q    # r_xx in r_y's place
+        err = max(float(np.abs(F - np.diag([1.0, 0.0])).max() * max(1.0, le)),
+                  float(np.abs(N @ q - np.c_[xi * le, np.zeros(7)]).max() / h))
+        return {"error": err, "bound": 1e-12, "passes": err <= 1e-12}
     err = max(float(np.abs(F - np.eye(2)).max()), float(np.abs(N @ q - np.c_[xi * le, np.full(7, 0.3 * h)]).max() / h))
     return {"error": err, "bound": 1e-12, "passes": err <= 1e-12}
 
@@ -200,6 +225,8 @@ def patch(element, law: str = "neo-hookean", formulation: str = "plane-stress", 
     max |f|: round-off for a conforming element; for a non-conforming one, the interior
     faces' jump terms, which do not cancel (Irons' patch test fails)."""
     spec = _spec(element)
+    if spec.cable:
+        return axial_patch(spec, law, n=n, length=length)
     mesh = Mesh(spec, n, length, 0.005, 0.007)
     model = BeamModel(mesh, paper_material(law, formulation), gauss(*_exact(spec)), np.array([], int))
     F0 = np.array([[1.1, 0.04], [-0.03, 0.93]])
@@ -220,6 +247,34 @@ def patch(element, law: str = "neo-hookean", formulation: str = "plane-stress", 
     return {"error": err, "bound": 1e-6, "passes": err <= 1e-6}
 
 
+def axial_patch(element, law: str = "neo-hookean", n: int = 3, length: float = 0.02, stretch: float = 1.3) -> dict:
+    """A cable's patch test: the uniform stretch r = (lambda x, 0), r_x = (lambda, 0) on a free
+    n-element cable; the assembled force must be the uniaxial nominal stress P(lambda) times
+    h w at the two ends (-P h w at x = 0, +P h w at x = L, on r's x-components) and zero on
+    every other dof (the divergence theorem of a constant stress), P = dW_u/dlambda from the
+    model's own energy per volume by central differences (error ~1e-9 of P; the closed form
+    of P(lambda) is the benchmarks' and tests/test_cable.py's). Returns the worst nodal
+    error relative to P h w."""
+    spec = _spec(element)
+    mesh = Mesh(spec, n, length, 0.005, 0.007)
+    model = model_for(mesh, paper_material(law, "plane-stress"), gauss(*_exact(spec)), np.array([], int))
+    q = mesh.reference.reshape(mesh.n_nodes, -1, 2) * np.array([stretch, 1.0])
+    u = q.reshape(-1) - mesh.reference
+    V, d = mesh.length * mesh.height * mesh.width, 1e-6
+
+    def energy(lam):
+        return model.strain_energy((mesh.reference.reshape(mesh.n_nodes, -1, 2) * np.array([lam, 1.0])).reshape(-1)
+                                   - mesh.reference)
+    P = (energy(stretch + d) - energy(stretch - d)) / (2 * d * V)
+    expected = np.zeros(mesh.n_dof)
+    expected[mesh.dofs(0, ("r",))[0]] = -P * mesh.height * mesh.width
+    expected[mesh.dofs(mesh.n_nodes - 1, ("r",))[0]] = P * mesh.height * mesh.width
+    f = model.internal_force(u)
+    err = float(np.abs(f - expected).max() / (P * mesh.height * mesh.width))
+    return {"error": err, "bound": 1e-6, "passes": err <= 1e-6, "stretch": stretch,
+            "nominal_stress": float(P)}
+
+
 def _exact(spec: ElementSpec) -> tuple[int, int]:
     dx, dy = spec.degree()
     return dx + 1, dy + 1
@@ -228,7 +283,7 @@ def _exact(spec: ElementSpec) -> tuple[int, int]:
 def mass(element, n: int = 5) -> dict:
     """Relative errors of the translational mass and the gravity resultant; M SPD."""
     mesh = Mesh(_spec(element), n, 0.35, 0.005, 0.007)
-    model = BeamModel(mesh, paper_material("yeoh", "plane-stress"), gauss(1, 1), np.array([], int))
+    model = model_for(mesh, paper_material("yeoh", "plane-stress"), gauss(1, 1), np.array([], int))
     M = model.mass_matrix()
     ex = np.zeros(mesh.n_dof)
     for node in range(mesh.n_nodes):
@@ -248,21 +303,23 @@ def mass(element, n: int = 5) -> dict:
 
 def conformity(element, angle: float = 0.5, n: int = 2) -> dict:
     """Jumps across the shared face of two elements under the bent state (no noise):
-    max |r_left - r_right| / h and max |r_y,left - r_y,right| over the face."""
+    max |r_left - r_right| / h and max |r_y,left - r_y,right| over the face (a cable:
+    r_x, whose normal its section is, in r_y's place)."""
     spec = _spec(element)
     mesh = Mesh(spec, n, 0.02, 0.005, 0.007)
-    model = BeamModel(mesh, paper_material("neo-hookean", "plane-stress"), gauss(2, 2), np.array([], int))
+    model = model_for(mesh, paper_material("neo-hookean", "plane-stress"), gauss(2, 2), np.array([], int))
     q = mesh.reference + bent_state(model, None, angle, noise=0.0)
     eta = np.linspace(-0.5, 0.5, 11)
     le, h = mesh.element_length, mesh.height
     jr = jy = 0.0
+    section = 0 if spec.cable else 1           # a cable's section is r_x's normal: r_x jumps, or not
     for e in range(n - 1):
         left, right = mesh.element_dofs[e], mesh.element_dofs[e + 1]
         NL, dNL = spec.tabulate(np.ones(eta.size), eta, le, h)
         NR, dNR = spec.tabulate(np.zeros(eta.size), eta, le, h)
         qL, qR = q[left], q[right]
         jr = max(jr, float(np.abs(NL @ qL - NR @ qR).max() / h))
-        jy = max(jy, float(np.abs(dNL[:, :, 1] @ qL - dNR[:, :, 1] @ qR).max()))
+        jy = max(jy, float(np.abs(dNL[:, :, section] @ qL - dNR[:, :, section] @ qR).max()))
     return {"jump_r": jr, "jump_r_y": jy, "conforming": jr <= 1e-12 and jy <= 1e-12}
 
 

@@ -2,8 +2,8 @@
 
 :func:`newton` is :func:`ancf.statics.newton_reference` (the Python loop, kept as the
 reference it is tested against) in one numba call: per iteration the fused assembly of
-the force and the upper half of the tangent (:func:`ancf.kernels.assemble_fused`, the
-step loop's), the constraint, a banded LDL^T without pivoting
+the force and the upper half of the tangent (:func:`ancf.element_kernels.element_assemble`,
+the step loop's), the constraint, a banded LDL^T without pivoting
 (:func:`ancf.bandsolve.col_ldlt`) and its solve; the same tests in the same order
 (non-finite residual, residual <= atol, divergence, correction <= utol) and the same
 line search. Per iteration of 640 x HB2n-16 this is 1.6 ms (assembly 0.94, LDL^T 0.55,
@@ -17,7 +17,9 @@ iteration is not called singular here: the attempt returns ``UNPIVOTED`` and
 
 Laws and elements stay data, as in :mod:`ancf.compiled_steps`: the compiled code sees the
 tabulated shape-function gradients, weights, element dofs, the law's tape and the element
-pressure field's arrays (:func:`ancf.element_fields.pressure_arrays`, empty without one).
+pressure field's arrays (:func:`ancf.element_fields.pressure_arrays`, empty without one),
+and hands them to the element interface (:mod:`ancf.element_kernels`), which chooses the
+continuum's kernel or the cable's from them.
 """
 from __future__ import annotations
 
@@ -28,9 +30,8 @@ from numba import njit
 
 from .bandsolve import col_constrain, col_ldlt, col_ldlt_solve
 from .couple import add_couple
-from .element_fields import element_pressures
-from .kernels import INADMISSIBLE, OK, assemble_fused, live_tape, point_gradients, step_scratch
-from .tape import tape_batch
+from .element_kernels import element_assemble, element_force_magnitude, element_work
+from .kernels import OK, live_tape
 
 # Outcomes of :func:`newton` (a converged attempt is CONVERGED).
 CONVERGED, NON_FINITE, DIVERGING, NO_CONVERGENCE, UNPIVOTED, NOT_ADMISSIBLE = range(6)
@@ -51,8 +52,8 @@ def _residual(f, target, is_free, r):
 @njit(cache=True)
 def _assemble(u, dN, w, dofs, ops, consts, pr, couple, f, S, b, with_tangent, chunk, R, Fb, ab, Jb, ew):
     """f_int(u) minus the end couple's force (and the tangent of both, upper column band):
-    :func:`ancf.kernels.assemble_fused` then :func:`ancf.couple.add_couple`."""
-    status = assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, S, with_tangent, chunk, R, Fb, ab, Jb, ew)
+    :func:`ancf.element_kernels.element_assemble` then :func:`ancf.couple.add_couple`."""
+    status = element_assemble(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, S, with_tangent, chunk, R, Fb, ab, Jb, ew)
     if status == OK:
         add_couple(u, couple[0], couple[1], couple[2], couple[3], f, S, b, with_tangent)
     return status
@@ -121,7 +122,7 @@ def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, couple, u, ato
     S = np.empty((n, b + 1))
     f, r, du, ut = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     wk = np.empty((2, n))
-    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
+    chunk, R, Fb, ab, Jb, ew = element_work(ops, dN, pr)
     nres = 0
     for it in range(max_it + 1):
         if _assemble(u, dN, w, dofs, ops, consts, pr, couple, f, S, b, True, chunk, R, Fb, ab, Jb, ew) != OK:
@@ -164,45 +165,8 @@ def newton(dN, w, dofs, ops, consts, pr, first, fixed, b, target, couple, u, ato
     return NO_CONVERGENCE, max_it, nres
 
 
-@njit(cache=True)
-def force_magnitude(u, dN, w, dofs, ops, consts, pr, out):
-    """out (n,) <- the internal force assembled from the magnitudes of its terms,
-    sum |w dN_s,j| (|2 W_a F_ij| + (|W_J| + |p|) |(cof F)_ij|), p the element pressure
-    field's value at the point (pr, :func:`ancf.element_fields.pressure_arrays`; 0 without one):
-    what the force's round-off is relative to. An element with an assumed strain is
-    measured by its rule's points' own F and (a, J), not C_bar's (its sample points weigh
-    zero): terms of the same size, which is all a floor needs. Returns OK, or INADMISSIBLE
-    if det F <= 0 somewhere."""
-    ne = dofs.shape[0]
-    nq, ns = dN.shape[0], dN.shape[1]
-    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
-    W = R[ops.shape[0] - 1]
-    nk = pr[2].shape[0]
-    g, pk, pp = ew[1], ew[2], ew[3]          # the pressures' work (element_scratch)
-    pp[:] = 0.0                              # p = 0 without a pressure field
-    out[:] = 0.0
-    for e0 in range(0, ne, chunk):
-        e1 = min(ne, e0 + chunk)
-        m = point_gradients(u, u, 0.0, dN, dofs, e0, e1, Fb, ab, Jb)
-        if m < 0:
-            return INADMISSIBLE
-        tape_batch(ops, consts, ab, Jb, R, m, 1)
-        p = 0
-        for e in range(e0, e1):
-            if nk > 0:
-                element_pressures(pr, Jb, p, nq, g, pk, pp)
-            for q in range(nq):
-                a2, aj, wq = abs(2.0 * W[1, p]), abs(W[2, p]) + abs(pp[q]), w[q]
-                M0 = wq * (a2 * abs(Fb[p, 0]) + aj * abs(Fb[p, 3]))
-                M1 = wq * (a2 * abs(Fb[p, 1]) + aj * abs(Fb[p, 2]))
-                M2 = wq * (a2 * abs(Fb[p, 2]) + aj * abs(Fb[p, 1]))
-                M3 = wq * (a2 * abs(Fb[p, 3]) + aj * abs(Fb[p, 0]))
-                for s in range(ns):
-                    g0, g1 = abs(dN[q, s, 0]), abs(dN[q, s, 1])
-                    out[dofs[e, 2 * s]] += g0 * M0 + g1 * M1
-                    out[dofs[e, 2 * s + 1]] += g0 * M2 + g1 * M3
-                p += 1
-    return OK
+# the round-off floor's force magnitudes (the element's, :mod:`ancf.element_kernels`)
+force_magnitude = element_force_magnitude
 
 
 class StaticKernel:

@@ -18,7 +18,9 @@ Laws and elements stay data: the compiled code sees the tabulated shape-function
 gradients ``dN`` (nq, ns, 2) and weights ``w`` of the model, the element dofs, the law x
 formulation energy traced into a tape (:mod:`ancf.tape`), the element pressure field's
 arrays (:func:`ancf.element_fields.pressure_arrays`, empty without one), the mass matrix, the
-load and the fixed dofs. A registered element or law runs with no new compiled code. The
+load and the fixed dofs; the element's assembly and energy are the element interface's
+(:mod:`ancf.element_kernels`, which chooses a continuum-based element's kernel or a
+cable's from those data). A registered element or law runs with no new compiled code. The
 integrator's coefficients (alpha_m, alpha_f, beta, gamma) come from the integrator class
 as data.
 
@@ -68,9 +70,9 @@ from numba import njit
 from mechanics import alpha_family, time_loop
 from .bandsolve import col_constrain, col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split, same_component_only
 from .beam import refuse_discrete_gradient
-from .dgkernel import assemble_dg, dg_scratch
-from .kernels import (INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, assemble_fused, live_tape,
-                      step_scratch, strain_energy_fused)
+from .dgkernel import dg_scratch
+from .element_kernels import element_assemble, element_assemble_dg, element_energy, element_work
+from .kernels import INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, live_tape
 
 NEWTON = ("chord", "full", "modified")
 STATUS = {NEWTON_FAILED: "Newton failed", SINGULAR: "singular step matrix", INADMISSIBLE: "det F <= 0"}
@@ -182,7 +184,8 @@ def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, i
          u_n, v_n, a_n, h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, ew, full):
     """One step u_n, v_n, a_n -> u, v, a of size h. S holds the current factorisation
     (modified Newton), fstate = [h of that factorisation, 1 if valid]; wk: work (7, n);
-    chunk, R, Fb, ab, Jb, ew: :func:`step_scratch`; full: full Newton whatever inewton says.
+    chunk, R, Fb, ab, Jb, ew: :func:`ancf.element_kernels.element_work`; full: full Newton whatever
+    inewton says.
     Returns (status, iterations)."""
     am, af, beta, gamma = coef[0], coef[1], coef[2], coef[3]
     max_it, modified = inewton[I_MAX_IT], inewton[I_MODIFIED] != 0 and not full
@@ -208,7 +211,7 @@ def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, i
     while True:
         # residual M((1 - am) a + am a_n) + f(ue) - f_ext, with M a = c' M (u - u_pred) + M a_n
         refactor = (not modified) or fstate[1] == 0.0
-        status = assemble_fused(u, u_n, af, dN, w, dofs, ops, consts, pr, f, S, refactor, chunk, R, Fb, ab, Jb, ew)
+        status = element_assemble(u, u_n, af, dN, w, dofs, ops, consts, pr, f, S, refactor, chunk, R, Fb, ab, Jb, ew)
         counters[C_RESIDUALS] += 1
         if refactor:
             counters[C_TANGENTS] += 1
@@ -224,7 +227,7 @@ def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, i
         rho = rn / r_prev if since > 0 else -1.0      # contraction of the last iteration (-1: none yet)
         if modified and not refactor and (since >= max_mod or rho > kappa):
             refactor = True                           # poor contraction: tangent at this iterate
-            status = assemble_fused(u, u_n, af, dN, w, dofs, ops, consts, pr, f, S, True, chunk, R, Fb, ab, Jb, ew)
+            status = element_assemble(u, u_n, af, dN, w, dofs, ops, consts, pr, f, S, True, chunk, R, Fb, ab, Jb, ew)
             counters[C_TANGENTS] += 1
             if status != OK:
                 return status, it
@@ -272,7 +275,7 @@ def step_dg(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, inew
         Mv[i] *= -2.0 / h                             # the residual's constant part, -2 M v_n / h
     it = 0
     while True:
-        status = assemble_dg(u_n, u, dN, w, dofs, ops, consts, pr, f, S, *scratch)
+        status = element_assemble_dg(u_n, u, dN, w, dofs, ops, consts, pr, f, S, *scratch)
         counters[C_RESIDUALS] += 1
         counters[C_TANGENTS] += 1
         if status != OK:
@@ -299,9 +302,10 @@ def step_dg(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, inew
 @njit(cache=True)
 def energies(u, v, dN, w, dofs, ops, consts, pr, Mc, first, tmp, chunk, R, Fb, ab, Jb, ew):
     """(kinetic, strain) energy (J); the strain energy is nan if det F <= 0 somewhere
-    (:func:`strain_energy_fused`). tmp: work (n,); chunk .. ew: :func:`step_scratch`."""
+    (:func:`ancf.element_kernels.element_energy`). tmp: work (n,); chunk .. ew:
+    :func:`ancf.element_kernels.element_work`."""
     col_matvec(Mc, first, v, tmp)
-    return 0.5 * np.dot(v, tmp), strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, ew)
+    return 0.5 * np.dot(v, tmp), element_energy(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, ew)
 
 
 @njit(cache=True)
@@ -309,7 +313,7 @@ def observed_energies(u, v, dN, w, dofs, ops, consts, pr, Mc, first):
     """:func:`energies` with its work arrays made here (an output's call: fewer arguments
     to pass cost less than the arrays to make)."""
     return energies(u, v, dN, w, dofs, ops, consts, pr, Mc, first, np.empty(u.shape[0]),
-                    *step_scratch(ops.shape[0], dN, pr))
+                    *element_work(ops, dN, pr))
 
 
 @njit(cache=True)
@@ -341,7 +345,7 @@ def advance(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, fixed, coef, 
     for k in fixed:
         is_free[k] = False
     wk = np.empty((7, n))
-    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
+    chunk, R, Fb, ab, Jb, ew = element_work(ops, dN, pr)
     dg = inewton[I_SCHEME] == DISCRETE_GRADIENT
     scratch = dg_scratch(ops.shape[0] if dg else 1, dN, pr)   # (unused without dg: one op)
     un, vn, an = np.empty(n), np.empty(n), np.empty(n)
@@ -426,9 +430,9 @@ def start(u, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, a):
 
 @njit(cache=True)
 def internal_force(u, dN, w, dofs, ops, consts, pr, f):
-    """f = f_int(u) by the fused assembly (force only); returns its status."""
-    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
-    return assemble_fused(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, np.empty((0, 0)), False, chunk, R, Fb, ab, Jb, ew)
+    """f = f_int(u) by the element's assembly (force only); returns its status."""
+    chunk, R, Fb, ab, Jb, ew = element_work(ops, dN, pr)
+    return element_assemble(u, u, 0.0, dN, w, dofs, ops, consts, pr, f, np.empty((0, 0)), False, chunk, R, Fb, ab, Jb, ew)
 
 
 # -- the Python side -----------------------------------------------------------------------

@@ -50,8 +50,10 @@ class EndFace:
 def end_face(model) -> EndFace:
     """The end face of a continuum-based element's mesh: A[i, (s, i)] = c_s, c_s = (12 / h^3)
     int N_s(L, y) y dy over the last element's shape functions (Gauss across the thickness
-    exact for y times the basis in y)."""
+    exact for y times the basis in y). A cable's: :func:`cable_end_face`."""
     m = model.mesh
+    if m.element.cable:
+        return cable_end_face(model)
     rule = exact_for(0, m.element.degree()[1] + 1)
     N, _ = m.element.tabulate(np.ones_like(rule.eta), rule.eta, m.element_length, m.height)
     y = rule.eta * m.height
@@ -64,6 +66,17 @@ def end_face(model) -> EndFace:
     A[0, 0::2], A[1, 1::2] = c, c
     d0 = A @ m.reference[rows]
     return EndFace(rows, A, d0)
+
+
+def cable_end_face(model) -> EndFace:
+    """The end face of a cable: its section is r(L) + Y n(L), n = R90 r_x / |r_x|, whose
+    first moment (12 / h^3) int (r + Y n) Y dY is n; d = R90 r_x(L) = (-r_x,y, r_x,x) has
+    n's direction (its length, the stretch, does not enter theta): linear in u, rows the
+    last node's r_x, A = [[0, -1], [1, 0]], d0 = (0, 1)."""
+    m = model.mesh
+    rows = m.dofs(m.n_nodes - 1, ("r_x",)).astype(np.int64)
+    A = np.array([[0.0, -1.0], [1.0, 0.0]])
+    return EndFace(rows, A, A @ m.reference[rows])
 
 
 @dataclass(frozen=True)

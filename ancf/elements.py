@@ -24,6 +24,13 @@ point: the u-p mixed form with its pressure condensed per element
 
 An element may take components of C from fewer points along the beam (``assumed``:
 an assumed strain, :mod:`ancf.assumed`), the remedy for membrane locking.
+
+An element declares its kinematics (``kinematics``, :data:`KINEMATICS`): "continuum"
+(the default: its shape functions span the plane, F = I + grad u at every point, the
+elements above) or "cable" (a centre line r(x) alone, basis and kinds in x only: the
+section is no field but is integrated, fibre by fibre, from the centre line's stretch and
+curvature, :mod:`ancf.cable`). The model, the supports, the end face and the contract
+checks read it; the compiled loops see it only as data (:mod:`ancf.element_kernels`).
 """
 from __future__ import annotations
 
@@ -59,6 +66,13 @@ class _Kinds(dict):
 
 KINDS: dict[str, tuple[int, int]] = _Kinds({"r": (0, 0)})
 
+# An element's kinematics -> what it is (``ElementSpec.kinematics``).
+KINEMATICS = {
+    "continuum": "continuum-based: shape functions in (x, y), F = I + grad u at points of the section",
+    "cable": "cable: a centre line in x alone (Euler-Bernoulli); the section integrated fibre by fibre "
+             "from its stretch and curvature with the law's uniaxial energy (plane stress only)",
+}
+
 
 @dataclass(frozen=True)
 class ElementSpec:
@@ -79,8 +93,21 @@ class ElementSpec:
     # C at the rule's points
     assumed: tuple[str, ...] = ()
     assumed_points: int = 3
+    # :data:`KINEMATICS`: "continuum" (shape functions in x and y) or "cable" (a centre line:
+    # basis and kinds in x only, the section integrated by the rule's points across it)
+    kinematics: str = "continuum"
 
     def __post_init__(self):
+        if self.kinematics not in KINEMATICS:
+            raise ValueError(f"element {self.name}: kinematics {self.kinematics!r}; allowed: "
+                             f"{', '.join(KINEMATICS)}")
+        if self.kinematics == "cable":
+            ybasis = [b for b in self.basis if "y" in b]
+            ykinds = [k for k in self.kinds if k in KINDS and KINDS[k][1] > 0]
+            if ybasis or ykinds or self.pressure or self.assumed:
+                raise ValueError(f"element {self.name}: a cable's basis and kinds are in x alone, with no pressure "
+                                 f"field or assumed strain; got basis in y {ybasis}, kinds in y {ykinds}, "
+                                 f"pressure {list(self.pressure)}, assumed {list(self.assumed)}")
         from .assumed import COMPONENTS
         bad = [c for c in self.assumed if c not in COMPONENTS]
         if bad or len(set(self.assumed)) != len(self.assumed) or self.assumed_points < 1:
@@ -130,6 +157,17 @@ class ElementSpec:
             raise ValueError(f"element {self.name}: nodal coordinates do not determine the basis")
         return polys, np.linalg.inv(A)
 
+    @property
+    def cable(self) -> bool:
+        """A centre-line element (``kinematics = "cable"``)?"""
+        return self.kinematics == "cable"
+
+    @property
+    def formulations(self) -> tuple[str, ...] | None:
+        """The formulations the element can run (None: every one). A cable integrates the
+        law's incompressible uniaxial energy, with free lateral faces: plane stress alone."""
+        return ("plane-stress",) if self.cable else None
+
     def degree(self) -> tuple[int, int]:
         d = np.array([p.degree() for p in self.polys])
         return int(d[:, 0].max()), int(d[:, 1].max())
@@ -151,6 +189,25 @@ class ElementSpec:
         N = (B @ C) * scale
         dN = np.stack([(Bx @ C) * scale, (By @ C) * scale], axis=-1)
         return N, dN
+
+    def tabulate_derivative(self, xi, eta, length: float, height: float, dx: int, dy: int = 0) -> np.ndarray:
+        """The physical shape functions' derivative d^(dx + dy) N / dx^dx dy^dy at points
+        (xi, eta), (npts, n_shape) in 1/m^(dx + dy) (:meth:`tabulate` has the first ones;
+        a cable's curvature needs N_xx)."""
+        xi, eta = np.ravel(xi), np.ravel(eta)
+        polys, C = self.dimensionless(float(length), float(height))
+        scale = np.array([length ** KINDS[k][0] * height ** KINDS[k][1]
+                          for _ in self.nodes for k in self.kinds])
+        B = np.stack([p(xi, eta, dx, dy) for p in polys], axis=-1) / (length ** dx * height ** dy)
+        return (B @ C) * scale
+
+    def cable_gradients(self, xi, eta, length: float, height: float) -> np.ndarray:
+        """A cable's point data (npts, n_shape, 2): N_s'(x) and y N_s''(x) at (xi, eta), y =
+        eta h, so that r_x = sum_s [..., 0] q_s and y r_xx = sum_s [..., 1] q_s take the places
+        of F's two columns (:mod:`ancf.cable`)."""
+        _, d1 = self.tabulate(xi, eta, length, height)
+        d2 = self.tabulate_derivative(xi, eta, length, height, 2)
+        return np.ascontiguousarray(np.stack([d1[..., 0], (np.ravel(eta) * height)[:, None] * d2], axis=-1))
 
     def reference_coordinates(self, x_node: float) -> np.ndarray:
         """Nodal coordinates (n_kinds, 2) of a straight, unstressed beam at node x."""
@@ -288,6 +345,31 @@ register_element(ElementSpec(
     "this harness: HB2n-20xyp with an assumed membrane stretch C_xx (3 points along)",
     rules((SLENDER, (5, 2)), (1.0, (4, 2)), (0.0, (3, 3))),
     pressure=("1", "y"), assumed=("xx",)))
+
+# Found with the harness (issue: the cheapest element at every accuracy): the planar ANCF
+# cable (r and r_x at two nodes, cubic Hermite along: Gerstmayr & Irschik 2008's centre
+# line, Exudyn's ObjectANCFCable2D's dofs) whose section integrates the law's exact
+# incompressible uniaxial energy fibre by fibre (ancf.cable), instead of a linear
+# EA eps^2 / 2 + EI kappa^2 / 2. H: its section law is the hyperelastic one (beside the
+# linear cable of the peers' runs); C: a cable (centre line only, Euler-Bernoulli, no
+# section coordinates, so the B of the continuum-based elements' names does not fit);
+# 2n, 8: two nodes, 8 dof. Its rule: points along x points across the section. Along: the
+# small strain u_x' (quadratic) needs 3 points ([2, .]: one spurious mode; [3, 1] two, the
+# bending unseen at y = 0); [3, 2] and up are exact at u = 0 (mu_min 1). Across: the section's
+# energy int W_u(s - y kappa) dy by Gauss, against 64 points at kappa h = 0.1 / 0.3 / 0.5
+# (neo-Hookean; Yeoh and Mooney-Rivlin alike): 2 points 8.9e-4 / 7.9e-3 / 2.1e-2 of M, as large
+# as the section model's own error 0.225 (kappa h)^2 (tests/test_cable.py); 3 points 8.6e-7 /
+# 6.8e-5 / 5.0e-4, under 1 % of it to kappa h = 0.3, 2 % at 0.5: [3, 3]. The finite-strain
+# test finds, with 3 or 4 points along, the membrane stretch between the points unseen at slender elements
+# (seen/true 0.33 / 0.19 / 0.09 at l_e / h = 10 / 17.5 / 35; [5, 3] 0.93); seeing it is the
+# cubic cable's membrane locking: on the paper's cantilever (NH, plane stress) [3, 3] is off the
+# continuum by 4.7 / 0.39 / 0.044 / 0.033 % at 2 / 4 / 8 / 32 elements, [5, 3] by 6.1 / 0.79 /
+# 0.055 / 0.033 %; on the pendulum (Yeoh) 2.4 / 0.46 / 0.081 % at 2 / 4 / 8 elements against 6.7 /
+# 0.90 / 0.091 %, no unstable equilibrium either way: [3, 3] at every l_e / h.
+register_element(ElementSpec(
+    "HC2n-8", ("1", "x", "x^2", "x^3"), (0.0, 1.0), ("r", "r_x"),
+    "this harness: ANCF cable (cubic Hermite centre line), section integrated with the law's incompressible "
+    "uniaxial energy", rules((0.0, (3, 3))), kinematics="cable"))
 
 # the elements of this package; any other was registered by a user's module
 BUILTIN = ELEMENTS.freeze_builtin()

@@ -438,3 +438,44 @@ def strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, e
             for p0 in range(0, m, nw):
                 total += element_pressures(pr, Jb, p0, nw, g, pk, pq)
     return total
+
+
+@njit(cache=True)
+def force_magnitude_fused(u, dN, w, dofs, ops, consts, pr, out):
+    """out (n,) <- the internal force assembled from the magnitudes of its terms,
+    sum |w dN_s,j| (|2 W_a F_ij| + (|W_J| + |p|) |(cof F)_ij|), p the element pressure
+    field's value at the point (pr, :func:`ancf.element_fields.pressure_arrays`; 0 without one):
+    what the force's round-off is relative to. An element with an assumed strain is
+    measured by its rule's points' own F and (a, J), not C_bar's (its sample points weigh
+    zero): terms of the same size, which is all a floor needs. Returns OK, or INADMISSIBLE
+    if det F <= 0 somewhere."""
+    ne = dofs.shape[0]
+    nq, ns = dN.shape[0], dN.shape[1]
+    chunk, R, Fb, ab, Jb, ew = step_scratch(ops.shape[0], dN, pr)
+    W = R[ops.shape[0] - 1]
+    nk = pr[2].shape[0]
+    g, pk, pp = ew[1], ew[2], ew[3]          # the pressures' work (element_scratch)
+    pp[:] = 0.0                              # p = 0 without a pressure field
+    out[:] = 0.0
+    for e0 in range(0, ne, chunk):
+        e1 = min(ne, e0 + chunk)
+        m = point_gradients(u, u, 0.0, dN, dofs, e0, e1, Fb, ab, Jb)
+        if m < 0:
+            return INADMISSIBLE
+        tape_batch(ops, consts, ab, Jb, R, m, 1)
+        p = 0
+        for e in range(e0, e1):
+            if nk > 0:
+                element_pressures(pr, Jb, p, nq, g, pk, pp)
+            for q in range(nq):
+                a2, aj, wq = abs(2.0 * W[1, p]), abs(W[2, p]) + abs(pp[q]), w[q]
+                M0 = wq * (a2 * abs(Fb[p, 0]) + aj * abs(Fb[p, 3]))
+                M1 = wq * (a2 * abs(Fb[p, 1]) + aj * abs(Fb[p, 2]))
+                M2 = wq * (a2 * abs(Fb[p, 2]) + aj * abs(Fb[p, 1]))
+                M3 = wq * (a2 * abs(Fb[p, 3]) + aj * abs(Fb[p, 0]))
+                for s in range(ns):
+                    g0, g1 = abs(dN[q, s, 0]), abs(dN[q, s, 1])
+                    out[dofs[e, 2 * s]] += g0 * M0 + g1 * M1
+                    out[dofs[e, 2 * s + 1]] += g0 * M2 + g1 * M3
+                p += 1
+    return OK

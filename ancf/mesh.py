@@ -102,7 +102,10 @@ def fixed_dofs(mesh: Mesh, left: str, clamp: str | None) -> np.ndarray:
     """The dofs a support fixes at x = 0 (:data:`contract.loads.SUPPORTS`). ``slide``: the
     face on the plane x = 0, r_x(0, y) = 0 for every y, so the x-components of every pure
     y-derivative kind, and the centre's y-component. ``hinge``: the face straight through
-    its fixed centre, r(0, y) = y a, so r and every pure y-derivative kind but r_y."""
+    its fixed centre, r(0, y) = y a, so r and every pure y-derivative kind but r_y. A cable
+    (:func:`cable_fixed_dofs`) has no section coordinates: its supports act on r and r_x."""
+    if mesh.element.cable:
+        return cable_fixed_dofs(mesh, left, clamp)
     face = tuple(k for k in mesh.element.kinds if KINDS[k][0] == 0)
     if left == "slide":
         return np.sort(np.concatenate([mesh.dofs(0, face)[0::2], mesh.dofs(0, ("r",))[1:]]))
@@ -112,3 +115,21 @@ def fixed_dofs(mesh: Mesh, left: str, clamp: str | None) -> np.ndarray:
     if kinds == "face":
         kinds = face
     return mesh.dofs(0, mesh.element.kinds if kinds is None else kinds)
+
+
+def cable_fixed_dofs(mesh: Mesh, left: str, clamp: str | None) -> np.ndarray:
+    """A cable's supports at x = 0: its section is the segment r + Y n normal to r_x, so
+
+    - ``clamp`` (``face``): the face fixed: r, and r_x's y-component (its direction; its
+      length, the centre line's stretch, stays free as the face's contraction does in the
+      continuum); ``clamp = "all"``: every nodal coordinate of the node (r and r_x);
+    - ``pin``, ``hinge``: r (the section turns with r_x; a cable's section is straight and
+      free to stretch: the hinge is the pin);
+    - ``slide``: the face on the plane x = 0 (u_x = 0 over it: r_x horizontal and r_x(0) on
+      the plane) and its centre held (u_y = 0): r and r_x's y-component, the clamp."""
+    r = mesh.dofs(0, ("r",))
+    if left in ("pin", "hinge"):
+        return r
+    if left == "clamp" and clamp == "all":
+        return mesh.dofs(0, mesh.element.kinds)
+    return np.sort(np.concatenate([r, mesh.dofs(0, ("r_x",))[1:]]))

@@ -20,11 +20,15 @@ def deformed_grid(model: BeamModel, u: np.ndarray, nx: int = 4, ny: int = 2):
     displacements, and the quadrilateral connectivity (m, 4)."""
     m = model.mesh
     xi, eta = np.meshgrid(np.linspace(0, 1, nx + 1), np.linspace(-0.5, 0.5, ny + 1), indexing="ij")
-    N, _ = m.element.tabulate(xi.ravel(), eta.ravel(), m.element_length, m.height)
-    q = (m.reference + u)[m.element_dofs]                   # (ne, ns, 2)
-    q0 = m.reference[m.element_dofs]
-    pts = np.einsum("pa,eai->epi", N, q).reshape(-1, 2)
-    disp = pts - np.einsum("pa,eai->epi", N, q0).reshape(-1, 2)
+    if m.element.cable:                                      # the section drawn as r + Y n
+        pts = model.section_points(u, xi.ravel(), eta.ravel()).reshape(-1, 2)
+        disp = pts - model.section_points(np.zeros_like(u), xi.ravel(), eta.ravel()).reshape(-1, 2)
+    else:
+        N, _ = m.element.tabulate(xi.ravel(), eta.ravel(), m.element_length, m.height)
+        q = (m.reference + u)[m.element_dofs]                   # (ne, ns, 2)
+        q0 = m.reference[m.element_dofs]
+        pts = np.einsum("pa,eai->epi", N, q).reshape(-1, 2)
+        disp = pts - np.einsum("pa,eai->epi", N, q0).reshape(-1, 2)
     k = np.arange((nx + 1) * (ny + 1)).reshape(nx + 1, ny + 1)
     cell = np.stack([k[:-1, :-1], k[1:, :-1], k[1:, 1:], k[:-1, 1:]], axis=-1).reshape(-1, 4)
     per = (nx + 1) * (ny + 1)

@@ -22,7 +22,7 @@ lies below the force's own round-off (:data:`ROUNDOFF_FLOOR`).
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable
 
 import numpy as np
@@ -310,7 +310,7 @@ def relax(model: BeamModel, rtol: float = 1e-8, max_iterations: int = 25,
     is not negligible)."""
     m = model.mesh
     hold = m.dofs(m.n_nodes - 1, ["r"])[1:2]
-    held = BeamModel(m, model.material, model.rule, np.union1d(model.fixed, hold))
+    held = replace(model, fixed=np.union1d(model.fixed, hold))
     res = solve_static(held, np.zeros(m.n_dof), rtol=rtol, max_iterations=max_iterations, wall_time=wall_time)
     if res.u is not None:
         reaction = abs(held.internal_force(res.u)[hold[0]])

@@ -23,8 +23,10 @@ from numba import njit
 # compiled in-process and loaded from numba's cache may differ at round-off).
 FASTMATH = {"reassoc", "contract", "nsz", "arcp"}
 
-# opcodes
-VAR_A, VAR_J, CONST, ADD, ADDC, MUL, MULC, POWC, LOG = range(9)
+# opcodes. VAR_STRETCH: the variable of a cable's tape (:func:`trace_uniaxial`), the fibre
+# stretch lambda, carried in the first slot like a (the kernels read the tape's first
+# instruction to tell a cable's tape from a continuum's: :mod:`ancf.element_kernels`)
+VAR_A, VAR_J, CONST, ADD, ADDC, MUL, MULC, POWC, LOG, VAR_STRETCH = range(10)
 
 
 class Tape:
@@ -97,6 +99,33 @@ def trace(material) -> tuple[np.ndarray, np.ndarray]:
     return ops, consts
 
 
+def trace_uniaxial(material) -> tuple[np.ndarray, np.ndarray]:
+    """The law's exact incompressible uniaxial energy W_u(lambda) = W(lambda, lambda^-1/2,
+    lambda^-1/2) as a tape in the one variable lambda (VAR_STRETCH, its first instruction;
+    replayed by :func:`tape_batch` with lambda in the a slot: R[-1] = (W_u, W_u', 0, W_u'',
+    0, 0)): the law at I1 = lambda^2 + 2 / lambda, I2 = 2 lambda + lambda^-2 (free lateral
+    faces: the lateral stretches lambda^-1/2 from incompressibility). These are the
+    plane-stress formulation's invariants at F = diag(lambda, lambda^-1/2) (a = lambda^2 +
+    1/lambda, J = lambda^1/2: I1 = a + J^-2, I2 = a J^-2 + J^2), written in lambda so that
+    the replay needs no lambda^1/2 (a generic power, three pow() per point: measured, the
+    cable's force kernel 0.82 -> 0.51 us per element); :meth:`ancf.cable.CableModel.uniaxial_energy`
+    takes the formulation's route in numpy jets and is the reference (tests/test_beam.py,
+    round-off). The energy of a fibre of a cable's section (:mod:`ancf.cable`); plane
+    stress only."""
+    if material.formulation.name != "plane-stress" or material.formulation.penalised:
+        raise ValueError(f"material.formulation: {material.formulation.name!r}; a fibre's uniaxial energy "
+                         "is the plane-stress one (free lateral faces): allowed: 'plane-stress'")
+    tape = Tape()
+    lam = tape.push(VAR_STRETCH)
+    inv = lam ** -1
+    I1 = lam ** 2 + 2.0 * inv
+    I2 = 2.0 * lam + inv * inv
+    W = material.law.psi(I1, I2, material.constants) + 0.0     # the result is the last instruction
+    ops = np.array([(op, x, y) for op, x, y, _ in tape.ops], dtype=np.int64)
+    consts = np.array([c for *_, c in tape.ops], dtype=float)
+    return ops, consts
+
+
 @njit(cache=True)
 def evaluate(ops, consts, a, J):
     """W and its (a, J) partials, (6, ne, nq), at every point (a, J of shape (ne, nq)):
@@ -137,12 +166,12 @@ def tape_batch(ops, consts, a, J, R, m, order):
     for k in range(n):
         op, x, y, c = ops[k, 0], ops[k, 1], ops[k, 2], consts[k]
         Rk = R[k]
-        if op == VAR_A or op == VAR_J or op == CONST:
+        if op == VAR_A or op == VAR_J or op == CONST or op == VAR_STRETCH:
             for d in range(nc):
                 for p in range(m):
                     Rk[d, p] = 0.0
-            if op == VAR_A or op == VAR_J:       # the variable, and its unit partial
-                v, slot = (a, 1) if op == VAR_A else (J, 2)
+            if op != CONST:                      # the variable, and its unit partial (a cable's
+                v, slot = (J, 2) if op == VAR_J else (a, 1)     # stretch: in a's slot)
                 for p in range(m):
                     Rk[0, p] = v[p]
                 if nc > 1:

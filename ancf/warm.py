@@ -62,7 +62,8 @@ def load(scene: Scene) -> float:
 
 # Beside the shipped scenes, what the studies and tests run: each integrator and Newton
 # variant of the step loop, and the elements whose kernels differ (a pressure field, an
-# assumed strain), each in a penalised and a plane-stress formulation.
+# assumed strain, a cable), each in a penalised and a plane-stress formulation where the
+# element runs it (a cable: plane stress, no discrete gradient).
 VARIANTS = (
     {"integrator": "generalized-alpha", "newton": "chord"},
     {"integrator": "generalized-alpha", "newton": "full"},
@@ -70,7 +71,7 @@ VARIANTS = (
     {"integrator": "newmark", "newton": "chord"},
     {"integrator": "discrete-gradient"},
 )
-ELEMENTS = ("HB2n-12", "HB2n-20xyp", "HB2n-20xypm")
+ELEMENTS = ("HB2n-12", "HB2n-20xyp", "HB2n-20xypm", "HC2n-8")
 
 
 def variants() -> list[Scene]:
@@ -81,11 +82,14 @@ def variants() -> list[Scene]:
 
     out = []
     for element in ELEMENTS:
+        el = get_element(element)
         for form in ("plane-stress", "plane-strain"):
+            if el.formulations is not None and form not in el.formulations:
+                continue                           # a cable: plane stress alone
             out.append(scene_from_dict(paper.cantilever_scene("yeoh", form, element, 2, quadrature=None)))
             for v in VARIANTS:
-                if v["integrator"] == "discrete-gradient" and get_element(element).assumed:
-                    continue                       # an assumed strain has no discrete gradient
+                if v["integrator"] == "discrete-gradient" and (el.assumed or el.cable):
+                    continue                       # an assumed strain, a cable: no discrete gradient
                 d = paper.pendulum_scene("yeoh", form, 1e-3, element, 2, t_end=2e-3, **v)
                 out.append(scene_from_dict(d))
     return out

@@ -42,6 +42,14 @@ scene carry the same load on the same support:
   support with a mesh limit; ``slide`` holds the face on the plane x = 0 and free along it
   (u_x = 0 over the face, u_y = 0 at its centre): the support of homogeneous uniaxial
   tension, under which the face contracts freely.
+
+A cable (ANCF ``HC2n-8``, ``kinematics = "cable"``: a centre line whose section is the
+segment r + Y n, n the unit normal of r_x) takes the same definitions on that section: the
+end load's work is F . delta r(L) (the uniform traction's, int Y dY = 0), the end face's
+first moment is n(L), so d = R90 r_x(L) (its length, the stretch, does not enter theta); the
+``clamp`` fixes r and the direction of r_x (``clamp = "all"``: r and r_x), ``pin`` and
+``hinge`` fix r (its section is straight and free to stretch), and ``slide`` is the clamp
+(the section held on x = 0 fixes r_x's direction, its centre held fixes r).
 """
 from __future__ import annotations
 

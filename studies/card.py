@@ -19,9 +19,16 @@ names the four paper elements) writes ``<out>/cards/<element>.md`` with its figu
 6. **pendulum** error against the continuum gold (tests/gold/fem_pendulum.json);
 7. **cost**: serial warm timings of the plane-stress refinement, beside every other
    element that has a card in the same output directory;
-8. **stability**: the inertia verdict of every static equilibrium above.
+8. **stability**: the inertia verdict of every static equilibrium above;
+9. **slenderness** (a cable, ``kinematics = "cable"``): the paper's cantilever at L / h = 140
+   ... 4 under the paper's load parameter against the converged continuum
+   (tests/gold/fem_slenderness.json): where the centre-line model stops being within 1 %,
+   0.3 %, 0.1 %.
 
-Parts 4 to 8 are solver runs: cases in the store ``<out>/data/card-<element>.jsonl``
+What an element cannot run is left out with the reason on its card (a cable: the ``paper``
+and ``plane-strain`` formulations, so the volumetric-locking sweep).
+
+Parts 4 to 9 are solver runs: cases in the store ``<out>/data/card-<element>.jsonl``
 (reused while nothing they depend on changed, like every study). Parts 1 to 3 are
 measured in this process and kept in ``<out>/data/card-<element>-checks.json``, keyed by
 the element's definition and the ancf source hash. The card itself is rendered from these
@@ -103,19 +110,31 @@ def element_imports(element: str) -> list[str]:
     return [origin]
 
 
+def formulations_of(element: str, g: dict) -> list[str]:
+    """The grid's formulations the element runs (a cable: plane stress alone)."""
+    from ancf.checks import runs
+
+    return [f for f in g["formulations"] if runs(element, f)]
+
+
 def cases(element: str, tiny: bool = False) -> list[Case]:
-    """Parts 4 to 8 as cases (tiny: the CI grid)."""
+    """Parts 4 to 9 as cases (tiny: the CI grid). What an element cannot run is left out
+    (a cable: plane strain, so the volumetric-locking sweep; the card says why); a cable's
+    card adds the slenderness sweep (part 9)."""
+    from ancf.elements import get_element
+
     g, study = grid_for(tiny), f"card-{element}"
     imports = element_imports(element)
     opts = {"imports": imports} if imports else {}
     out = []
-    for form in g["formulations"]:
+    forms = formulations_of(element, g)
+    for form in forms:
         for law in g["laws"]:
             for n in g["counts"]:
                 timed = {**opts, "timing": dict(g["timing"])} if form == "plane-stress" else opts
                 out.append(cantilever_case(study, law, form, element, n, DEFAULT, "face", timed or None))
     lk = g["locking"]
-    for law in g["laws"]:
+    for law in g["laws"] if "plane-strain" in formulations_of(element, GRID) else ():
         c10 = paper.materials()[law]["C10"]
         for k in lk["factors"]:
             s = paper.cantilever_scene(law, "plane-strain", element, lk["count"], quadrature=None,
@@ -130,6 +149,12 @@ def cases(element: str, tiny: bool = False) -> list[Case]:
     for n in pd["counts"]:
         out.append(make_case(study, "ancf", pendulum_dict(element, n, pd["formulation"], pd["dt"],
                                                           t_end=pd["t_end"]), opts or None))
+    if get_element(element).cable:
+        sw = SLENDERNESS_TINY if tiny else SLENDERNESS
+        for law in g["laws"]:
+            for ratio in sw["ratios"]:
+                for n in sw["counts"]:
+                    out.append(make_case(study, "ancf", slenderness_scene(law, ratio, element, n), opts or None))
     return out
 
 
@@ -151,6 +176,31 @@ def beam_theory(ratio: float) -> tuple[float, float]:
     return q / (m["density"] * A), q * L ** 4 / (8.0 * E * I) + q * L ** 2 / (2.0 * 5.0 / 6.0 * mu * A)
 
 
+# The slenderness sweep (part 9, a cable's card): the paper's cantilever (L = 160 mm,
+# w = 7 mm, face clamp, plane stress) made h = L / (L/h), its gravity scaled by (32 / (L/h))^2
+# so that the load parameter q L^3 / EI is the paper's at every L/h (the same large
+# deflection, about 0.7 L; the strains, and the section's kappa h, grow as h / L): where does
+# a centre-line model stop being within 1 %, 0.3 %, 0.1 % of the converged continuum
+# (tests/gold/fem_slenderness.json, :mod:`studies.slenderness_gold`)?
+SLENDERNESS = {"ratios": (140.0, 70.0, 40.0, 32.0, 24.0, 16.0, 12.0, 8.0, 6.0, 4.0), "counts": (32, 64),
+               "targets": (0.01, 0.003, 0.001)}
+SLENDERNESS_TINY = {"ratios": (32.0, 8.0), "counts": (32,), "targets": (0.01, 0.003, 0.001)}
+
+
+def slenderness_scene(law: str, ratio: float, element: str | None = None, n: int | None = None,
+                      fem: dict | None = None) -> dict:
+    """The paper's cantilever at L / h = ``ratio`` under the paper's load parameter
+    (:data:`SLENDERNESS`), for ANCF (``element``, ``n``) or the continuum (``fem``)."""
+    L = paper.CANTILEVER["length"]
+    g = paper.GRAVITY * (L / paper.CANTILEVER["height"] / ratio) ** 2
+    d = paper.cantilever_scene(law, "plane-stress", element, n, quadrature=None, gravity=g, fem=fem,
+                               name=f"slenderness-{law}-Lh{ratio:g}" + (f"-{element}-{n}" if element else "-fem"))
+    d["beam"] = {"length": L, "height": L / ratio, "width": paper.CANTILEVER["width"]}
+    if element is None:
+        d.pop("ancf", None)
+    return d
+
+
 def slender_scene(element: str, ratio: float, n: int) -> dict:
     g, _ = beam_theory(ratio)
     d = paper.cantilever_scene(SLENDER["law"], "plane-stress", element, n, quadrature=None, gravity=g,
@@ -168,6 +218,8 @@ def measure_checks(element: str, tiny: bool = False) -> dict:
     g, spec, rng = grid_for(tiny), get_element(element), np.random.default_rng(20211206)
     forms = {}
     for form in ("paper", "plane-strain", "plane-stress"):
+        if not checks.runs(spec, form):
+            continue                                # a cable: plane stress alone (the card says why)
         model = checks.small_model(element, "yeoh", form)
         forms[form] = {"energy_gradient": checks.energy_gradient(model, rng),
                        "tangent_gradient": checks.tangent_gradient(model, rng),
@@ -194,7 +246,43 @@ def measure_checks(element: str, tiny: bool = False) -> dict:
             "nodality": checks.nodality(spec), "reference_state": checks.reference_state(spec),
             "mass": checks.mass(spec), "formulations": forms, "patch": patch,
             "conformity": checks.conformity(spec), "rank": rank, "slender_strains": slender_strains(element, g),
-            "clamp_probe": clamp_probe(element, g), "tiny": tiny}
+            "clamp_probe": clamp_probe(element, g), "section": section_model(element, g), "tiny": tiny}
+
+
+SECTION_CURVATURES = (0.1, 0.2, 0.3, 0.5)       # kappa h of a cable's section-model table
+
+
+def section_model(element: str, g: dict) -> list[dict] | None:
+    """A cable's section model (None for other elements): its bending moment at N = 0 per
+    law and kappa h (:func:`ancf.cable.section_moment`, the element's own rule across and 64
+    points), with the thickness change d eta / dY = lambda^-1/2 instead of eta = Y, and the
+    exact plane-stress pure bending (:func:`studies.closed_forms.plane_stress_bending`), each
+    as M / (EI kappa), EI = 3 mu h^3 / 12 per width."""
+    from ancf.cable import section_moment
+    from ancf.checks import law_constants, paper_material
+    from ancf.elements import get_element
+    from ancf.rank import default_quadrature
+    from mechanics.laws import get_law
+    from .closed_forms import plane_stress_bending
+
+    spec = get_element(element)
+    if not spec.cable:
+        return None
+    h = paper.CANTILEVER["height"]
+    across = default_quadrature(spec, False, 1.0)[1]
+    rows = []
+    for law in g["laws"]:
+        c = dict(law_constants(law))
+        c.pop("density")
+        mat = paper_material(law, "plane-stress")
+        EI = 3.0 * get_law(law).shear_modulus(c) * h ** 3 / 12.0
+        for kh in SECTION_CURVATURES[:2] if g is TINY else SECTION_CURVATURES:
+            k = kh / h
+            M = lambda **kw: section_moment(mat, k, h, **kw)["moment_per_width"] / (EI * k)
+            rows.append({"law": law, "kappa_h": kh, "cable": M(), "rule": M(points=across),
+                         "thickness_change": M(thickness_change=True),
+                         "exact": plane_stress_bending(law, c, k, h)["moment_per_width"] / (EI * k)})
+    return rows
 
 
 def slender_strains(element: str, g: dict) -> list[dict]:
@@ -205,7 +293,11 @@ def slender_strains(element: str, g: dict) -> list[dict]:
     from ancf.simulation import run_scene
     from contract.scene import scene_from_dict
 
+    from ancf.elements import get_element
+
     rows = []
+    if get_element(element).cable:       # no section field to split: its strain is its fibres' alone
+        return rows
     for ratio in g["slender"]["slenderness"]:
         for n in g["slender"]["counts"]:
             rec, (model, res) = run_scene(scene_from_dict(slender_scene(element, ratio, n)))

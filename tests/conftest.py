@@ -30,6 +30,9 @@ def rng():
 
 
 ALL_ELEMENTS = sorted(ELEMENTS)
+# the continuum-based elements (a cable, ElementSpec.kinematics = "cable", has no section
+# coordinates: tests of the face clamp, r_y and the like are theirs; tests/test_cable.py is its)
+CONTINUUM_ELEMENTS = sorted(n for n, e in ELEMENTS.items() if not e.cable)
 
 
 def contract_rule(element: str):

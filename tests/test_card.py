@@ -185,3 +185,28 @@ def test_a_committed_card_renders_again_from_its_records(tmp_path):
         shutil.copy(f, tmp_path / "data" / f.name)
     card = render("HB2n-12", tmp_path)
     assert card.read_text() == (ROOT / "reports" / "cards" / "HB2n-12.md").read_text()
+
+
+def test_the_cables_tiny_card_runs_what_applies_and_says_why_for_the_rest(tmp_path):
+    """The quick tier's card: HC2n-8 on the tiny grid (about 10 s). It runs what applies to a
+    cable and no plane strain (its records: plane stress only), says why it skips the rest,
+    and has its section model (1b: M(kappa) leaving EI kappa, the model error against the
+    exact plane-stress bending) and its slenderness sweep (9) against the continuum gold;
+    every check passes and every equilibrium is stable."""
+    cmd = [sys.executable, "-m", "studies", "card", "HC2n-8", "--tiny", "--out", str(tmp_path), "--no-progress",
+           "--workers", "1"]
+    run = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr[-3000:]
+    card = (tmp_path / "cards" / "HC2n-8.md").read_text()
+    for s in SECTIONS + ["## 1b. The section model", "## 9. Slenderness"]:
+        assert s in card, s
+    assert "Consistency checks: all pass; patch test: passes; conforming: True" in card
+    assert "The `paper` and `plane-strain` rows are not run" in card and "Volumetric locking: not run" in card
+    assert "| NH | 0.1 | 1.000333 |" in card and "+0.2250 |" in card           # 1 + (kappa h)^2 / 30; 0.225
+    recs = [json.loads(line) for line in (tmp_path / "data" / "card-HC2n-8.jsonl").read_text().splitlines()]
+    assert recs and all(r["status"] == "converged" for r in recs)
+    assert {r["scene"]["material"]["formulation"] for r in recs} == {"plane-stress"}
+    assert sum(r["case"]["name"].startswith("slenderness-") for r in recs) == 2
+    static = [r for r in recs if r["scene"]["analysis"]["kind"] == "static"]
+    assert f"stable: {len(static)}, unstable: 0" in card
+    assert "| 32 | " in card.split("## 9.")[1] and "within 1 % down to L / h" in card

@@ -7,6 +7,7 @@ import pytest
 
 from ancf import compiled_statics
 from ancf.build import build_model, external_loads
+from ancf.checks import runs
 from ancf.elements import ELEMENTS
 from ancf.statics import newton, newton_reference
 from contract import paper
@@ -35,8 +36,8 @@ def reference_relaxed(model, atol):
     return res.u
 
 
-@pytest.mark.parametrize("element", sorted(ELEMENTS))
-@pytest.mark.parametrize("form", ["paper", "plane-strain", "plane-stress"])
+@pytest.mark.parametrize("element,form", [(el, f) for f in ["paper", "plane-strain", "plane-stress"]
+                                          for el in sorted(ELEMENTS) if runs(el, f)])
 @pytest.mark.parametrize("line_search", [False, True])
 @pytest.mark.parametrize("fraction", [0.03, 0.3])
 def test_compiled_newton_is_the_reference_iteration(element, form, line_search, fraction):
