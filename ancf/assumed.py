@@ -93,7 +93,7 @@ class AssumedStrain:
         f = (gu + np.eye(2)).reshape(ne, -1, 4)
         J = f[..., 0] * f[..., 3] - f[..., 1] * f[..., 2]
         if not np.all(np.isfinite(f)) or J.min() <= 0.0:              # an inverted point: C cannot tell
-            from .beam import InadmissibleState
+            from .errors import InadmissibleState
             raise InadmissibleState(f"det F = {J.min():.3g} <= 0 at a point")
         # dC_c(p)/du_(s, i): xx 2 F_i0 dN_s,x, yy 2 F_i1 dN_s,y, xy F_i0 dN_s,y + F_i1 dN_s,x
         Fi0, Fi1 = f[..., [0, 2]], f[..., [1, 3]]                      # (ne, np, 2): i
@@ -108,7 +108,7 @@ class AssumedStrain:
     def _law(self, Cbar: np.ndarray):
         det = Cbar[..., 0] * Cbar[..., 1] - Cbar[..., 2] ** 2
         if not np.all(np.isfinite(Cbar)) or det.min() <= 0.0:
-            from .beam import InadmissibleState
+            from .errors import InadmissibleState
             raise InadmissibleState(f"det C_bar = {det.min():.3g} <= 0 at a quadrature point")
         J = np.sqrt(det)
         W = self.material.energy_jet(Cbar[..., 0] + Cbar[..., 1], J)

@@ -17,7 +17,8 @@ from .integrators import INTEGRATORS
 from mechanics.laws import LAWS, get_law
 from .material import Material
 from .mesh import Mesh, fixed_dofs
-from .beam import BeamModel, model_for
+from .beam import BeamModel
+from .element_model import ElementModel
 from .couple import Loading, end_face
 from .quadrature import gauss
 from .rank import default_quadrature, rule_warnings
@@ -160,3 +161,12 @@ def build_integrator(scene: Scene, model: BeamModel, M, loads: dict):
     a = check(scene).analysis
     return INTEGRATORS[a.integrator](model, M, loads, a.rho_inf, a.newton_rtol, a.max_iterations,
                                      newton=a.newton)
+
+
+def model_for(mesh: Mesh, material: Material, rule, fixed: np.ndarray) -> ElementModel:
+    """The model of the kinematics the mesh's element declares (``ElementSpec.kinematics``):
+    :class:`ancf.cable.CableModel` for a cable, :class:`ancf.beam.BeamModel` otherwise."""
+    if mesh.element.cable:
+        from .cable import CableModel
+        return CableModel(mesh, material, rule, fixed)
+    return BeamModel(mesh, material, rule, fixed)

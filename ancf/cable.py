@@ -26,7 +26,7 @@ at the points along, the section rule as the element's fields), the same B for b
 What the model leaves out, by construction: shear (Euler-Bernoulli), the section's change
 of thickness (eta = Y; with the thickness change d eta / dY = lambda^-1/2 the fibres move,
 :func:`section_moment` measures both), the radial stress of a curved strip (each fibre is
-in uniaxial stress; the exact plane-stress bending, :func:`studies.closed_forms.plane_stress_bending`,
+in uniaxial stress; the exact plane-stress bending, :func:`studies.verification.closed_forms.plane_stress_bending`,
 is not: the card and tests/test_cable.py state the model error of order (kappa h)^2 this
 makes), and rotary inertia (the mass is rho h w int N^T N dx). Plane stress only: a scene in
 ``plane-strain`` or ``paper`` is refused (:func:`ancf.build.check`).
@@ -44,7 +44,8 @@ from functools import cached_property
 import numpy as np
 
 from .banded import Banded
-from .beam import ElementModel, InadmissibleState, refuse_discrete_gradient
+from .element_model import ElementModel, refuse_discrete_gradient
+from .errors import InadmissibleState
 from .jet import Jet
 
 

@@ -29,7 +29,8 @@ from mechanics.laws import get_law
 from .build import build_material
 from .elements import KINDS, ElementSpec, get_element
 from .rank import default_quadrature
-from .beam import BeamModel, model_for
+from .beam import BeamModel
+from .build import model_for
 from .formulations import FORMULATIONS
 from .mesh import Mesh, fixed_dofs
 from .quadrature import gauss

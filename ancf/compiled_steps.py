@@ -69,7 +69,7 @@ from numba import njit
 
 from mechanics import alpha_family, time_loop
 from .bandsolve import col_constrain, col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split, same_component_only
-from .beam import refuse_discrete_gradient
+from .element_model import refuse_discrete_gradient
 from .dgkernel import dg_scratch
 from .element_kernels import element_assemble, element_assemble_dg, element_energy, element_work
 from .kernels import INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, live_tape

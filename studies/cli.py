@@ -19,7 +19,7 @@
 - ``verify --sample N [--seed S] [--budget S] [--max-case-s S]``: N randomly drawn committed
   records recomputed with today's code and compared field by field
   (:mod:`studies.engine.verify`); exits 1 naming record and field of each mismatch;
-- ``card NAME [NAME ...] [--import MODULE]``: the element report card (:mod:`studies.card`),
+- ``card NAME [NAME ...] [--import MODULE]``: the element report card (:mod:`studies.design.card`),
   ``paper`` for the four paper elements; written to ``<out>/cards/``.
 
 Clusters: ``mpiexec -n N python -m mpi4py.futures -m studies run all --executor mpi``.
@@ -169,7 +169,7 @@ def _gold(args) -> int:
 
 
 def _card(args) -> int:
-    from .card import PAPER_ELEMENTS, run_cards
+    from .design.card import PAPER_ELEMENTS, run_cards
 
     out = resolve_out(args.out, args.tiny)
     names = [e for n in args.names for e in (PAPER_ELEMENTS if n == "paper" else (n,))]

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from ancf import checks
-from ancf.beam import model_for
+from ancf.build import model_for
 from ancf.build import build_model, external_loads, static_loading
 from ancf.cable import section_moment
 from ancf.checks import bent_state, paper_material, small_model
@@ -68,11 +68,11 @@ def test_a_cable_with_a_section_coordinate_is_refused():
 def test_the_fibre_energy_is_the_laws_incompressible_uniaxial_energy():
     """The tape of the fibre (ancf.tape.trace_uniaxial: the plane-stress W at F = diag(lambda,
     lambda^-1/2)) replayed compiled, against the independently typed nominal stress of
-    studies.closed_forms (P = 2 (lambda - lambda^-2)(W1 + W2 / lambda)): W_u' = P for every law,
+    studies.verification.closed_forms (P = 2 (lambda - lambda^-2)(W1 + W2 / lambda)): W_u' = P for every law,
     1e-12 relative (both explicit formulas: round-off); W_u(1) = 0, W_u'(1) = 0 and
     W_u''(1) = 3 mu (E of an incompressible solid), 1e-12."""
     from ancf.tape import evaluate, trace_uniaxial
-    from studies.closed_forms import nominal_stress
+    from studies.verification.closed_forms import nominal_stress
 
     for law in LAWS:
         c, _ = constants(law)
@@ -147,9 +147,9 @@ def test_the_axial_patch_test_and_uniaxial_tension_against_the_closed_form():
     is P h w at the ends and zero elsewhere (ancf.checks.axial_patch: 1e-6 of P h w, its P by
     central differences to ~1e-9); (2) a strip on ``slide`` under the end load F = P h w
     stretches to the closed-form lambda(P) of plane-stress uniaxial tension (Ogden;
-    studies.closed_forms.uniaxial_stretch), every law: Newton stops at 1e-8 of the load, so
+    studies.verification.closed_forms.uniaxial_stretch), every law: Newton stops at 1e-8 of the load, so
     1e-6 on lambda - 1 (the benchmark's tension tolerance)."""
-    from studies.closed_forms import uniaxial_stretch
+    from studies.verification.closed_forms import uniaxial_stretch
 
     res = checks.patch(CABLE)
     assert res["passes"] and res["error"] < 1e-6
@@ -174,7 +174,7 @@ def test_the_compiled_loops_run_the_cable_with_the_continuum_elements_specialisa
     dynamic runs, the cable's add no compiled specialisation of the static Newton or the
     step loop (the data have the same types; the kernel is chosen from them)."""
     from ancf import compiled_statics, compiled_steps
-    from studies.pendulum_cases import pendulum_dict
+    from studies.common.pendulum_cases import pendulum_dict
 
     def runs(element):
         run_scene(scene_from_dict(paper.cantilever_scene("yeoh", "plane-stress", element, 2, quadrature=None)))
@@ -290,7 +290,7 @@ def test_a_formulation_the_cable_cannot_run_is_refused_naming_it(form, tmp_path)
 
 
 def test_the_discrete_gradient_is_refused_naming_the_integrators_it_takes():
-    from studies.pendulum_cases import pendulum_dict
+    from studies.common.pendulum_cases import pendulum_dict
 
     d = pendulum_dict(CABLE, 2, "plane-stress", 1e-3, integrator="discrete-gradient")
     with pytest.raises(SceneError, match=r"analysis.integrator: 'discrete-gradient' cannot run element HC2n-8"):
@@ -332,7 +332,7 @@ def test_the_bending_moment_leaves_the_linear_EI_kappa_with_the_laws_own_coeffic
 
 
 def test_the_section_model_is_stiffer_than_the_exact_plane_stress_bending_by_0_225_kappa_h_squared():
-    """Against the exact pure bending of a plane-stress strip (studies.closed_forms.
+    """Against the exact pure bending of a plane-stress strip (studies.verification.closed_forms.
     plane_stress_bending, a two-point problem across the thickness shot to round-off:
     M / (EI kappa) = 1 - 0.19 (kappa h)^2 for neo-Hookean), the cable's uniaxial fibres
     (no radial stress; eta = Y) make M too large by (M_cable / M_exact - 1) / (kappa h)^2 =
@@ -340,7 +340,7 @@ def test_the_section_model_is_stiffer_than_the_exact_plane_stress_bending_by_0_2
     0.2248 to 0.2273, 0.2431 to 0.2449; with the thickness change d eta / dY = lambda^-1/2
     0.150 for all three, the test below). Bound: [0.215, 0.255] at kappa h = 0.1 and 0.2 (the
     next order moves it by < 1 % there)."""
-    from studies.closed_forms import plane_stress_bending
+    from studies.verification.closed_forms import plane_stress_bending
 
     for law in PAPER_LAWS:
         c, _ = constants(law)
@@ -453,7 +453,7 @@ def test_the_shipped_pendulum_runs_through_ancf_run_within_0_2_percent_of_l_of_t
     (tests/gold/fem_pendulum.json): the tip at every output time within 0.2 % of L (measured
     0.081 % at t = 0.4 s; 16 elements 0.056 %: the cable's model error, as on the cantilever,
     of order 1e-3, plus the time step's)."""
-    from studies.pendulum_cases import continuum_pendulum, describe_dynamic, tip_errors
+    from studies.common.pendulum_cases import continuum_pendulum, describe_dynamic, tip_errors
 
     out, vtk = tmp_path / "r.json", tmp_path / "vtk"
     p = subprocess.run([sys.executable, "-m", "ancf", "run", str(ROOT / "scenes" / "pendulum-yeoh-cable.toml"),
@@ -481,14 +481,14 @@ def test_the_element_converges_to_its_own_limit_fast_on_the_cantilever():
 
 
 def test_the_slender_limit_is_the_elastica_and_eulers_arc_within_the_benchmarks_tolerances():
-    """The benchmark suite's slender cases (studies.benchmarks, their tolerances fixed there:
+    """The benchmark suite's slender cases (studies.verification.benchmarks, their tolerances fixed there:
     the elastica 2 (0.9 + alpha/12 + alpha^2/4) (h/L)^2; the arc twice the exact plane-stress
     bending's own departure from it, + 1e-6) on the cable, 32 elements, L / h = 50: the
     elastica under alpha = 5 (measured 1.8e-4 of L against 6.1e-3) and the full roll-up under
     an end couple, phi = 2 pi (5.3e-4 against 6.1e-3). The cable has no shear, so its
     distance is its stretch and its law's."""
-    from studies import benchmarks as B
-    from studies.closed_forms import elastica_end_moment, elastica_tip_load
+    from studies.verification import benchmarks as B
+    from studies.verification.closed_forms import elastica_end_moment, elastica_tip_load
 
     g, L = B.STUDY["grid"], B.SLENDER_BEAM["length"]
     rec, _ = run_scene(scene_from_dict(B.elastica_scene(g, 5.0, 50.0, CABLE)))

@@ -44,7 +44,7 @@ def test_a_user_elements_card_regenerates_from_its_records(tmp_path):
     assert _tree(ROOT / "reports") == reports        # written with --out: reports/ untouched
     # records whose cases have changed since (another solver version: other case ids): the
     # audit's route refuses the card, the re-rendering after another card's runs passes it by
-    from studies.card import recorded_cards
+    from studies.design.card import recorded_cards
     data = tmp_path / "data" / "card-HB2n-20.jsonl"
     data.write_text("".join(json.dumps({**r, "case_id": "old-" + r["case_id"]}) + "\n" for r in recs))
     with pytest.raises(LookupError, match="card HB2n-20: no runs of it"):
@@ -58,7 +58,7 @@ def test_a_cards_cases_are_what_they_run_whatever_else_is_imported():
     command imports beside it); a user's element's name the module that registers it."""
     import importlib
 
-    from studies.card import cases
+    from studies.design.card import cases
     before = [c.id for c in cases("HB2n-12", tiny=True)]
     importlib.import_module("examples.transversely_cubic")
     importlib.import_module("examples.cubic_slope")
@@ -76,7 +76,7 @@ def test_an_unknown_element_is_refused_with_the_list(tmp_path):
 def _probe(element: str, ratio: float, n: int) -> dict:
     from ancf.simulation import run_scene
     from contract.scene import scene_from_dict
-    from studies.card import slender_scene
+    from studies.design.card import slender_scene
 
     d = slender_scene(element, ratio, n)
     rec, _ = run_scene(scene_from_dict(d))
@@ -88,7 +88,7 @@ def test_the_shear_locking_verdict_and_its_signature():
     """The card's verdict (error growth with L/h at fixed n) against a second route: a
     locking element's error is a function of l_e / h alone (equal at equal l_e / h), a
     locking-free one's of n alone; LB2n-12's error does not fall under refinement."""
-    from studies.card_report import shear_locking
+    from studies.design.card_report import shear_locking
 
     hb12 = [_probe("HB2n-12", r, n) for r, n in ((35, 8), (140, 8), (70, 16), (140, 32))]
     v = shear_locking(hb12)
@@ -126,7 +126,7 @@ def test_strain_split_of_the_exact_bending_state():
 
 
 def test_the_probe_names_the_mechanism():
-    """The slender probe's strains name what its error is (studies.card_report.mechanism):
+    """The slender probe's strains name what its error is (studies.design.card_report.mechanism):
     LB2n-12's section cannot contract (eps_yy / eps_xx = 0: Poisson locking in the plane,
     its -25 %); HB2n-12 at L/h = 140 on 8 elements carries 600 times Timoshenko's shear
     energy and holds eps_zz near 0 (-0.91): shear locking and Poisson locking out of the
@@ -135,8 +135,8 @@ def test_the_probe_names_the_mechanism():
     from ancf.checks import strain_split
     from ancf.simulation import run_scene
     from contract.scene import scene_from_dict
-    from studies.card import slender_scene
-    from studies.card_report import mechanism
+    from studies.design.card import slender_scene
+    from studies.design.card_report import mechanism
 
     def row(element, ratio, n):
         rec, (model, res) = run_scene(scene_from_dict(slender_scene(element, ratio, n)))
@@ -151,8 +151,8 @@ def test_the_clamp_sets_hb2n16s_order():
     """HB2n-16's first order on the slender probe is its clamp's (r_yy = 0 at the clamped
     face), not its interior's: with r_yy freed the same meshes converge at second order
     (measured 1.01 and 2.00); the card says so by rule."""
-    from studies.card import clamp_probe
-    from studies.card_report import _clamp_lines, clamp_orders
+    from studies.design.card import clamp_probe
+    from studies.design.card_report import _clamp_lines, clamp_orders
 
     probe = clamp_probe("HB2n-16", {"slender": {"slenderness": (140.0,), "counts": (8, 16, 32)}})
     o = clamp_orders(probe)
@@ -163,7 +163,7 @@ def test_the_clamp_sets_hb2n16s_order():
 
 def test_a_card_names_why_a_pendulum_run_has_no_result():
     """A failed run is a row with '-' and a line with its record's reason."""
-    from studies.card_report import _pendulum
+    from studies.design.card_report import _pendulum
     from studies.common.pendulum_cases import pendulum_dict
 
     scene = pendulum_dict("HB2n-16", 8, "plane-stress", 5e-4)
@@ -179,7 +179,7 @@ def test_a_committed_card_renders_again_from_its_records(tmp_path):
     the committed records alone (no solver run) is the committed card, line for line."""
     import shutil
 
-    from studies.card_report import render
+    from studies.design.card_report import render
     (tmp_path / "data").mkdir()
     for f in (ROOT / "reports" / "data").glob("card-*"):
         shutil.copy(f, tmp_path / "data" / f.name)

@@ -121,7 +121,7 @@ def test_residual_tolerance_respects_the_roundoff_floor():
     whole load path converges (without it, the compiled loop's increments stalled and
     the path failed)."""
     from ancf.statics import ROUNDOFF_FLOOR, solve_static
-    from studies.card import slender_scene
+    from studies.design.card import slender_scene
     s = scene_from_dict(slender_scene("HB2n-12", 70, 8))
     model = build_model(s)
     f = sum(external_loads(model, s).values())
@@ -157,7 +157,7 @@ def test_slender_path_converges_above_the_floor(monkeypatch):
     cells failed so before the floor)."""
     import examples.transversely_cubic  # noqa: F401 (registers HB2n-20)
     from ancf import statics
-    from studies.card import slender_scene
+    from studies.design.card import slender_scene
     s = scene_from_dict(slender_scene("HB2n-20", 70, 8))
     model = build_model(s)
     f = sum(external_loads(model, s).values())

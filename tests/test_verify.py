@@ -64,7 +64,7 @@ def test_timings_and_round_off_are_not_mismatches():
 def test_an_energy_is_compared_above_its_round_off_floor():
     """The slender probe's potential energy (1.46e-10 J, the linear regime) moved by
     1.1e-16 J between two processes: round-off of energies computed from I1 - 3."""
-    from studies.card import slender_scene
+    from studies.design.card import slender_scene
     from studies.engine.verify import energy_floor
     rec = {"scene": slender_scene("HB2n-12", 35.0, 8), "potential_energy": -1.4584609850303182e-10}
     floor = energy_floor(rec)

@@ -14,7 +14,7 @@ see :mod:`.catalog`) check what a referee would recompute: counts against lists,
 against the records. Reports drawn outside the study pipeline are audited by the rules
 their owners register (:func:`register_rule`: the peer reports, :mod:`studies.peers.audit`),
 and what the rebuilt tree needs first by the hooks they register (:func:`register_prebuild`:
-the element cards, :mod:`studies.card`).
+the element cards, :mod:`studies.design.card`).
 
 What it cannot check: that the records themselves are right (the solvers' tests and
 ``python -m studies diff`` do that), files no study writes (listed as not audited), and

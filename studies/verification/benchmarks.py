@@ -253,9 +253,9 @@ def elastica_tolerance(alpha: float, ratio: float) -> float:
 # -- 4. Timoshenko ----------------------------------------------------------------------------
 
 def timoshenko_scene(grid: dict, ratio: float, element: str) -> dict:
-    """The card's slender probe (:func:`studies.card.slender_scene`) on Timoshenko's
+    """The card's slender probe (:func:`studies.design.card.slender_scene`) on Timoshenko's
     clamp: the end section held from turning and free to deform (``slide``)."""
-    from ..card import slender_scene
+    from ..design.card_cases import slender_scene
 
     d = slender_scene(element, ratio, grid["timoshenko_elements"])
     d["name"] = f"bench-timoshenko-Lh{ratio:g}-{element}-{grid['timoshenko_elements']}"
@@ -265,7 +265,7 @@ def timoshenko_scene(grid: dict, ratio: float, element: str) -> dict:
 
 def timoshenko_reference(ratio: float) -> float:
     """The tip deflection (m) of the probe by Euler-Bernoulli + Timoshenko's shear."""
-    from ..card import beam_theory
+    from ..design.card_cases import beam_theory
 
     return beam_theory(ratio)[1]
 

@@ -1,7 +1,7 @@
-"""The continuum references of the cards' slenderness sweep (:data:`studies.card.SLENDERNESS`):
+"""The continuum references of the cards' slenderness sweep (:data:`studies.design.card.SLENDERNESS`):
 the paper's cantilever at L / h = 140 ... 4 under the paper's load parameter, converged.
 
-``python -m studies.slenderness_gold`` writes ``tests/gold/fem_slenderness.json`` (DOLFINx,
+``python -m studies.verification.slenderness_gold`` writes ``tests/gold/fem_slenderness.json`` (DOLFINx,
 plane stress, face clamp, Q2 quadrilaterals): for each law and L / h a refinement sequence
 from cells of aspect 2 (L / h / 2 x 1 cells), halved in both directions (5 levels up to
 L / h = 40, 4 beyond: the finest has 16 or 8 cells across h and at most 40 000 unknowns),
@@ -18,9 +18,9 @@ import sys
 import time
 from pathlib import Path
 
-from .card import LAWS, SLENDERNESS, slenderness_scene
+from ..design.card_cases import LAWS, SLENDERNESS, slenderness_scene
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 GOLD = ROOT / "tests" / "gold" / "fem_slenderness.json"
 
 
@@ -57,8 +57,8 @@ def write_gold(path: Path = GOLD, laws=LAWS, ratios=SLENDERNESS["ratios"], log=p
     doc = {"description": "The paper's cantilever (L = 160 mm, w = 7 mm, face clamp, plane stress) at L / h = "
                           "140 ... 4 under the paper's load parameter (gravity 9.81 (32 / (L/h))^2 m/s^2): the "
                           "tip (free-end centre) in m, Richardson-extrapolated over uniform refinement "
-                          "(reference_fem.convergence). Regenerate: python -m studies.slenderness_gold",
-           "generator": "python -m studies.slenderness_gold", "dolfinx": VERSION, "units": "m",
+                          "(reference_fem.convergence). Regenerate: python -m studies.verification.slenderness_gold",
+           "generator": "python -m studies.verification.slenderness_gold", "dolfinx": VERSION, "units": "m",
            "comparison": "a tip agrees with the continuum to |u - u_ref| / |u_ref|; the reference's own error "
                          "is error_estimate_m", "cases": cases}
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -84,7 +84,7 @@ def references(path: Path = GOLD) -> dict[tuple[str, float], dict]:
 
 
 def main(argv=None) -> int:
-    p = argparse.ArgumentParser(prog="python -m studies.slenderness_gold")
+    p = argparse.ArgumentParser(prog="python -m studies.verification.slenderness_gold")
     p.add_argument("--laws", nargs="*", default=list(LAWS))
     p.add_argument("--out", type=Path, default=GOLD)
     a = p.parse_args(argv)

@@ -1,4 +1,4 @@
-"""The element report card rendered from its records only (:mod:`studies.card` makes them):
+"""The element report card rendered from its records only (:mod:`studies.design.card` makes them):
 ``<out>/cards/<element>.md`` and its figures beside it. Nothing here runs a solver."""
 from __future__ import annotations
 
@@ -8,11 +8,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .card import beam_theory, cases, checks_path, element_imports, grid_for, slug
-from .common.pendulum_cases import FEM_GOLD, continuum_pendulum, describe_dynamic, tip_errors
-from .common.gold import MATCHING, gold_references, short
-from .engine.report import FIGURE_DATA, figure, mm, vec_error, write_figure_data
-from .engine.store import RecordStore, store_for
+from .card_cases import beam_theory, cases, checks_path, element_imports, grid_for, slug
+from ..common.pendulum_cases import FEM_GOLD, continuum_pendulum, describe_dynamic, tip_errors
+from ..common.gold import MATCHING, gold_references, short
+from ..engine.report import FIGURE_DATA, figure, mm, vec_error, write_figure_data
+from ..engine.store import RecordStore, store_for
 
 ROOT = Path(__file__).resolve().parent.parent
 FEM_STATIC = ROOT / "tests" / "gold" / "fem_cantilever.json"
@@ -479,7 +479,7 @@ def _section_lines(chk: dict) -> list[str]:
              "EA eps^2 / 2 + EI kappa^2 / 2 would give 1 at every kappa): its section (fibres at eta = Y, each in "
              "uniaxial stress; 64 points across, and its default rule's), the same fibres with the thickness change "
              "d eta / dY = lambda^-1/2 (not in the element: it moves the fibres by an ODE per section), and the "
-             "exact pure bending of a plane-stress strip (`studies.closed_forms.plane_stress_bending`, with the "
+             "exact pure bending of a plane-stress strip (`studies.verification.closed_forms.plane_stress_bending`, with the "
              "radial stress no fibre model has). Coefficients: (value - 1) / (kappa h)^2; model error: "
              "(cable / exact - 1) / (kappa h)^2.", "",
              "| law | kappa h | cable | its rule | eta(Y) | exact | cable coeff. | exact coeff. | model error coeff. | "
@@ -515,8 +515,8 @@ def _cable_shear_lines(recs) -> list[str]:
 
 def _sweep(recs, cards: Path, name: str, tiny: bool) -> list[str]:
     """Part 9: the cable's tip against the converged continuum as L / h falls."""
-    from .card import SLENDERNESS, SLENDERNESS_TINY
-    from .slenderness_gold import GOLD, references
+    from .card_cases import SLENDERNESS, SLENDERNESS_TINY
+    from ..verification.slenderness_gold import GOLD, references
 
     grid = SLENDERNESS_TINY if tiny else SLENDERNESS
     refs = references(GOLD)
@@ -531,7 +531,7 @@ def _sweep(recs, cards: Path, name: str, tiny: bool) -> list[str]:
              + ", ".join(f"{x:g}" for x in grid["ratios"]) + ", its gravity scaled by (32 / (L/h))^2 so that the load "
              "parameter q L^3 / EI is the paper's at every L / h (the same large deflection; strains and kappa h "
              "grow as h / L), against the converged continuum (tests/gold/fem_slenderness.json: Q2 cells halved 4 "
-             "or 5 times, Richardson value; `python -m studies.slenderness_gold`). Error |u - u_ref| / |u_ref| of the "
+             "or 5 times, Richardson value; `python -m studies.verification.slenderness_gold`). Error |u - u_ref| / |u_ref| of the "
              f"tip at {max(grid['counts'])} elements (converged: the change from {min(grid['counts'])} elements "
              "beside it), the reference's own error estimate last.", ""]
     if not refs:
