@@ -33,19 +33,20 @@ def _run(args) -> int:
     from contract.record import sanitize, write_record
     from contract.scene import load_scene
 
-    from .build import capacity
+    from .build import plan
     from .simulation import run_scene
     from .warm import load
 
     scene = load_scene(args.scene)
     json_out = check_output_file(args.json, "--json")
     vtk_dir = check_output_dir(args.vtk, "--vtk")
-    for w in capacity(scene):
+    resolved = plan(scene)                  # the scene checked and resolved once, for the whole run
+    for w in resolved.capacity_warnings:
         print(f"ancf: warning: {w}", file=sys.stderr)
     load_s = load(scene)
     progress = Progress(scene.analysis.t_end, enabled=not args.quiet) if scene.analysis.kind == "dynamic" else None
     try:
-        rec, (model, res) = run_scene(scene, progress=progress)
+        rec, (model, res) = run_scene(resolved, progress=progress)
     finally:
         if progress:
             progress.close()

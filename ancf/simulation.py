@@ -10,8 +10,7 @@ from contract.record import new_record
 from contract.scene import Scene
 from mechanics.time_loop import energy_limit, integrate, record_keys
 
-from .build import (build_integrator, capacity, build_model, external_loads, quadrature, quadrature_warnings,
-                    static_loading)
+from .build import Plan, build_integrator, build_model, external_loads, resolve, static_loading
 from .statics import relax, solve_static
 
 
@@ -21,37 +20,33 @@ ONE_THREAD_BELOW = 20000
 THREAD_VARS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
 
 
-def run_scene(scene: Scene, progress=None) -> tuple[dict, object]:
-    """Solve ``scene``; return (record, (model, solver result)). The record follows
-    :mod:`contract.record`: SI units, nulls (never NaN) where a run failed.
-    ``progress(t, result)``: called after every accepted time step (dynamics).
-    A small scene runs with one BLAS thread unless the caller set a thread count
-    (the ``ancf`` command and the study runner set one before numpy loads)."""
-    if any(v in os.environ for v in THREAD_VARS) or unknowns(scene) >= ONE_THREAD_BELOW:
-        return _run_scene(scene, progress)
+def run_scene(scene: Scene | Plan, progress=None) -> tuple[dict, object]:
+    """Solve ``scene`` (or a :class:`ancf.build.Plan` of it: a scene is resolved here, once);
+    return (record, (model, solver result)). The record follows :mod:`contract.record`: SI
+    units, nulls (never NaN) where a run failed. ``progress(t, result)``: called after every
+    accepted time step (dynamics). A small scene runs with one BLAS thread unless the caller
+    set a thread count (the ``ancf`` command and the study runner set one before numpy loads)."""
+    p = resolve(scene)
+    if any(v in os.environ for v in THREAD_VARS) or p.estimate.unknowns >= ONE_THREAD_BELOW:
+        return _run_scene(p, progress)
     from threadpoolctl import threadpool_limits
     with threadpool_limits(1):
-        return _run_scene(scene, progress)
+        return _run_scene(p, progress)
 
 
-def unknowns(scene: Scene) -> int:
-    from .build import estimate
-    return estimate(scene).unknowns
-
-
-def _run_scene(scene: Scene, progress=None) -> tuple[dict, object]:
+def _run_scene(p: Plan, progress=None) -> tuple[dict, object]:
+    scene = p.scene
     rec = new_record("ancf", scene.to_dict())
-    warnings = capacity(scene) + quadrature_warnings(scene)
-    rec["quadrature"] = list(quadrature(scene))
-    if warnings:
-        rec["warnings"] = warnings
+    rec["quadrature"] = list(p.rule)
+    if p.warnings:
+        rec["warnings"] = p.warnings
     t0 = time.perf_counter()
-    model = build_model(scene)
-    loads = external_loads(model, scene)
+    model = build_model(p)
+    loads = external_loads(model, p)
     effects = model.elastic_effects + list(loads)
     if scene.analysis.kind == "dynamic":
-        return _run_dynamic(scene, model, loads, effects + ["inertia"], rec, t0, progress)
-    loading = static_loading(model, loads, scene)
+        return _run_dynamic(p, model, loads, effects + ["inertia"], rec, t0, progress)
+    loading = static_loading(model, loads, p)
     if loading.face is not None:
         effects.append("end_moment")
     model.internal_force_and_tangent(np.zeros(model.mesh.n_dof))  # tabulate, warm caches
@@ -81,7 +76,8 @@ def _run_scene(scene: Scene, progress=None) -> tuple[dict, object]:
     return rec, (model, res)
 
 
-def _run_dynamic(scene: Scene, model, loads: dict, effects: list[str], rec: dict, t0: float, progress=None):
+def _run_dynamic(p: Plan, model, loads: dict, effects: list[str], rec: dict, t0: float, progress=None):
+    scene = p.scene
     a = scene.analysis
     M = model.mass_matrix()
     u0 = np.zeros(model.mesh.n_dof)
@@ -92,7 +88,7 @@ def _run_dynamic(scene: Scene, model, loads: dict, effects: list[str], rec: dict
             rec.update(status="failed", reason=f"relaxation: {relaxed.reason}")
             return rec, (model, None)
         u0 = relaxed.u
-    integrator = build_integrator(scene, model, M, loads)
+    integrator = build_integrator(p, model, M, loads)
     integrator.warm(u0)  # load compiled code before the solve timer
     rec["setup_s"] = time.perf_counter() - t0
     limit = energy_limit(scene)

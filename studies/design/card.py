@@ -44,9 +44,10 @@ from ..engine.audit import register_prebuild
 from ..engine.scheduler import run_cases
 from ..engine.store import store_for
 from ..engine.verify import register_case_source
-from .card_cases import (GRID, LAWS, PAPER_ELEMENTS, SLENDERNESS, SLENDERNESS_TINY, TINY, beam_theory,  # noqa: F401
-                         cases, checks_path, checks_record, element_imports, grid_for, import_modules,
-                         slender_scene, slenderness_scene, slug)
+from .card_cases import (GRID, LAWS, PAPER_ELEMENTS, SLENDER, SLENDERNESS, SLENDERNESS_TINY, TINY,  # noqa: F401
+                         beam_theory, cases, checks_path, checks_record, checks_source, clamp_probe,
+                         element_imports, formulations_of, grid_for, import_modules, measure_checks,
+                         section_model, slender_scene, slender_strains, slenderness_scene, slug)
 
 
 def run_cards(elements: list[str], out: Path, tiny: bool = False, imports=(), workers: int = 2,

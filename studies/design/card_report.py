@@ -14,7 +14,7 @@ from ..common.gold import MATCHING, gold_references, short
 from ..engine.report import FIGURE_DATA, figure, mm, vec_error, write_figure_data
 from ..engine.store import RecordStore, store_for
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 FEM_STATIC = ROOT / "tests" / "gold" / "fem_cantilever.json"
 
 
