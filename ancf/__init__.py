@@ -5,7 +5,7 @@ formulation says which invariants a law sees (:mod:`ancf.formulations`); a scene
 (:mod:`contract.scene`, shared with the continuum solver) names them and
 :mod:`ancf.build` checks the names and turns them into objects.
 """
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 from . import compiled_cache as _compiled_cache
 
