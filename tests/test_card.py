@@ -103,6 +103,49 @@ def test_the_shear_locking_verdict_and_its_signature():
     assert not lb["converges"] and abs(lb["rows"][32][35] + 0.25) < 0.005     # 1 - (1 - nu^2), nu = 1/2
 
 
+def _penalty_sweep(element: str, n: int) -> list:
+    from ancf.simulation import run_scene
+    from contract import paper
+    from contract.scene import scene_from_dict
+
+    c10, sweep = paper.materials()["neo-hookean"]["C10"], []
+    for k in (1e3, 1e4, 1e5, 1e6):
+        s = paper.cantilever_scene("neo-hookean", "plane-strain", element, n, quadrature=None, penalty=k * c10,
+                                   name=f"penalty-{element}-{n}-{k:g}")
+        r, _ = run_scene(scene_from_dict(s))
+        assert r["status"] == "converged"
+        sweep.append((k, (r["tip"]["ux"], r["tip"]["uy"])))
+    return sweep
+
+
+def test_the_volumetric_locking_verdict_on_elements_that_lock_and_that_do_not():
+    """The card's rule (:func:`volumetric_locking`) on real penalty sweeps, NH plane strain,
+    k = 1e3 .. 1e6 C10, against the incompressible continuum: the pressure element HB2n-40p
+    is lock-free (its change per decade falls tenfold, as u + c / k: ratios 0.1 within 5 %),
+    LB2n-12 is locked solid (the case whose error saturates at 99 % and so does not grow),
+    HB3n-12 keeps stiffening (its change grows with k). Second route: refinement. The
+    lock-free limit converges to the continuum (error falls at least 3x from n = 8 to 16:
+    an order above 1.5 for a cubic element), LB2n-12's does not move (within 1 %)."""
+    from studies.common.gold import gold_references
+    from studies.design.card_report import FEM_STATIC, volumetric_locking, volumetric_verdict
+
+    ref = gold_references(FEM_STATIC)[("neo-hookean", "plane-strain")]
+    free = {n: volumetric_locking(_penalty_sweep("HB2n-40p", n), ref) for n in (8, 16)}
+    solid = {n: volumetric_locking(_penalty_sweep("LB2n-12", n), ref) for n in (8, 16)}
+    stiffening = volumetric_locking(_penalty_sweep("HB3n-12", 16), ref)
+    for v in free.values():
+        assert not v["locked"] and all(abs(r - 0.1) < 0.005 for r in v["ratios"])
+    assert free[16]["limit_error"] < free[8]["limit_error"] / 3
+    for v in solid.values():
+        assert v["saturated"] and not v["stiffening"] and v["locked"]
+    assert abs(solid[16]["limit_error"] - solid[8]["limit_error"]) < 0.01
+    assert stiffening["stiffening"] and stiffening["locked"] and stiffening["ratios"][-1] > 1
+    assert volumetric_verdict({"NH": free[16]}).startswith("No volumetric locking")
+    assert volumetric_verdict({"NH": solid[16]}).startswith("**Volumetric locking**")
+    said = volumetric_verdict({"NH": stiffening, "MR": free[16]})
+    assert said.startswith("**Volumetric locking**") and "keeps stiffening" in said and "MR: the change falls" in said
+
+
 def test_strain_split_of_the_exact_bending_state():
     """ancf.checks.strain_split against closed form: pure bending of an incompressible
     plane-stress beam, u_x = -k x y, u_y = k x^2 / 2 + k y^2 / 4 (eps_xx = -k y,

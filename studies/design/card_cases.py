@@ -27,7 +27,7 @@ GRID = {
     "laws": LAWS, "formulations": ("plane-stress", "plane-strain"),
     "counts": (4, 8, 16, 32, 64, 160, 320, 640),
     "timing": {"repeats": 3, "budget_s": 1.0},
-    "locking": {"count": 64, "factors": (10.0, 1e2, 1e3, 1e4, 1e5)},
+    "locking": {"count": 64, "factors": (10.0, 1e2, 1e3, 1e4, 1e5, 1e6)},
     "pendulum": {"counts": (8, 16, 32, 64), "dt": 5e-4, "t_end": 0.5, "formulation": "plane-stress"},
     "slender": {"slenderness": (35.0, 70.0, 140.0), "counts": (4, 8, 16, 32)},
     "rules": ((2, 2), (3, 2), (3, 3), (5, 3)),
