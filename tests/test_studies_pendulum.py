@@ -141,6 +141,13 @@ def test_stability_report_states_the_bound_first_and_shows_failures_honestly(tin
     dg = [x for x in rs if x["integrator"] == "discrete-gradient"]
     # conserved to Newton's tolerance (README: about 1e-13 J), far inside the bound
     assert dg and all(x["drift"] <= 1e-6 * x["bound"] for x in dg)
+    # the energy lost is shown as a number: never more than the largest change, and numerical
+    # damping (rho_inf = 0) takes more than the conservative generalized-alpha (rho_inf = 1)
+    for x in rs:
+        if x["lost"] is not None:
+            assert abs(x["lost"]) * x["bound"] / 1e-3 <= x["drift"] * (1 + 1e-9)
+    ga = {x["label"]: x["lost"] for x in rs if x["integrator"] == "generalized-alpha"}
+    assert ga["rho_inf = 0"] > max(ga["rho_inf = 1"], 0.0)
     assert "NaN" not in page and "nan" not in (out / "stability_runs.csv").read_text()
 
 

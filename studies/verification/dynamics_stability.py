@@ -72,6 +72,7 @@ STUDY = {
 
 CONSERVATIVE = ("newmark", "discrete-gradient")
 HOLDS = ("holds", "no growth (dissipative)")
+DAMPED = 0.01    # a dissipative run that lost more than 1 % of m g L / 2 (ten bounds) is named below its table
 
 
 def hard_cases(grid: dict) -> list[tuple[str, str, dict]]:
@@ -184,6 +185,13 @@ def energy_drift(rec: dict) -> tuple[float | None, float | None]:
     return max(max(abs(x - e[0]) for x in e), rise), rise
 
 
+def energy_lost(rec: dict, bound: float) -> float | None:
+    """(E(0) - E(t_end)) / (m g L / 2) over the output times: what numerical damping took (a
+    fraction; negative if E ended above E(0)); ``bound`` is 1e-3 m g L / 2."""
+    e = [x["total"] for x in rec.get("energy") or [] if x.get("total") is not None]
+    return (e[0] - e[-1]) / (bound / 1e-3) if e else None
+
+
 def energy_checked(rec: dict) -> str:
     """Which steps the rise is taken over."""
     every = (rec.get("energy_peak") or {}).get("checked_every_steps")
@@ -218,9 +226,10 @@ def rows_of(ctx) -> list[dict]:
             d = describe_dynamic(r)
             drift, rise = energy_drift(r)
             bound = bound_J(r["scene"])
+            lost = energy_lost(r, bound)
             med = (d["timing"] or {}).get("median_s")
             out.append({"group": group, "label": label, "changes": ch, "integrator": integ, "d": d, "drift": drift, "rise": rise,
-                        "bound": bound, "enforced": r.get("energy_limit"), "verdict": verdict(d, drift, rise, bound),
+                        "lost": lost, "bound": bound, "enforced": r.get("energy_limit"), "verdict": verdict(d, drift, rise, bound),
                         "wall": med if med is not None else d["wall_s"], "timed": med is not None,
                         "checked": energy_checked(r),
                         "same_as_base": c.id in seen or r["case_id"] in seen})
@@ -244,16 +253,19 @@ def report(ctx) -> Section:
     for x in rows:
         d = x["d"]
         table.append([x["label"], x["integrator"] + (" (= base)" if x["same_as_base"] else ""), d["status"],
-                      x["verdict"], x["drift"], x["rise"], x["checked"], x["bound"], d["steps"], d["rejected"], d["newton"],
+                      x["verdict"], x["drift"], x["rise"],
+                      None if x["lost"] is None else 100 * x["lost"], x["checked"], x["bound"], d["steps"], d["rejected"], d["newton"],
                       x["wall"], "" if x["timed"] else "single run",
                       (str(d["reason"])[:90] if d["reason"] else "")])
     stem = ctx.study.name.replace("-", "_")
     sec.table(ctx, Table(f"{stem}_runs", ["hard case", "integrator", "status", "verdict", "max abs(E - E0) (J)",
-                                       "max E - E0 (J)", "E checked", "bound (J)", "steps", "rejected", "Newton",
-                                       "wall s", "timing", "reason"], table,
-                         {4: ".2e", 5: ".2e", 7: ".2e", 11: ".3f"}),
+                                       "max E - E0 (J)", "lost (% of m g L / 2)", "E checked", "bound (J)", "steps",
+                                       "rejected", "Newton", "wall s", "timing", "reason"], table,
+                         {4: ".2e", 5: ".2e", 6: ".3g", 8: ".2e", 12: ".3f"}),
               "Every hard case with every integrator: status, the energy verdict against the bound, the largest energy "
-              "change and rise (over every step where the record keeps its energy peak, else over the output times), accepted and rejected steps, Newton iterations and wall time.")
+              "change and rise (over every step where the record keeps its energy peak, else over the output times), the "
+              "energy lost by the end, E(0) - E(t_end), as a share of m g L / 2 (numerical damping where the verdict is "
+              "dissipative), accepted and rejected steps, Newton iterations and wall time.")
     bad = [x for x in rows if x["verdict"] not in HOLDS and not x["same_as_base"]]
     runs = [x for x in rows if not x["same_as_base"]]    # each run once: "(= base)" rows repeat the base run
     lines = [f"- {sum(1 for x in runs if x['verdict'] in HOLDS)} of {len(runs)} distinct runs "
@@ -263,6 +275,10 @@ def report(ctx) -> Section:
     lines += [f"- {x['label']}, {x['integrator']}: **{x['verdict']}**"
               + (f" ({str(x['d']['reason'])[:120]})" if x["d"]["reason"] else
                  f" (max |E - E0| = {x['drift']:.2e} J)" if x["drift"] is not None else "") for x in bad]
+    damped = [x for x in runs if x["verdict"] == "no growth (dissipative)" and x["lost"] is not None
+              and x["lost"] > DAMPED]
+    lines += [f"- {x['label']}, {x['integrator']}: no energy gained, but numerical damping took "
+              f"{100 * x['lost']:.3g} % of m g L / 2 by t = {x['d']['t_end']:g} s." for x in damped]
     sec.text = "\n".join(lines)
     margins = margin_rows(ctx) if ctx.study.name == "stability" else []
     if margins:
