@@ -85,12 +85,12 @@ def test_case_id_changes_with_scene_options_and_solver_source(monkeypatch):
     assert timed.id != a.id
     from studies.engine import case as case_mod
     before = a.id
-    case_mod.case_id.cache_clear()
+    case_mod._memo_id.cache_clear()
     monkeypatch.setattr(case_mod, "solver_fingerprint", lambda *a: {"code": "other source", "packages": {}})
     assert small_cases(counts=(2,))[0].id != before
     assert a.id == before and a.sources_changed()     # a made case keeps the id it was made with
     monkeypatch.undo()
-    case_mod.case_id.cache_clear()
+    case_mod._memo_id.cache_clear()
     assert small_cases(counts=(2,))[0].id == before and not a.sources_changed()
 
 

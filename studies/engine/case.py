@@ -125,7 +125,16 @@ def _fresh_id(solver: str, scene_json: str, options_json: str) -> str:
     return hashlib.sha256(canonical(ident).encode()).hexdigest()[:20]
 
 
-case_id = lru_cache(maxsize=None)(_fresh_id)   # sources are read once per process
+@lru_cache(maxsize=None)
+def _memo_id(solver_object, solver: str, scene_json: str, options_json: str) -> str:
+    return _fresh_id(solver, scene_json, options_json)
+
+
+def case_id(solver: str, scene_json: str, options_json: str) -> str:
+    """The case's id, its sources read once per process; the memo is keyed by the solver
+    object registered now too, so that an id made while a solver was replaced (a test's
+    refusing stand-in) is not the id of the real solver's case."""
+    return _memo_id(get_solver(solver), solver, scene_json, options_json)
 
 
 def packages(case: "Case") -> dict:

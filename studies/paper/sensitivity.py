@@ -99,14 +99,13 @@ def _findings(long: list, low_order) -> str:
         lines.append(f"- {r[0]} {short(r[1])}, clamp {r[2]}, quadrature {r[3]}: converged to an equilibrium that is "
                      f"not stable ({r[11]}).")
     ho = [r for r in long if r[0] not in low_order and r[10] is not None]
-    best = {}
-    for r in ho:
-        key = (r[2], r[3])
-        best[key] = max(best.get(key, 0.0), r[10])
-    for key, worst in sorted(best.items(), key=lambda kv: kv[1]):
-        n = sum(1 for r in ho if (r[2], r[3]) == key)
-        lines.append(f"- clamp {key[0]}, quadrature {key[1]}: the {n} converged higher-order cells lie within "
-                     f"{worst:.2f} % of the paper's.")
+    worst: dict = {}      # (clamp, quadrature) -> {element: largest distance}: per element, so that one
+    for r in ho:          # element's locking is named, not spread over the others as "within"
+        per = worst.setdefault((r[2], r[3]), {})
+        per[r[0]] = max(per.get(r[0], 0.0), r[10])
+    for key, per in sorted(worst.items(), key=lambda kv: max(kv[1].values())):
+        lines.append(f"- clamp {key[0]}, quadrature {key[1]}, largest distance from the paper's cells: "
+                     + ", ".join(f"{el} {d:.2f} %" for el, d in per.items()) + ".")
     return "\n".join(lines)
 
 
