@@ -2,7 +2,8 @@
 work-precision diagram, timed side by side in one run (``make bench-peers``, issue 10).
 
     .venv/bin/python -m studies.peers.work_precision [--scene pendulum|thick] [--counts 2 4 8 16 32 64]
-        [--element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-20xypm --element HB2n-40p --element HB2n-60p] [--import MODULE] [--rho-inf 0.5] [--repeats 5]
+        [--element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-20xypm --element HB2n-40p --element HB2n-60p
+         --element HC2n-8] [--import MODULE] [--rho-inf 0.5] [--repeats 5]
         [--out reports]
 
 Grid: the element counts (2 to 64: at 1 % a run is a few elements, and the cable holds 1 % with
