@@ -26,7 +26,8 @@ from contract import paper
 from .precision_grid import cable_mode
 
 TARGET = 0.5                    # our cheapest run at most half of Exudyn's time ...
-TARGET_ACCURACIES = (0.01, 0.003, 0.001)   # ... at 1 %, 0.3 % and 0.1 % (issue 20 set 1 % and 0.1 %; 0.3 % added with the cable)
+# ... at 1 %, 0.3 % and 0.1 % (issue 20 set 1 % and 0.1 %; 0.3 % added with the cable)
+TARGET_ACCURACIES = (0.01, 0.003, 0.001)
 
 
 def factors(r: dict) -> dict:

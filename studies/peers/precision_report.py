@@ -218,8 +218,9 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = (), costs:
     lines += [""] + step_error_lines(recs)
     for text in reach_lines(recs, rows):
         lines += ["", text]
-    current = [c for c in costs if any(a == c["accuracy"] and o and p and round_pair(o, p)
-                                       == {k: {x: c[k][x] for x in ("element", "elements", "dt")} for k in ("ours", "exudyn")}
+    def pair(c):
+        return {k: {x: c[k][x] for x in ("element", "elements", "dt")} for k in ("ours", "exudyn")}
+    current = [c for c in costs if any(a == c["accuracy"] and o and p and round_pair(o, p) == pair(c)
                                        for a, o, p, _, _ in rows)]
     if current:
         from .step_cost import lines as cost_lines
