@@ -88,8 +88,9 @@ bench: setup
 bench-penalty: setup
 	$(PY) -m studies.design.bench penalty
 
-# the elements of the work-precision diagram: the paper's two and the lock-free ones
-PEER_ELEMENTS = --element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-20xypm --element HB2n-40p --element HB2n-60p
+# the elements of the work-precision diagram: the paper's two, the lock-free ones and the
+# hyperelastic cable HC2n-8 (studies.peers.precision_grid.ELEMENTS)
+PEER_ELEMENTS = --element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-20xypm --element HB2n-40p --element HB2n-60p --element HC2n-8
 
 # The pendulum beside a peer, Exudyn's ANCF cable, installed in a separate venv (.venv-peers,
 # never in .venv): the same pendulum side by side, Exudyn against its own published numbers,

@@ -19,7 +19,8 @@ def _peer_markdown(kind: str, path: Path) -> str:
         from .exudyn_published import RECORD as PUBLISHED, read_record
         return peers_markdown(json.loads(path.read_text()), read_record(path.with_name(PUBLISHED.name)))
     from .precision_report import read, report_markdown, rounds_path
-    return report_markdown(read(path), read(rounds_path(path)))
+    from .step_cost import RECORD as COSTS, read_record as read_costs
+    return report_markdown(read(path), read(rounds_path(path)), read_costs(path.with_name(COSTS)))
 
 
 # peer report -> (its record under DIR/data/peers/, the function that draws it)

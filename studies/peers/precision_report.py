@@ -1,7 +1,8 @@
 """The work-precision report: ``reports/peers_work_precision.md`` and one figure per scene,
 drawn from the bench's records alone (``data/peers/peers-work-precision.jsonl`` and the
 deciding points' re-timings beside it; :mod:`studies.peers.work_precision` writes them, the
-audit redraws from them). Which runs count for an accuracy (:func:`holds`), the cheapest
+audit redraws from them). Which runs count for an accuracy (:func:`holds`, the two-way
+fairness rule over :func:`finer` steps and meshes), the cheapest
 that do (:func:`cheapest`), the models' floors (:func:`floors`), the ratio that decides a
 row (:func:`deciding_ratio`: the rounds' median where they were re-timed)."""
 from __future__ import annotations
@@ -57,13 +58,24 @@ def rounds_text(r: dict | None) -> str:
     return f"{statistics.median(rr):.2f} ({', '.join(f'{x:.2f}' for x in rr)})" if rr else "-"
 
 
+def finer(r: dict, recs: list[dict]) -> list[dict]:
+    """The grid's runs that refine run ``r`` one way at a time (its own record among them):
+    the same solver and element, and either its mesh at every step no larger than its step,
+    or its step on every mesh at least as fine as its mesh."""
+    return [q for q in recs if (q["solver"], q["element"]) == (r["solver"], r["element"])
+            and ((q["elements"] == r["elements"] and q["dt"] <= r["dt"])
+                 or (q["dt"] == r["dt"] and q["elements"] >= r["elements"]))]
+
+
 def holds(r: dict, recs: list[dict], accuracy: float) -> bool:
-    """Does run ``r`` reach ``accuracy``, and does every finer step of its mesh too? A
-    coarse step's error can cancel the mesh's (numerical dissipation against stiffness):
-    such a run is accurate by luck, and a finer step would lose it."""
-    same = [q for q in recs if (q["solver"], q["element"], q["elements"]) == (r["solver"], r["element"], r["elements"])
-            and q["dt"] <= r["dt"]]
-    return all(q["error"] is not None and q["error"] <= accuracy for q in same)
+    """The two-way fairness rule: does run ``r`` reach ``accuracy``, and does every run of
+    the grid that refines it one way (:func:`finer`: every finer step of its mesh, every
+    finer mesh at its step) reach it too? A coarse step's error can cancel the mesh's
+    (numerical dissipation against stiffness), and a coarse mesh's the step's: such a run is
+    accurate by luck, and a finer step or a finer mesh would lose it. A finer run that
+    failed or diverged reaches nothing, so it refuses ``r`` too. The same rule for both
+    sides."""
+    return all(q["error"] is not None and q["error"] <= accuracy for q in finer(r, recs))
 
 
 def cheapest(recs: list[dict], solver: str, element: str | None, accuracy: float) -> dict | None:
@@ -88,6 +100,35 @@ def floors(recs: list[dict]) -> dict[tuple, dict]:
     return out
 
 
+def is_cable(element: str) -> bool | None:
+    """Is our run's element (a label, :func:`our_element`) a centre-line cable (no section
+    field: no shear, no thickness change)? None: not a registered element here."""
+    from ancf.elements import ELEMENTS
+
+    name = our_element(element)[0]
+    return ELEMENTS[name].cable if name in ELEMENTS else None
+
+
+def floors_by_section(fl: dict[tuple, dict]) -> str:
+    """One sentence: our cables' floors (each at our default settings) beside the range of
+    our shear-deformable elements' (a section field: shear and thickness change) and the
+    peer cable's, from :func:`floors`; '' without a cable of ours or a section element."""
+    ours = {e: r for (s, e), r in fl.items() if s == "ancf" and our_element(e)[0] == e}
+    cables = {e: r for e, r in ours.items() if is_cable(e)}
+    sections = {e: r for e, r in ours.items() if is_cable(e) is False}
+    if not (cables and sections):
+        return ""
+    lo = min(sections, key=lambda e: sections[e]["error"])
+    hi = max(sections, key=lambda e: sections[e]["error"])
+    peer = sorted({f"{100 * r['error']:.3f} %" for (s, _), r in fl.items() if s == "exudyn"})
+    return ("The floors by section model: our cable" + ("s " if len(cables) > 1 else " ")
+            + ", ".join(f"{e} {100 * r['error']:.3f} %" for e, r in sorted(cables.items()))
+            + f" (a centre line, Euler-Bernoulli, the law's exact uniaxial energy), against {100 * sections[lo]['error']:.3f} "
+            f"% ({lo}) to {100 * sections[hi]['error']:.3f} % ({hi}) for our shear-deformable elements (a section field: "
+            "shear and the section's thickness change)"
+            + (f", and {' and '.join(peer)} for Exudyn's linear elastic cable" if peer else "") + ".")
+
+
 def spread(r: dict) -> str:
     """'min-max' of the record's timed runs, or '-' (older records kept the median only)."""
     runs = r.get("time_runs_s")
@@ -104,9 +145,9 @@ def figure_name(scene: str) -> str:
     return "peers_work_precision.png" if scene == SCENE else f"peers_work_precision_{scene}.png"
 
 
-def report(recs: list[dict], out: Path, rounds: list[dict] = ()) -> str:
+def report(recs: list[dict], out: Path, rounds: list[dict] = (), costs: list[dict] = ()) -> str:
     """The tables (markdown, :func:`report_markdown`) and one figure per scene from the records."""
-    text = report_markdown(recs, rounds)
+    text = report_markdown(recs, rounds, costs)
     for scene in scenes_of(recs):
         figure([r for r in recs if r.get("scene", SCENE) == scene], out / figure_name(scene), scene)
     (out / "peers_work_precision.md").write_text(text)
@@ -131,9 +172,10 @@ def ref_text(recs: list[dict]) -> str:
     return (f", its error estimate at most {100 * max(e):.3f} % of L" if e else ", its error estimate not recorded")
 
 
-def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = ()) -> list[str]:
+def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = (), costs: list[dict] = ()) -> list[str]:
     """The section of one scene's records (``rounds``: its deciding points' re-timings,
-    :func:`studies.peers.work_precision.retime`)."""
+    :func:`studies.peers.work_precision.retime`; ``costs``: its missed targets' measurements,
+    :mod:`studies.peers.step_cost`, drawn while their two points are still the row's)."""
     guards = {r.get("energy_guard", "the scene's energy limit") for r in recs if r["solver"] == "ancf"}
     runs = [len(r["time_runs_s"]) for r in recs if r.get("time_runs_s")]
     els = sorted({r["element"] for r in recs if r["solver"] == "ancf"})
@@ -176,6 +218,13 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = ()) -> lis
     lines += [""] + step_error_lines(recs)
     for text in reach_lines(recs, rows):
         lines += ["", text]
+    def pair(c):
+        return {k: {x: c[k][x] for x in ("element", "elements", "dt")} for k in ("ours", "exudyn")}
+    current = [c for c in costs if any(a == c["accuracy"] and o and p and round_pair(o, p) == pair(c)
+                                       for a, o, p, _, _ in rows)]
+    if current:
+        from .step_cost import lines as cost_lines
+        lines += [""] + cost_lines(current)[:-1]
     fl = floors(recs)
     if fl:
         lines += ["", "Accuracy floors, read at the finest step of the finest mesh (the cable's: its physics, "
@@ -183,6 +232,7 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = ()) -> lis
                   "| solver | element | n | dt (ms) | error (%) |", "|---|---|---|---|---|"]
         for (solver, element), r in sorted(fl.items()):
             lines.append(f"| {solver} | {element} | {r['elements']} | {r['dt'] * 1e3:g} | {100 * r['error']:.4f} |")
+        lines += ["", floors_by_section(fl)] if floors_by_section(fl) else []
     pins = sorted({k for r in fl.values() for k in (r.get("error_by_pin_mm") or {})}, key=float, reverse=True)
     if pins:
         lines += ["", "The floors against the same continuum with other pin sizes (the point pin is as large as its "
@@ -204,17 +254,19 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = ()) -> lis
     return lines
 
 
-def report_markdown(recs: list[dict], rounds: list[dict] = ()) -> str:
+def report_markdown(recs: list[dict], rounds: list[dict] = (), costs: list[dict] = ()) -> str:
     """reports/peers_work_precision.md from the records alone (a plain function): one
-    section per scene (``rounds``: the deciding points' re-timings, :func:`studies.peers.work_precision.retime`)."""
+    section per scene (``rounds``: the deciding points' re-timings, :func:`studies.peers.work_precision.retime`;
+    ``costs``: the missed targets' measurements, :mod:`studies.peers.step_cost`)."""
     lines = ["# Work-precision: our pendulum against Exudyn's ANCF cable",
              "",
              "Generated by `python -m studies.peers.work_precision` (`make bench-peers`) from "
              f"`data/peers/{NAME}.jsonl`; do not edit; see the module's docstring for the method. Error: max over "
              "t = 0.1 ... 0.5 s of |r - r_ref| / L against the scene's converged continuum plane-stress Yeoh pendulum; "
              "time: median warm solve wall time, both solvers in one run (each point: Exudyn's runs, then ours), "
-             "one thread. A run counts for an accuracy only if every finer step of its mesh reaches it too (no "
-             "accuracy by cancellation of step and mesh errors). Ratios below 1: ours is cheaper. The cable runs "
+             "one thread. A run counts for an accuracy only if every finer step of its mesh and every finer mesh at its "
+             "step reach it too, failed or diverged runs reaching nothing (the two-way fairness rule, the same for both "
+             "sides: no accuracy by cancellation of step and mesh errors). Ratios below 1: ours is cheaper. The cable runs "
              "with modified Newton (ANCFCable2D) and with one linear solve per step (ANCFCable2D-linear: Exudyn's "
              "newton.active = False, no convergence test); its cheapest run at an accuracy is taken over "
              "both (marked 'linear' where it is the latter); ours runs at its defaults and, marked '(rtol 1e-3)', "
@@ -222,7 +274,7 @@ def report_markdown(recs: list[dict], rounds: list[dict] = ()) -> str:
              ""]
     for scene in scenes_of(recs):
         lines += scene_markdown([r for r in recs if r.get("scene", SCENE) == scene], scene,
-                                [r for r in rounds if r["scene"] == scene])
+                                [r for r in rounds if r["scene"] == scene], [c for c in costs if c["scene"] == scene])
     return "\n".join(lines)
 
 

@@ -2,7 +2,8 @@
 work-precision diagram, timed side by side in one run (``make bench-peers``, issue 10).
 
     .venv/bin/python -m studies.peers.work_precision [--scene pendulum|thick] [--counts 2 4 8 16 32 64]
-        [--element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-20xypm --element HB2n-40p --element HB2n-60p] [--import MODULE] [--rho-inf 0.5] [--repeats 5]
+        [--element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-20xypm --element HB2n-40p --element HB2n-60p
+         --element HC2n-8] [--import MODULE] [--rho-inf 0.5] [--repeats 5]
         [--out reports]
 
 Grid: the element counts (2 to 64: at 1 % a run is a few elements, and the cable holds 1 % with
@@ -36,7 +37,9 @@ keyed by its scene) as each point finishes (an interrupted run keeps them; a rer
 the points it has, ``--force`` redoes the chosen scene's);
 after the grid, each accuracy's two cheapest points are timed again alternately in
 ``--rounds`` rounds (``peers-work-precision-rounds.jsonl``: a round's two medians share the
-machine's phase, the grid's two points need not); the table
+machine's phase, the grid's two points need not); where the rounds miss a row's target, :mod:`studies.peers.step_cost` measures why
+(``peers-step-cost.json``: our run under each Newton a scene offers, and its step split into
+its parts); the table
 ``<out>/peers_work_precision.md`` and the figures ``.png`` (one per scene) are drawn from
 those files alone by :mod:`studies.peers.precision_report` (``--report-only`` redraws
 them; ``--rescore`` first recomputes every error from the records' tip histories against
@@ -61,6 +64,7 @@ from pathlib import Path
 from .compare import PEER_PYTHON, peer
 from .precision_grid import (ACCURACIES, CABLE_SETTINGS, COUNTS, ELEMENTS, ENERGY_GUARD, MIN_REPEATS, NAME,
                              OUR_SETTINGS, SCENE, SCENES, STEPS_PER_OUTPUT, our_element)
+from . import step_cost
 from .precision_report import cheapest, read, report, round_pair, round_ratios, rounds_of, rounds_path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -271,6 +275,8 @@ def main(argv=None) -> int:
                     help="a module that registers a user's element (repeatable)")
     ap.add_argument("--rounds", type=int, default=7, help="re-time each accuracy's two cheapest points "
                     "alternately in this many rounds after the grid (default %(default)s; 0: none)")
+    ap.add_argument("--calls", type=int, default=20000, help="calls per compiled timing loop of the step split "
+                    "(studies.peers.step_cost, after the rounds, for each row whose target they miss)")
     ap.add_argument("--force", action="store_true", help="redo every point (and the rounds)")
     ap.add_argument("--report-only", action="store_true", help="redraw the table and figure from the records")
     ap.add_argument("--rescore", action="store_true", help="recompute every record's error from its tip history "
@@ -283,7 +289,9 @@ def main(argv=None) -> int:
     recs = rescore(path) if a.rescore else read(path) if a.report_only else run(a)
     busy = not (a.rescore or a.report_only) and a.rounds > 0
     rounds = retime(recs, a, path) if busy else read(rounds_path(path))
-    print(report(recs, a.out, rounds))
+    costs = (step_cost.write(step_cost.record_path(a.out), a.scene, step_cost.measure(recs, rounds, a.scene, a))
+             if busy else step_cost.read_record(step_cost.record_path(a.out)))
+    print(report(recs, a.out, rounds, costs))
     return 0
 
 
