@@ -49,6 +49,12 @@ def _check_kinematics(scene: Scene) -> None:
         raise SceneError(f"material.formulation: {scene.material.formulation!r} cannot run element {el.name} "
                          f"({el.kinematics}: the section's fibres in uniaxial stress with free faces); "
                          f"allowed for it: {', '.join(repr(f) for f in allowed)}")
+    a = scene.analysis
+    if a.kind == "dynamic" and a.newton == "linear" and INTEGRATORS[a.integrator].compiled != "alpha-family":
+        family = sorted(i for i, c in INTEGRATORS.items() if c.compiled == "alpha-family")
+        raise SceneError(f"analysis.newton: 'linear' (one solve per step) is a step of the generalized-alpha "
+                         f"family; integrator {a.integrator!r} runs full Newton: choose analysis.integrator from "
+                         f"{', '.join(repr(i) for i in family)}, or another analysis.newton")
     if el.cable and scene.analysis.kind == "dynamic" and scene.analysis.integrator == "discrete-gradient":
         others = sorted(i for i in INTEGRATORS if i != "discrete-gradient")
         raise SceneError(f"analysis.integrator: 'discrete-gradient' cannot run element {el.name} (a cable's fibre "

@@ -52,7 +52,13 @@ Newton variants (``[analysis] newton``, :data:`NEWTON`):
   ``KAPPA`` or after ``MAX_MODIFIED`` iterations on one factorisation. Stops on the
   residual only.
 
-With "chord" or "modified" a failed step is redone once from the predictor with full
+- "linear": one solve per step with the tangent at the predictor and no convergence test
+  (Exudyn's ``newton.active = False``), for runs whose step is small enough that one
+  correction from the predictor is as accurate as the step; the new state's admissibility
+  (det F > 0, a cable's fibre stretches > 0) is checked instead of its residual, and the
+  energy guard applies as for every variant. ``newton_rtol`` does not apply.
+
+With "chord", "modified" or "linear" a failed step is redone once from the predictor with full
 Newton before it is rejected. A reused factorisation stops on the residual only: its
 residual after a correction is (S_old - S) du, linear in du, so a correction test would
 leave a residual that does not shrink with dt, and its work turns the energy drift from
@@ -71,10 +77,10 @@ from mechanics import alpha_family, time_loop
 from .bandsolve import col_constrain, col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split, same_component_only
 from .element_model import refuse_discrete_gradient
 from .dgkernel import dg_scratch
-from .element_kernels import element_assemble, element_assemble_dg, element_energy, element_work
+from .element_kernels import element_admissible, element_assemble, element_assemble_dg, element_energy, element_work
 from .kernels import INADMISSIBLE, NEWTON_FAILED, OK, SINGULAR, ENERGY_GROWTH, BUDGET, live_tape
 
-NEWTON = ("chord", "full", "modified")
+NEWTON = ("chord", "full", "modified", "linear")
 STATUS = {NEWTON_FAILED: "Newton failed", SINGULAR: "singular step matrix", INADMISSIBLE: "det F <= 0"}
 
 KAPPA = 0.5                  # chord/modified: refactor when |R_k| > KAPPA |R_(k-1)|
@@ -103,7 +109,7 @@ COUNTER_NAMES = ("steps", "iterations", "residuals", "tangents", "factorisations
                  "indefinite_factorisations", "full_newton_fallbacks")
 
 # Integer Newton settings (``inewton``) and float ones (``fnewton``).
-I_MAX_IT, I_MODIFIED, I_STOP, I_MAX_MODIFIED, I_ENERGY_EVERY, I_JAC_PER_STEP, I_SCHEME, I_MASS_SPLIT = range(8)
+I_MAX_IT, I_MODIFIED, I_STOP, I_MAX_MODIFIED, I_ENERGY_EVERY, I_JAC_PER_STEP, I_SCHEME, I_MASS_SPLIT, I_LINEAR = range(9)
 ALPHA_FAMILY, DISCRETE_GRADIENT = 0, 1            # inewton[I_SCHEME]
 STOP_RESIDUAL, STOP_BOTH = 0, 1
 F_RTOL, F_UTOL, F_KAPPA, F_HBEAM, F_ELIMIT = range(5)
@@ -189,6 +195,7 @@ def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, i
     Returns (status, iterations)."""
     am, af, beta, gamma = coef[0], coef[1], coef[2], coef[3]
     max_it, modified = inewton[I_MAX_IT], inewton[I_MODIFIED] != 0 and not full
+    linear = inewton[I_LINEAR] != 0 and not full
     stop = STOP_BOTH if full else inewton[I_STOP]     # the fallback is the Python loop's Newton
     max_mod = inewton[I_MAX_MODIFIED]
     rtol, utol, kappa, hbeam = fnewton[F_RTOL], fnewton[F_UTOL], fnewton[F_KAPPA], fnewton[F_HBEAM]
@@ -242,6 +249,13 @@ def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, i
         umax, dumax = _correct(S, first, r, du, u, counters)
         since += 1
         it += 1
+        if linear:
+            # one solve, no convergence test: the state's admissibility is checked (the
+            # energy, as for every variant, by advance)
+            status = element_admissible(u, dN, dofs, ops, pr, chunk, Fb, ab, Jb)
+            if status != OK:
+                return status, it
+            break
         if dumax <= (utol if stop == STOP_BOTH else ROUNDOFF * utol) * max(umax, hbeam):
             break
     for i in range(n):
@@ -476,14 +490,15 @@ class CompiledLoop:
         c = coefficients
         self.coef = np.array([c["alpha_m"], c["alpha_f"], c["beta"], c["gamma"]], dtype=float)
         self.newton = newton
-        self.inewton = np.zeros(8, np.int64)
+        self.inewton = np.zeros(9, np.int64)
         self.inewton[I_MASS_SPLIT] = int(same_component_only(self.data[6]))
         self.inewton[I_SCHEME] = DISCRETE_GRADIENT if discrete_gradient else ALPHA_FAMILY
         self.inewton[I_MAX_IT] = max_iterations
         self.inewton[I_MODIFIED] = int(newton != "full")
         self.inewton[I_STOP] = STOP_BOTH if newton == "full" else STOP_RESIDUAL
         self.inewton[I_MAX_MODIFIED] = MAX_MODIFIED
-        self.inewton[I_JAC_PER_STEP] = int(newton == "chord")
+        self.inewton[I_JAC_PER_STEP] = int(newton in ("chord", "linear"))
+        self.inewton[I_LINEAR] = int(newton == "linear")
         self.fnewton = np.zeros(5)
         self.fnewton[F_RTOL], self.fnewton[F_UTOL] = rtol, utol
         self.fnewton[F_KAPPA], self.fnewton[F_HBEAM] = KAPPA, float(model.mesh.height)

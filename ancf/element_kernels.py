@@ -19,9 +19,10 @@ from __future__ import annotations
 
 from numba import njit
 
-from .cable_kernels import cable_assemble, cable_energy, cable_force_magnitude, cable_scratch
+from .cable_kernels import cable_assemble, cable_energy, cable_force_magnitude, cable_points, cable_scratch
 from .dgkernel import assemble_dg
-from .kernels import INADMISSIBLE, assemble_fused, force_magnitude_fused, step_scratch, strain_energy_fused
+from .assumed_kernels import assumed_invariants
+from .kernels import INADMISSIBLE, OK, assemble_fused, force_magnitude_fused, point_gradients, step_scratch, strain_energy_fused
 from .tape import VAR_STRETCH
 
 
@@ -60,6 +61,26 @@ def element_energy(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, ew):
     if is_cable(ops):
         return cable_energy(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb)
     return strain_energy_fused(u, dN, w, dofs, ops, consts, pr, chunk, R, Fb, ab, Jb, ew)
+
+
+@njit(cache=True, inline="always")
+def element_admissible(u, dN, dofs, ops, pr, chunk, Fb, ab, Jb):
+    """OK if the state u is admissible where the element's energy is evaluated (a
+    continuum-based element: det F > 0, det C_bar with an assumed strain, at every point;
+    a cable: every fibre's stretch > 0), else INADMISSIBLE: the kinematics of
+    :func:`element_assemble` alone, no law, no force."""
+    ne = dofs.shape[0]
+    for e0 in range(0, ne, chunk):
+        e1 = min(ne, e0 + chunk)
+        if is_cable(ops):
+            m = cable_points(u, u, 0.0, dN, dofs, pr[0], e0, e1, Fb, ab)
+        else:
+            m = point_gradients(u, u, 0.0, dN, dofs, e0, e1, Fb, ab, Jb)
+            if m >= 0 and pr[3].shape[1] > 0:
+                m = assumed_invariants(Fb, ab, Jb, m, pr[3])
+        if m < 0:
+            return INADMISSIBLE
+    return OK
 
 
 @njit(cache=True)

@@ -31,7 +31,7 @@ from .loads import SUPPORTS as _SUPPORT_MEANINGS
 SUPPORTS = tuple(_SUPPORT_MEANINGS)   # what each is: contract.loads.SUPPORTS
 CLAMPS = ("face", "all")
 ANALYSES = ("static", "dynamic")
-NEWTON = ("chord", "full", "modified")   # the compiled time loop's Newton (ancf.compiled_steps)
+NEWTON = ("chord", "full", "modified", "linear")   # the compiled time loop's Newton (ancf.compiled_steps)
 # Sane ranges: a tolerance outside them answers a different question (1e10 "converges"
 # at the first residual) or none (below round-off Newton never stops).
 NEWTON_RTOL = (1e-15, 1e-3)
@@ -191,7 +191,7 @@ class Analysis:
     rho_inf: float = _default("analysis", "rho_inf")
     energy_limit: float | None = None  # J; None: 1e-3 m |g| L / 2 (with gravity); inf: no check
     max_steps: int | None = None       # None: MAX_STEPS
-    newton: str = _default("analysis", "newton")   # one of NEWTON: chord (measured fastest), full, modified
+    newton: str = _default("analysis", "newton")   # one of NEWTON: chord (measured fastest), full, modified, linear (one solve per step)
     # both
     wall_time: float | None = None     # s; a run still going then stops, status "failed"
 
@@ -468,7 +468,20 @@ def _analysis(t) -> Analysis:
         output_times=out,
         integrator=_name("analysis.integrator", t.get("integrator", Analysis.integrator)),
         rho_inf=rho_inf, energy_limit=_energy_limit(t), max_steps=max_steps,
-        newton=_choice("analysis.newton", t.get("newton", Analysis.newton), NEWTON), **_common(t))
+        newton=_newton(t), **_common(t))
+
+
+def _newton(t) -> str:
+    """analysis.newton; "linear" (one solve per step, no convergence test) has no tolerance to
+    stop on and steps at fixed dt (an adaptive step runs full Newton)."""
+    newton = _choice("analysis.newton", t.get("newton", Analysis.newton), NEWTON)
+    if newton == "linear":
+        for key, why in (("newton_rtol", "it has no convergence test"),
+                         ("tolerance", "an adaptive step runs full Newton")):
+            if key in t:
+                raise SceneError(f"analysis.{key}: not used with analysis.newton = 'linear' ({why}); leave it out "
+                                 f"or choose analysis.newton from {', '.join(repr(n) for n in NEWTON if n != 'linear')}")
+    return newton
 
 
 # ---------------------------------------------------------------------------------------

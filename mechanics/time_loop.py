@@ -197,6 +197,10 @@ def integrate(stepper: Stepper, u0: np.ndarray, t_end: float, dt: float, output_
     if outs[0] == 0.0:
         res.outputs.append(stepper.output(s))
     advance = getattr(stepper, "advance", None) if compiled and not (tolerance or energy_every_step) else None
+    if advance is None and getattr(stepper, "newton", None) == "linear":
+        raise ValueError("newton 'linear' (one solve per step, no convergence test) is a step of the compiled loop; "
+                         "this run steps in Python (an adaptive step, the energy at every step, or a model without "
+                         "compiled kernels): choose 'chord', 'full' or 'modified'")
     h, k = dt, 0
     while s.t < t_end * (1 - 1e-12):
         if res.steps >= max_steps:

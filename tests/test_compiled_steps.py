@@ -104,8 +104,55 @@ def test_reused_factorisations_agree_with_the_python_loop(newton):
 def test_chord_is_the_default_and_newton_is_validated():
     assert scene().analysis.newton == "chord"
     with pytest.raises(SceneError, match=r"analysis\.newton: unknown value 'quasi'; allowed: "
-                                         r"'chord', 'full', 'modified'"):
+                                         r"'chord', 'full', 'linear', 'modified'"):
         scene(newton="quasi")
+
+
+def test_linear_newton_is_one_solve_per_step_as_accurate_as_the_step():
+    """newton = "linear": one assembly (force and tangent at the predictor) and one solve
+    per step, no verifying residual (chord takes two assemblies per step), and the answer
+    of a converged Newton to well within the step's own error: the tip differs from full
+    Newton's by less than a tenth of what halving dt changes (stated before the run: the
+    linear step's error is the square of a correction of order beta h^3 |da/dt|)."""
+    kw = dict(n=8, t_end=0.2, dt=4e-3)
+    lin, li = run(scene(newton="linear", **kw), energy_limit=None)
+    chord, ci = run(scene(newton="chord", newton_rtol=1e-3, **kw), energy_limit=None)
+    full, _ = run(scene(newton="full", **kw), energy_limit=None)
+    half, _ = run(scene(newton="full", n=8, t_end=0.2, dt=2e-3), energy_limit=None)
+    assert lin.status == chord.status == full.status == half.status == "converged"
+    s, c = li._loop.stats, ci._loop.stats
+    assert s["residuals"] == s["tangents"] == s["solves"] == s["steps"] == lin.steps
+    assert c["residuals"] >= 2 * c["steps"]
+    assert tip_difference(lin, full) < 0.1 * tip_difference(full, half)
+
+
+def test_linear_newton_checks_the_state_and_refuses_what_it_cannot_run():
+    """The linear step's admissibility check (ancf.element_kernels.element_admissible) on the
+    reference state and on a folded one, for a continuum-based element and a cable; the
+    scene refuses a tolerance it would not use and an integrator that is not of the alpha
+    family; the Python loop refuses to run it."""
+    from ancf.element_kernels import element_admissible, element_work
+
+    for element in ("HB2n-12", "HC2n-8"):
+        model = build_model(scene(n=2, element=element))
+        dN, w, dofs, ops, consts, pr, first = model.fused
+        chunk, R, Fb, ab, Jb, ew = element_work(ops, dN, pr)
+        u = np.zeros(model.mesh.n_dof)
+        assert element_admissible(u, dN, dofs, ops, pr, chunk, Fb, ab, Jb) == OK
+        collapsed = -np.asarray(model.mesh.reference, dtype=float)   # q = 0: F = 0, r_x = 0
+        assert element_admissible(collapsed, dN, dofs, ops, pr, chunk, Fb, ab, Jb) == INADMISSIBLE
+        if element == "HB2n-12":
+            mirrored = np.zeros(model.mesh.n_dof)
+            mirrored[0::2] = -2.0 * np.asarray(model.mesh.reference, dtype=float)[0::2]   # x -> -x: det F = -1
+            assert element_admissible(mirrored, dN, dofs, ops, pr, chunk, Fb, ab, Jb) == INADMISSIBLE
+    with pytest.raises(SceneError, match=r"analysis\.newton_rtol: not used with analysis\.newton = 'linear'"):
+        scene(newton="linear", newton_rtol=1e-3)
+    with pytest.raises(SceneError, match=r"analysis\.tolerance: not used with analysis\.newton = 'linear'"):
+        scene(newton="linear", tolerance=1e-4)
+    with pytest.raises(SceneError, match=r"analysis\.newton: 'linear' .* 'discrete-gradient' runs full Newton"):
+        build_model(scene(newton="linear", integrator="discrete-gradient"))
+    with pytest.raises(ValueError, match="newton 'linear'"):
+        run(scene(newton="linear"), compiled=False)
 
 
 def test_newmark_energy_drift_stays_second_order_with_the_chord_default():

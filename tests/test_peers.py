@@ -104,18 +104,19 @@ def test_work_precision_keeps_finished_points_and_skips_them_on_a_rerun(tmp_path
     a = SimpleNamespace(out=tmp_path, force=False, counts=[4, 8], steps_per_output=[20], element=["HB2n-12"],
                         rho_inf=0.5, repeats=1, peer_python=None, scene="pendulum")
     # each point: the cable with Newton and with one linear solve per step, then ours at its
-    # defaults and at the loosest Newton tolerance
-    assert len(wp.run(a)) == 8 and len(calls) == 8
-    assert [c[1] for c in calls[:4]] == ["ANCFCable2D", "ANCFCable2D-linear", "HB2n-12", "HB2n-12 (rtol 1e-3)"]
-    assert len(wp.run(a)) == 8 and len(calls) == 8          # nothing recomputed
+    # defaults, at the loosest Newton tolerance and with one linear solve per step
+    assert len(wp.run(a)) == 10 and len(calls) == 10
+    assert [c[1] for c in calls[:5]] == ["ANCFCable2D", "ANCFCable2D-linear", "HB2n-12", "HB2n-12 (rtol 1e-3)",
+                                         "HB2n-12 (linear)"]
+    assert len(wp.run(a)) == 10 and len(calls) == 10          # nothing recomputed
     a.force = True
-    assert len(wp.run(a)) == 8 and len(calls) == 16
+    assert len(wp.run(a)) == 10 and len(calls) == 20
     # a second scene: same points, its own records, keyed by scene; --force redoes only its own
     a.scene = "thick"
     recs = wp.run(a)
-    assert len(recs) == 16 and len(calls) == 24 and {r["scene"] for r in recs} == {"pendulum", "thick"}
+    assert len(recs) == 20 and len(calls) == 30 and {r["scene"] for r in recs} == {"pendulum", "thick"}
     assert {r["height"] for r in recs if r["scene"] == "thick"} == {0.020} and calls[-1][-1] == "thick"
-    assert len(wp.run(a)) == 16 and len(calls) == 32 and pr.scenes_of(wp.run(a)) == ["pendulum", "thick"]
+    assert len(wp.run(a)) == 20 and len(calls) == 40 and pr.scenes_of(wp.run(a)) == ["pendulum", "thick"]
 
 
 def test_our_settings_label_the_element_and_reach_the_scene():
@@ -127,6 +128,8 @@ def test_our_settings_label_the_element_and_reach_the_scene():
 
     assert our_element("HB2n-20xyp (rtol 1e-3)") == ("HB2n-20xyp", {"newton_rtol": 1e-3})
     assert our_element("HB2n-20xyp") == ("HB2n-20xyp", {})
+    assert our_element("HC2n-8 (linear)") == ("HC2n-8", {"newton": "linear"})
+    assert scene_from_dict(wp.scene_dict("HC2n-8 (linear)", 4, 0.005, 0.5, "pendulum")).analysis.newton == "linear"
     loose = scene_from_dict(wp.scene_dict("HB2n-20xyp (rtol 1e-3)", 4, 0.01, 0.5, "thick"))
     plain = scene_from_dict(wp.scene_dict("HB2n-20xyp", 4, 0.01, 0.5, "thick"))
     assert loose.analysis.newton_rtol == 1e-3 and plain.analysis.newton_rtol == 1e-8
@@ -580,7 +583,7 @@ def test_a_missed_target_is_measured_by_mode_and_by_the_parts_of_a_step(monkeypa
                                                                                    5e-3, 0.0005, 0.0018)
     recs = [ours, cable]
     times = {"chord, rtol 1e-3": 0.0010, "full, rtol 1e-3": 0.0012, "modified, rtol 1e-3": 0.0017,
-             "chord, default rtol": 0.0017}
+             "chord, default rtol": 0.0017, "linear": 0.0011}
     monkeypatch.setattr(wp, "exudyn", lambda *args: {"time_s": 0.0018})
     monkeypatch.setattr(sc, "run_mode", lambda el, n, dt, rho, rep, scene, st: {
         "status": "converged", "time_s": times[next(k for k, v in sc.MODES.items() if v == st)],

@@ -12,8 +12,10 @@ k = 10, 20, 40, 80, 160, 320 (10 ms halving to 0.3125 ms: every step lands on th
 times 0.1 ... 0.5 s, as Exudyn's fixed step must). The cable runs twice at each point, as
 two "elements" (:data:`CABLE_SETTINGS`): ``ANCFCable2D``, modified Newton, and
 ``ANCFCable2D-linear``, one linear solve per step; its cheapest run at an accuracy is
-taken over both. Ours runs twice too (:data:`OUR_SETTINGS`): at its defaults and, as
-``<element> (rtol 1e-3)``, at the loosest Newton tolerance a scene accepts. Each (solver,
+taken over both. Ours runs three times (:data:`OUR_SETTINGS`): at its defaults, as
+``<element> (rtol 1e-3)`` at the loosest Newton tolerance a scene accepts, and as
+``<element> (linear)`` with one solve per step and no convergence test (the state's det F
+still checked), as the cable's linear mode. Each (solver,
 element, count, step) is one run: the median of
 ``--repeats`` warm runs (ours: ``wall_s`` of :func:`ancf.simulation.run_scene`, the solve
 alone; Exudyn: ``SolveDynamic`` alone, see exudyn_pendulum.py), Exudyn's and ours in
