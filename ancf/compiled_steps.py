@@ -56,7 +56,10 @@ Newton variants (``[analysis] newton``, :data:`NEWTON`):
   (Exudyn's ``newton.active = False``), for runs whose step is small enough that one
   correction from the predictor is as accurate as the step; the new state's admissibility
   (det F > 0, a cable's fibre stretches > 0) is checked instead of its residual, and the
-  energy guard applies as for every variant. ``newton_rtol`` does not apply.
+  energy guard applies as for every variant. ``newton_rtol`` does not apply. Not
+  unconditionally stable: an unconverged step feeds the stiff modes, and on the pendulum
+  it folds or gains energy at 10 ms steps and on fine meshes at 5 ms (measured by the
+  peers' work-precision grid, reports/peers_work_precision.md).
 
 With "chord", "modified" or "linear" a failed step is redone once from the predictor with full
 Newton before it is rejected. A reused factorisation stops on the residual only: its
