@@ -609,3 +609,15 @@ def test_a_missed_target_is_measured_by_mode_and_by_the_parts_of_a_step(monkeypa
     assert "Why the 1 % target" not in pr.report_markdown(other, [], costs[:1])      # drawn for its own pair only
     two = dict(c, split={**c["split"], "run": {**c["split"]["run"], "newton_iterations": 142}})
     assert sc.linear_estimate(two) is None                    # not one iteration per step: no estimate
+    # the linear mode's run within the target in time: said not to count where the grid's run of
+    # it in that mode is refused by the two-way rule (a finer mesh at its step failed), with why
+    lin = [rec("ancf", "HC2n-8 (linear)", n, 5e-3, 0.0005, 0.0008) for n in (4, 8, 16, 32)]
+    lin.append(dict(rec("ancf", "HC2n-8 (linear)", 64, 5e-3, None, None), status="failed",
+                    reason="step below dt_min: det F <= 0"))
+    said = "\n".join(sc.lines(costs[:1], recs + lin))
+    assert "The linear mode's run meets the target in time (0.611)" not in said     # 0.0011 / 0.0018 > 0.5
+    cheap = dict(c, rounds=[{**r, "modes": {**r["modes"], "linear": {**r["modes"]["linear"], "time_s": 0.0008}}}
+                            for r in c["rounds"]])
+    said = "\n".join(sc.lines([cheap], recs + lin))
+    assert "does not count at 1 %" in said and "64 elements at 5 ms failed (step below dt_min: det F <= 0)" in said
+    assert "does not count" not in "\n".join(sc.lines([cheap], recs + lin[:-1]))     # every finer run reaches it

@@ -224,7 +224,7 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = (), costs:
                                        for a, o, p, _, _ in rows)]
     if current:
         from .step_cost import lines as cost_lines
-        lines += [""] + cost_lines(current)[:-1]
+        lines += [""] + cost_lines(current, recs)[:-1]
     fl = floors(recs)
     if fl:
         lines += ["", "Accuracy floors, read at the finest step of the finest mesh (the cable's: its physics, "
