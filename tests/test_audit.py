@@ -145,3 +145,18 @@ def test_a_tampered_report_is_named_by_file_and_line(tmp_path):
     line = _tamper(table, f"| {cell} |", f"| {float(cell) + 0.01:.2f} |")
     res = audit(copy)
     assert [p.split(": ")[0] for p in res.problems if p.startswith(str(copy / "table3"))] == [f"{table}:{line}"]
+
+
+def test_a_card_whose_records_are_stale_is_named_with_the_command_that_recomputes_it(tmp_path):
+    """A card whose records match none of today's cases (code changed since) cannot be
+    rendered again: the audit's hook names it and the command, as one problem, instead of
+    a traceback."""
+    import json
+
+    from studies.design.card import render_for_audit
+
+    (tmp_path / "data").mkdir()
+    (tmp_path / "data" / "card-HB2n-12-checks.json").write_text(json.dumps({"element": "HB2n-12", "tiny": True}))
+    with pytest.raises(LookupError, match=r"the cards of HB2n-12 have no records of today's code .*"
+                                          r"`python -m studies card HB2n-12`"):
+        render_for_audit(tmp_path)

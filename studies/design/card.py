@@ -131,5 +131,18 @@ def _recorded_cases(reports: Path) -> dict:
 
 
 # the cards' records and pages, known to the engine's audit and verify
-register_prebuild("cards", render_recorded)
+def render_for_audit(out: Path) -> list[Path]:
+    """The audit's hook: every card rendered again from its records; cards whose records are
+    not of today's code (no run matches a case) are named in one LookupError, after the
+    others are rendered, with the command that recomputes them."""
+    stale: list = []
+    paths = render_recorded(out, stale=stale)
+    if stale:
+        raise LookupError(f"the cards of {', '.join(stale)} have no records of today's code (no run matches a "
+                          f"case): recompute them with `python -m studies card {' '.join(stale)}` (with the --import "
+                          "of a user's element)")
+    return paths
+
+
+register_prebuild("cards", render_for_audit)
 register_case_source("cards", _recorded_cases)

@@ -114,7 +114,10 @@ def audit(reports: Path, catalog_path: Path = CASES_TOML, tiny: bool = False, lo
             if (reports / d).is_dir():
                 shutil.copytree(reports / d, tmp / d)
         for hook in PREBUILD.values():
-            hook(tmp)
+            try:
+                hook(tmp)
+            except LookupError as e:         # records that cannot render (a stale card): a problem, named
+                res.problems.append(f"{reports}: {e}")
         build_reports(tmp, tiny, log or (lambda *a, **k: None), catalog_path)
         made, have = _files(tmp), _files(reports)
         for name in sorted(made):
