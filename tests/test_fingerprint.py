@@ -6,7 +6,7 @@ import textwrap
 import pytest
 
 from studies.engine import fingerprint as fp
-from studies.engine.solvers import SOLVERS
+from studies.engine.solvers import SOLVERS, get_solver
 
 
 @pytest.fixture
@@ -58,8 +58,8 @@ def test_the_packages_are_those_the_code_imports(probe):
     assert set(f["packages"]) == {"numpy", "python"}
 
 
-def _modules(solver: str, scene: dict, options: dict | None = None) -> list[str]:
-    return fp.modules(*SOLVERS[solver].entries(scene, options))
+def _modules(solver: str, scene: dict, options: dict | None = None, module: str | None = None) -> list[str]:
+    return fp.modules(*get_solver(solver, module).entries(scene, options))
 
 
 def test_each_backend_counts_its_own_code_and_packages():
@@ -72,7 +72,8 @@ def test_each_backend_counts_its_own_code_and_packages():
     pd, pf = (SOLVERS["continuum"].fingerprint(s)["packages"] for s in (dolfinx, felupe))
     assert "fenics-dolfinx" in pd and "felupe" not in pd and "tensortrax" not in pd
     assert "felupe" in pf and "tensortrax" in pf and "fenics-dolfinx" not in pf
-    mms_d = _modules("mms", {"mms": {"code": "dolfinx"}})
+    # a study's own solver, registered by its module (imported here as a worker imports it)
+    mms_d = _modules("mms", {"mms": {"code": "dolfinx"}}, module="studies.verification.manufactured")
     assert "reference_fem.dolfinx_backend.manufactured" in mms_d and "reference_fem.felupe_backend.manufactured" not in mms_d
 
 

@@ -78,6 +78,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 from contract import paper
 
@@ -301,6 +302,13 @@ def bending_scene(grid: dict, law: str, form: str, x: float, lengths: int, solve
 def bending_reference(law: str, form: str, x: float) -> dict:
     """The exact pure bending at kappa h = x of the strip's section: Rivlin's flexure in plane
     strain, the plane-stress two-point problem otherwise (:mod:`studies.verification.closed_forms`)."""
+    return dict(_bending_reference(law, form, float(x)))
+
+
+@lru_cache(maxsize=None)
+def _bending_reference(law: str, form: str, x: float) -> dict:
+    # once per process: the plane-stress shooting takes a tenth of a second, and each of its
+    # cases' scenes (every solver, every length) asks for it
     c, _ = constants(law)
     h = STRIP["height"]
     solve = rivlin_bending if form == "plane-strain" else plane_stress_bending
