@@ -142,3 +142,13 @@ def test_dolfinx_orders_and_the_same_errors_as_felupe(model):
     assert other["error_u"] == pytest.approx(res[0]["error_u"], rel=1e-6)
     if other["error_p"] is not None:
         assert other["error_p"] == pytest.approx(res[0]["error_p"], rel=1e-6)
+
+
+@pytest.mark.parametrize("code", ["dolfinx", "felupe"])
+def test_the_studys_run_solves_every_level_through_the_backend(code):
+    """The study's solver end to end, two levels in one process (the second level once
+    failed: the backend package's function was rebound to its submodule by the first)."""
+    from studies.verification.manufactured import run, scene
+    rec = run(scene(code, "plane-strain", "neo-hookean", [2, 4]))
+    assert rec["status"] == "converged", rec["reason"]
+    assert [lv["cells"] for lv in rec["mms"]["levels"]] == [2, 4] and len(rec["mms"]["orders_u"]) == 1
