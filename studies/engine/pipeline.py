@@ -56,16 +56,14 @@ def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = F
             "unchanged); not rebuilt")
     else:
         build_reports(out, tiny, log, catalog_path)
-    if Path(out).resolve() == REPORTS.resolve():     # the README's quotes of the reports
-        from .readme import refresh
-        if refresh():
-            log("README.md: its quotes of the reports rewritten")
+    _quote(out, log)
     times["(reports)"] = time.perf_counter() - t0
     return times
 
 
 def build_reports(out: Path, tiny: bool = False, log=print, catalog_path: Path = CASES_TOML) -> Path:
-    """Tables, figures and README.md from the records in ``out``/data (no solver runs)."""
+    """Tables, figures and README.md from the records in ``out``/data (no solver runs), and the
+    project README's quotes of them (:func:`_quote`)."""
     from .report import Context, write_readme
     from .store import store_for
 
@@ -80,4 +78,15 @@ def build_reports(out: Path, tiny: bool = False, log=print, catalog_path: Path =
         except Exception as e:  # name the study, then fail loudly
             log(f"{study.name}: report failed: {type(e).__name__}: {e}")
             raise
-    return write_readme(out, sections, tiny)
+    path = write_readme(out, sections, tiny)
+    _quote(out, log)
+    return path
+
+
+def _quote(out: Path, log=print) -> None:
+    """The project README's quotes of the reports rewritten from them, when ``out`` is
+    ``reports/`` (every command that rebuilds reports there: a study run, a card, a report)."""
+    if Path(out).resolve() == REPORTS.resolve():
+        from .readme import refresh
+        if refresh():
+            log("README.md: its quotes of the reports rewritten")
