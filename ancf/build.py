@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -36,7 +37,23 @@ def check(scene: Scene) -> Scene:
     check_names(scene, laws=LAWS, formulations=FORMULATIONS, integrators=INTEGRATORS, elements=ELEMENTS)
     _check_kinematics(scene)
     _check_pressure_rule(scene)
+    _check_aspect(scene)
     return scene
+
+
+def _check_aspect(scene: Scene) -> None:
+    """The element's basis must be determined by its nodal coordinates at this mesh's l_e and
+    h (and at l_e / h, the rank tests' scaling): an element absurdly stout (l_e / h = 1e-7
+    for HB2n-12 and HB3n-12) makes the nodal matrix singular in floating point."""
+    s, el = scene.ancf, get_element(scene.ancf.element)
+    le, h = scene.beam.length / s.elements, scene.beam.height
+    try:
+        el.dimensionless(le, h)
+        el.dimensionless(le / h, 1.0)
+    except ValueError:
+        raise SceneError(f"beam.height: an element of l_e / h = {le / h:.3g} (beam.length / ancf.elements / "
+                         f"beam.height) is singular for {el.name}: its nodal coordinates do not determine its "
+                         "basis in floating point (fewer elements or a more slender beam)") from None
 
 
 def _check_kinematics(scene: Scene) -> None:
@@ -93,7 +110,15 @@ class Plan:
     aspect: float                       # l_e / h
     estimate: Estimate
     capacity_warnings: tuple[str, ...]
-    rule_warnings: tuple[str, ...]
+
+    @cached_property
+    def rule_warnings(self) -> tuple[str, ...]:
+        """The rank tests' verdict on a rule the scene chose (:func:`ancf.rank.rule_warnings`),
+        run when first asked (a run's record), not by a check: they take half a second per
+        element, rule and l_e / h."""
+        if self.scene.ancf.quadrature is None:
+            return ()
+        return tuple(rule_warnings(self.element, self.rule, self.formulation.penalised, self.aspect))
 
     @property
     def warnings(self) -> list[str]:
@@ -109,8 +134,7 @@ def plan(scene: Scene) -> Plan:
     aspect = scene.beam.length / s.elements / scene.beam.height
     rule = tuple(s.quadrature) if s.quadrature is not None else default_quadrature(el, form.penalised, aspect)
     est = _estimate(scene, el, rule)
-    warned = rule_warnings(el, rule, form.penalised, aspect) if s.quadrature is not None else []
-    return Plan(scene, el, form, rule, aspect, est, tuple(check_capacity(est, "ancf")), tuple(warned))
+    return Plan(scene, el, form, rule, aspect, est, tuple(check_capacity(est, "ancf")))
 
 
 def resolve(scene: Scene | Plan) -> Plan:

@@ -111,23 +111,10 @@ def _warm_ancf(scene: dict) -> None:
 
 
 def _check_ancf(scene: dict) -> None:
-    """Refuse a scene the ANCF solver cannot run or that cannot fit in this machine's memory:
-    :func:`ancf.build.plan` without the rank tests of a rule the scene chose. A run records
-    those as warnings; they take half a second per element, rule and l_e / h, and a study's
-    check of its cases (every case it builds) needs none of them."""
-    from ancf import build
-    from ancf.elements import get_element
-    from ancf.formulations import get_formulation
-    from ancf.rank import default_quadrature
-    from contract.capacity import check_capacity
+    from ancf.build import capacity
     from contract.scene import scene_from_dict
 
-    sc = build.check(scene_from_dict(scene))
-    s, el = sc.ancf, get_element(sc.ancf.element)
-    aspect = sc.beam.length / s.elements / sc.beam.height
-    rule = tuple(s.quadrature) if s.quadrature is not None else \
-        default_quadrature(el, get_formulation(sc.material.formulation).penalised, aspect)
-    check_capacity(build._estimate(sc, el, rule), "ancf")
+    capacity(scene_from_dict(scene))
 
 
 def _check_continuum(scene: dict) -> None:

@@ -150,6 +150,20 @@ def test_ten_million_elements_are_refused_with_the_memory_they_would_need(capsys
         ancf_capacity(scene_from_dict(d))
 
 
+def test_an_element_its_nodal_coordinates_cannot_determine_is_a_scene_error():
+    """A beam 67 km high for 0.16 m of length (the full tier's fuzz found it): HB2n-12's
+    nodal matrix is singular in floating point at l_e / h = 1.5e-7; the check names the
+    field, it does not end in the element's ValueError (with the scene's own rule or the
+    default, run or rank test alike)."""
+    for ancf in ({}, {"quadrature": None}):
+        d = scene_with(beam={"height": 67230.0}, ancf=ancf)
+        d["ancf"] = {k: v for k, v in d["ancf"].items() if v is not None}
+        with pytest.raises(SceneError, match=r"beam\.height: an element of l_e / h = 1\.49e-07 .* singular for HB2n-12"):
+            ancf_capacity(scene_from_dict(d))
+    with pytest.raises(SceneError, match=r"beam\.height"):
+        run(scene_with(beam={"height": 67230.0}))
+
+
 def test_a_large_run_is_warned_about():
     from contract.capacity import Estimate, check_capacity
     w = check_capacity(Estimate(2 * 10 ** 6, 1e9, 2 * 10 ** 6, "x"), "ancf", available=1.5e9)
