@@ -152,16 +152,14 @@ def split(element: str, n: int, dt: float, rho_inf: float, scene: str, settings:
     state (``step``), the force and tangent there (``force_and_tangent``), the step
     matrix's factorisation and one solve (``factorise_and_solve``), and the force and
     residual at the corrected state (``verifying_residual``)."""
-    from ancf.build import build_integrator, build_model, external_loads, resolve
+    from ancf.build import build_integrator, external_loads, resolve
     from ancf.compiled_steps import I_MASS_SPLIT
     from mechanics import alpha_family
 
     from ancf.simulation import run_scene
 
-    sc = _scene(element, n, dt, rho_inf, scene, settings)
-    rec, (_, res) = run_scene(sc)
-    p = resolve(sc)
-    model = build_model(p)
+    p = resolve(_scene(element, n, dt, rho_inf, scene, settings))
+    rec, (model, res) = run_scene(p)
     M = model.mass_matrix()
     integ = build_integrator(p, model, M, external_loads(model, p))
     loop = integ._loop
