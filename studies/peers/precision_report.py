@@ -232,7 +232,8 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = (), costs:
                   "| solver | element | n | dt (ms) | error (%) |", "|---|---|---|---|---|"]
         for (solver, element), r in sorted(fl.items()):
             lines.append(f"| {solver} | {element} | {r['elements']} | {r['dt'] * 1e3:g} | {100 * r['error']:.4f} |")
-        lines += ["", floors_by_section(fl)] if floors_by_section(fl) else []
+        by_section = floors_by_section(fl)
+        lines += ["", by_section] if by_section else []
     pins = sorted({k for r in fl.values() for k in (r.get("error_by_pin_mm") or {})}, key=float, reverse=True)
     if pins:
         lines += ["", "The floors against the same continuum with other pin sizes (the point pin is as large as its "
