@@ -13,7 +13,10 @@
   DIR/data in a temporary directory and compared line by line (:mod:`studies.engine.audit`);
   exits 1 naming file and line of each mismatch; never runs a solver; a pass stamps the
   inputs and the reports (:mod:`studies.engine.stamp`), and while both are unchanged the
-  next audit says so without rebuilding (``--full``: rebuild anyway);
+  next audit says so without rebuilding (``--full``: rebuild anyway); without ``--reports`` it
+  first checks README.md and the documentation pages: their quotes of the reports, their
+  numbers (:mod:`studies.engine.claims`) and their comparisons in words
+  (:mod:`studies.engine.comparisons`);
 - ``diff OLD NEW``: the records of two output directories compared case by case
   (:mod:`studies.engine.diff`): which results changed, and by how much;
 - ``verify --sample N [--seed S] [--budget S] [--max-case-s S]``: N randomly drawn committed
@@ -99,11 +102,11 @@ def _audit(args) -> int:
     from .engine import stamp
 
     reports = Path(args.reports) if args.reports else REPORTS
-    if not args.reports:      # the README's quotes of the reports and the loops record, at every audit
-        from .engine import claims
+    if not args.reports:      # the README's quotes of the reports and the loops record, the pages' numbers
+        from .engine import claims, comparisons    # and comparisons in words, at every audit
         from .engine.readme import problems
         from .loops import record_problems
-        quote = problems() + record_problems() + claims.problems()
+        quote = problems() + record_problems() + claims.problems() + comparisons.problems()
         for p in quote:
             print(p)
         if quote:
