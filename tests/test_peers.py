@@ -358,7 +358,7 @@ def test_the_peer_reports_are_audited_against_their_records(tmp_path):
     res = AuditResult()
     covered = audit_peers(copy, res)
     assert res.ok, "\n".join(res.problems)
-    assert sorted(res.checked) == sorted([*PEER_REPORTS, *figures]) and len(figures) == 2
+    assert sorted(res.checked) == sorted([*PEER_REPORTS, *figures]) and len(figures) == 4   # 2 scenes: lead, all
     assert {n[:-len(".figure.csv")] + ".png" for n in figures} <= covered
     wp = copy / "peers_work_precision.md"
     lines = wp.read_text().splitlines(keepends=True)

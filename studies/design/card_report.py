@@ -11,7 +11,8 @@ import numpy as np
 from .card_cases import beam_theory, cases, checks_path, element_imports, grid_for, slug
 from ..common.pendulum_cases import FEM_GOLD, continuum_pendulum, describe_dynamic, tip_errors
 from ..common.gold import MATCHING, gold_references, short
-from ..engine.report import FIGURE_DATA, figure, mm, vec_error, write_figure_data
+from ..engine.report import (FIGURE_DATA, element_color, figure, legend_outside, mm, target_handle, vec_error,
+                             write_figure_data)
 from ..engine.store import RecordStore, store_for
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -128,7 +129,7 @@ def _rank_section(chk: dict, out: Path, name: str) -> list[str]:
         ax[k].set_xscale("log")
         ax[k].set_xlabel("l_e / h")
         ax[k].set_title(t, fontsize=9)
-    ax[1].legend(fontsize=7)
+    legend_outside(fig, title="rule", title_fontsize=7)
     fig.savefig(out / f"{name}-rank.png", dpi=100, bbox_inches="tight")
     write_figure_data(fig, out / f"{name}-rank{FIGURE_DATA}")
     _close(fig)
@@ -185,7 +186,7 @@ def _convergence(recs, refs, out: Path | None = None, name: str = "") -> list[st
     ax.set_xlabel("elements n")
     ax.set_ylabel("|u - u_ref| / |u_ref| (tip)")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
+    legend_outside(fig)
     fig.savefig(out / f"{name}-error.png", dpi=100, bbox_inches="tight")
     _close(fig)
     (out / f"{name}-error.figure.csv").write_text("\n".join(rows) + "\n")
@@ -456,19 +457,26 @@ def _cost(element: str, law: str, out: Path, cards: Path, name: str) -> list[str
         if pts:
             pts.sort(key=lambda p: p[2])
             mine = other == slug(element)
-            axes.plot([p[0] for p in pts], [max(p[1], 1e-7) for p in pts], "o-" if mine else ".--",
-                      lw=2 if mine else 0.8, ms=4, label=other)
+            xs, ys = [p[0] for p in pts], [max(p[1], 1e-7) for p in pts]
+            if mine:
+                axes.plot(xs, ys, "o-", lw=2, ms=4, color=element_color(element), label=other, zorder=3)
+            else:   # the other cards in one grey family: one legend entry, each curve named in the data
+                axes.plot(xs, ys, ".--", lw=0.8, ms=3, color="0.65", label=f"_{other}", zorder=1)
             drawn.append(other)
+    if len(drawn) > 1:
+        axes.plot([], [], ".--", lw=0.8, ms=3, color="0.65", label="the other elements with a card")
     axes.set_xscale("log")
     axes.set_yscale("log")
+    axes.grid(True, which="major", alpha=0.3)
     axes.set_xlabel("wall time, serial warm median (s)")
     axes.set_ylabel(f"|u - u_ref| / |u_ref| ({short(law)}, plane stress)")
-    axes.legend(fontsize=7)
+    legend_outside(fig)
     fig.savefig(cards / f"{name}-cost.png", dpi=100, bbox_inches="tight")
     write_figure_data(fig, cards / f"{name}-cost{FIGURE_DATA}")
     _close(fig)
-    return ["## 7. Cost", "", f"{short(law)}, plane stress, the static refinement; the other elements with a card in this "
-            f"directory ({', '.join(o for o in drawn if o != slug(element)) or 'none yet'}) dashed.", "",
+    return ["## 7. Cost", "", f"{short(law)}, plane stress, the static refinement: this element in colour, the other elements with a "
+            f"card in this directory ({', '.join(o for o in drawn if o != slug(element)) or 'none yet'}) grey and "
+            "dashed (each one's curve is in colour on its own card, and named in this figure's data).", "",
             f"![cost]({name}-cost.png)", ""]
 
 
@@ -615,7 +623,9 @@ def _sweep(recs, cards: Path, name: str, tiny: bool) -> list[str]:
         ax.axhline(t, color="grey", ls=":", lw=0.8)
     ax.set_xlabel("L / h")
     ax.set_ylabel("|u - u_ref| / |u_ref| (tip)")
-    ax.legend(fontsize=7)
+    h, l = ax.get_legend_handles_labels()
+    th, tl = target_handle(grid["targets"])
+    legend_outside(fig, h + [th], l + [tl])
     fig.savefig(cards / f"{name}-slenderness.png", dpi=100, bbox_inches="tight")
     write_figure_data(fig, cards / f"{name}-slenderness{FIGURE_DATA}")
     _close(fig)

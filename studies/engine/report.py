@@ -173,9 +173,13 @@ class Context:
 
 
 def figure(nrows: int = 1, ncols: int = 1, **kw):
+    """``plt.subplots`` on the Agg backend, with matplotlib's constrained layout unless told
+    otherwise (titles, labels and tick labels of neighbouring axes kept apart, the axes
+    reaching the figure's right edge, where :func:`legend_outside` puts the legend)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    kw.setdefault("layout", "constrained")
     return plt.subplots(nrows, ncols, **kw)
 
 
@@ -269,6 +273,102 @@ def hollow_legend(ax) -> None:
     h.append(Line2D([], [], ls="none", marker="o", color="grey", mfc="none"))
     l.append("hollow: singular, indefinite, warned or undetermined")
     return h, l
+
+
+# -- what a figure a reader opens first may draw (the lead figures; their full clouds are
+# secondary figures beside them, with the same data in their .figure.csv)
+MAX_SERIES = 8           # labelled series per axes
+TARGETS = (0.01, 0.003, 0.001)   # the accuracy targets the work-precision figures mark
+OTHERS = "other elements' fronts (grey)"
+
+
+def series(ax) -> list[str]:
+    """The labelled series an axes draws (lines and scatter sets whose label does not start
+    with '_': matplotlib's mark for an artist the legend leaves out, which the figures use
+    for markers, target lines and annotations of a labelled series)."""
+    return [a.get_label() for a in [*ax.get_lines(), *ax.collections]
+            if not str(a.get_label()).startswith("_")]
+
+
+def legend_outside(fig, handles=None, labels=None, **kw):
+    """One legend for the whole figure, right of its axes (outside every axes: saved with
+    ``bbox_inches="tight"`` it widens the image instead of covering data); ``handles`` and
+    ``labels`` default to every axes' labelled artists, each label once."""
+    if handles is None:
+        handles, labels, seen = [], [], set()
+        for ax in fig.axes:
+            for h, l in zip(*ax.get_legend_handles_labels()):
+                if l not in seen:
+                    seen.add(l)
+                    handles.append(h)
+                    labels.append(l)
+    kw.setdefault("fontsize", 7)
+    return fig.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.0, 1.0),
+                      bbox_transform=fig.transFigure, **kw)
+
+
+def element_color(element: str) -> str:
+    """An element's colour, the same in every figure: its place among the built-in elements
+    of the registry, in tab10 without its grey (grey is the lead figures' secondary lines);
+    an element registered by another module gets the colour after theirs."""
+    import matplotlib
+
+    from ancf.elements import ELEMENTS
+
+    names = [n for n in ELEMENTS.keys() if n in ELEMENTS.builtin]
+    colors = [c for k, c in enumerate(matplotlib.colormaps["tab10"].colors) if k != 7]
+    i = names.index(element) if element in names else len(names)
+    return matplotlib.colors.to_hex(colors[i % len(colors)])
+
+
+def front(points: list[dict], error: str = "error", time: str = "time") -> list[dict]:
+    """The Pareto envelope of ``points`` (dicts with a time and an error; missing ones are
+    passed by): sorted by time, each point whose error is below every cheaper point's, so
+    that the first point of the front within an accuracy is the cheapest that reaches it."""
+    out = []
+    for p in sorted((p for p in points if p.get(error) is not None and p.get(time)),
+                    key=lambda p: (p[time], p[error])):
+        if not out or p[error] < out[-1][error]:
+            out.append(p)
+    return out
+
+
+def draw_front(ax, pts: list[dict], label: str, error: str = "error", time: str = "time", **kw):
+    """A front (:func:`front`) as the staircase of the smallest error each time buys: flat
+    from each point to the next cheaper-and-better one, then down; markers at the runs."""
+    xs, ys = [p[time] for p in pts], [p[error] for p in pts]
+    kw = {"ms": 4, "lw": 1.4, **kw}
+    (line,) = ax.plot(xs, ys, drawstyle="steps-post", label=label, **kw)
+    return line
+
+
+def draw_grey(ax, curves: list[tuple[list, list]], label: str = OTHERS, **kw):
+    """Several curves as one grey series (joined by NaN breaks): the secondary lines of a lead
+    figure, shown without one legend entry each; None when there are none."""
+    xs, ys = [], []
+    for x, y in curves:
+        if len(x):
+            xs += [*x, float("nan")]
+            ys += [*y, float("nan")]
+    if not xs:
+        return None
+    kw = {"color": "0.72", "lw": 0.8, "drawstyle": "steps-post", "zorder": 1, **kw}
+    (line,) = ax.plot(xs, ys, label=label, **kw)
+    return line
+
+
+def draw_targets(ax, targets=TARGETS) -> None:
+    """The accuracy targets as dotted horizontal lines (left out of the legend, which names
+    them once: :func:`target_handle`)."""
+    for a in targets:
+        ax.axhline(a, color="grey", lw=0.7, ls=":", label=f"_target {a:g}")
+
+
+def target_handle(targets=TARGETS):
+    """A legend entry for the targets' dotted lines."""
+    from matplotlib.lines import Line2D
+
+    return Line2D([], [], color="grey", lw=0.7, ls=":"), "targets " + ", ".join(f"{100 * a:g}" for a in targets) + " %"
 
 
 def vec_error(tip: dict | None, ref: tuple[float, float] | None) -> float | None:

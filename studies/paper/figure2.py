@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from ..common.grid import cantilever_case, counts_of, qlabel, rule, takes
 from ..common.gold import short, VARIANT_LABEL, abaqus, continuum_references, describe
-from ..engine.report import GOOD, draw, hollow_legend, verdict
+from ..engine.report import GOOD, draw, element_color, hollow_legend, legend_outside, verdict
 from ..engine.report import Section, Table, figure, marker, mm, pct, vec_error
 
 
@@ -99,7 +99,8 @@ def _figure(ctx, sec: Section, g: dict, recs, refs, config: tuple) -> None:
     """Tip ux, uy against the element count of one configuration, a column per law."""
     f, q, c = config
     lines = _continuum_lines(f)
-    fig, axes = figure(2, len(g["laws"]), figsize=(4.2 * len(g["laws"]), 6.5), squeeze=False, sharex=True)
+    fig, axes = figure(2, len(g["laws"]), figsize=(3.8 * len(g["laws"]), 5.6), squeeze=False, sharex=True,
+                       layout="constrained")
     for j, law in enumerate(g["laws"]):
         for el in g["elements"]:
             if not takes(g, el, q):
@@ -109,7 +110,8 @@ def _figure(ctx, sec: Section, g: dict, recs, refs, config: tuple) -> None:
             ns = [n for n, tip, _ in ser if tip]
             for i, comp in enumerate(("ux", "uy")):
                 draw(axes[i][j], ns, [mm(tip[comp]) for n, tip, _ in ser if tip], [verdicts[n] for n in ns], el,
-                     marker=marker(el, g["elements"]), ms=4, lw=1, ls="--" if el in g.get("low_order", ()) else "-")
+                     marker=marker(el, g["elements"]), ms=4, lw=1, ls="--" if el in g.get("low_order", ()) else "-",
+                     color=element_color(el))
         for i, comp in enumerate(("ux", "uy")):
             ax = axes[i][j]
             for v, ls in zip(lines, (":", "-.")):
@@ -132,7 +134,7 @@ def _figure(ctx, sec: Section, g: dict, recs, refs, config: tuple) -> None:
             ax.grid(True, which="both", alpha=0.3)
             if i == 1:
                 ax.set_xlabel("number of elements")
-    axes[0][0].legend(*hollow_legend(axes[0][0]), fontsize=7, loc="best")
+    legend_outside(fig, *hollow_legend(axes[0][0]))
     fig.suptitle(f"Tip displacement against elements: `{f}`, quadrature {q}, clamp {c}", fontsize=10)
     sec.figure(ctx, fig, f"figure2_{f}_{qlabel(q)}_{c}",
                f"Tip ux, uy (mm) against the number of elements, `{f}` formulation, quadrature {q}, clamp {c}; "

@@ -16,7 +16,7 @@ from contract import paper
 
 from ..common.pendulum_cases import (LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case,
                        tip_errors)
-from ..engine.report import Section, Table, draw, figure, hollow_legend, marker
+from ..engine.report import Section, Table, draw, element_color, figure, hollow_legend, legend_outside, marker
 
 
 STUDY = {
@@ -113,33 +113,38 @@ def _element(g: dict, descs: list[dict], f: str, el: str, ref) -> dict:
     return {"pts": pts, "good": good, "rows": rows, "line": line, "step": step}
 
 
-def _draw_element(ax, g: dict, el: str, data: dict) -> None:
-    """The element's error at t_end (solid), its maximum over t (dashed) and against its own
-    finest mesh (dotted)."""
+ROWS = ("at t_end", "max over t", "vs own finest")     # the figure's rows, one measure each
+
+
+def _draw_element(axes, g: dict, el: str, data: dict) -> None:
+    """The element's error at t_end (top row), its maximum over t (middle) and its maximum
+    against its own finest mesh (bottom), in the element's colour."""
     t_end = round(g["t_end"], 9)
     good = data["good"]
     if not good:
         return
     ns, vs = [d["elements"] for d, _, _ in good], [d["verdict"] for d, _, _ in good]
-    draw(ax, ns, [max(e[t_end], 1e-9) for _, e, _ in good], vs, f"{el} at {g['t_end']:g} s",
-         marker=marker(el, g["elements"]), ls="-", lw=1.2)
-    draw(ax, ns, [max(max(e.values()), 1e-9) for _, e, _ in good], vs, f"{el} max over t",
-         marker=marker(el, g["elements"]), ls="--", lw=0.8, ms=3, color=ax.lines[-1].get_color())
+    style = dict(marker=marker(el, g["elements"]), color=element_color(el), lw=1.2)
+    draw(axes[0], ns, [max(e[t_end], 1e-9) for _, e, _ in good], vs, el, **style)
+    draw(axes[1], ns, [max(max(e.values()), 1e-9) for _, e, _ in good], vs, el, **style)
     selfc = [(d, s) for d, _, s in data["pts"] if s]
     if selfc:
-        ax.plot([d["elements"] for d, _ in selfc], [max(max(s.values()), 1e-9) for _, s in selfc],
-                ls=":", lw=1, color=ax.lines[-1].get_color())
+        draw(axes[2], [d["elements"] for d, _ in selfc], [max(max(s.values()), 1e-9) for _, s in selfc],
+             [d["verdict"] for d, _ in selfc], el, **style)
 
 
-def _axes(ax, g: dict, f: str, label: str, first: bool) -> None:
-    ax.set_xscale("log", base=2)
-    ax.set_xticks(g["counts"], [str(n) for n in g["counts"]])
-    ax.set_yscale("log")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.set_xlabel("number of elements")
-    ax.set_title(f"`{f}` vs {label}", fontsize=8)
-    if first:
-        ax.set_ylabel("|r - r_ref| / L")
+def _axes(axes, g: dict, f: str, label: str, first: bool) -> None:
+    for i, ax in enumerate(axes):
+        ax.set_xscale("log", base=2)
+        ax.set_xticks(g["counts"], [str(n) for n in g["counts"]])
+        ax.set_yscale("log")
+        ax.grid(True, which="both", alpha=0.3)
+        if i == len(axes) - 1:
+            ax.set_xlabel("number of elements")
+        if first:
+            ax.set_ylabel({0: f"|r - r_ref| / L at t = {g['t_end']:g} s", 1: "max over t of |r - r_ref| / L",
+                           2: "max over t of |r - r_finest| / L"}[i], fontsize=8)
+    axes[0].set_title(f"`{f}` vs {label}", fontsize=8)
 
 
 def report(ctx) -> Section:
@@ -149,10 +154,11 @@ def report(ctx) -> Section:
                   f"The pendulum ({g.get('law', paper.PENDULUM_LAW)}, {g['t_end']:g} s, generalized-alpha rho_inf = "
                   f"{g['rho_inf']}, dt = {1e3 * g['dt']:g} ms) at 4 to {max(g['counts'])} elements: tip error "
                   f"|r - r_ref| / L (L = {1e3 * LENGTH:g} mm) at t = {g['t_end']:g} s and the maximum over the output "
-                  "times, against the converged continuum plane-stress tip; dotted: each element against its own "
+                  "times, against the converged continuum plane-stress tip; bottom row of the figure: each element against its own "
                   "finest mesh.")
     forms = g["formulations"]
-    fig, axes = figure(1, len(forms), figsize=(5.2 * len(forms), 4.2), squeeze=False, sharey=True)
+    fig, axes = figure(len(ROWS), len(forms), figsize=(4.2 * len(forms), 2.6 * len(ROWS)), squeeze=False,
+                       sharex=True, sharey="row", layout="constrained")
     rows, steprows, lines = [], [], []
     for j, f in enumerate(forms):
         ref, label, provisional = reference_for(ctx, f, descs)
@@ -160,16 +166,17 @@ def report(ctx) -> Section:
         for el in g["elements"]:
             data = _element(g, descs, f, el, ref)
             rows += data["rows"]
-            _draw_element(axes[0][j], g, el, data)
+            _draw_element([axes[i][j] for i in range(len(ROWS))], g, el, data)
             block += [data["line"]] if data["line"] else []
             steprows.append(data["step"])
-        _axes(axes[0][j], g, f, label, j == 0)
+        _axes([axes[i][j] for i in range(len(ROWS))], g, f, label, j == 0)
         lines += [f"- `{f}` against {label}:"] + block
-    axes[0][-1].legend(*hollow_legend(axes[0][-1]), fontsize=6, loc="best")
+    legend_outside(fig, *hollow_legend(axes[0][0]))
     sec.figure(ctx, fig, "figure4_pendulum_convergence",
-               "Tip error of the pendulum against the number of elements per element (solid: at t_end, dashed: maximum "
-               "over the output times; dotted: against the element's own finest mesh); the reference is named in each "
-               "panel's title (continuum plane stress, or PROVISIONAL finest ANCF while the continuum gold is absent).")
+               "Tip error of the pendulum against the number of elements, one line per element: top at t_end, middle "
+               "its maximum over the output times, bottom its maximum against the element's own finest mesh "
+               "(self-convergence); the reference is named in each column's title (continuum plane stress, or "
+               "PROVISIONAL finest ANCF while the continuum gold is absent).")
     sec.table(ctx, Table("figure4_convergence",
                          ["formulation", "element", "n", "ndof", "status", f"error at {g['t_end']:g} s (% L)",
                           "max error (% L)", "max error (mm)", "vs own finest, max (% L)", "steps", "Newton", "verdict"],

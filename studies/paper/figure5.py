@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from ..common.pendulum_cases import LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case, tip_errors
 from ..common.gold import short
-from ..engine.report import Section, Table, figure, linestyle
+from ..engine.report import Section, Table, figure, legend_outside, linestyle
 
 
 STUDY = {
@@ -59,7 +59,7 @@ def report(ctx) -> Section:
     rows = []
     forms = g["formulations"]
     for law in g["laws"]:
-        fig, axes = figure(1, len(forms), figsize=(5.6 * len(forms), 5.6), squeeze=False, sharey=True)
+        fig, axes = figure(1, len(forms), figsize=(5.0 * len(forms), 3.2), squeeze=False, sharey=True)
         for j, f in enumerate(forms):
             ax = axes[0][j]
             c = cont.get((law, CONTINUUM_MODEL[f]))
@@ -92,7 +92,7 @@ def report(ctx) -> Section:
             if j == 0:
                 ax.set_ylabel("y (mm)")
             ax.set_title(f"{law}, `{f}`" + (" (vs continuum plane stress)" if f == "paper" else ""), fontsize=9)
-            ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=3)
+        legend_outside(fig)
         sec.figure(ctx, fig, f"figure5_{law}",
                    f"{law}: pendulum centre lines at t = 0 ... {g['t_end']:g} s (colour: time, line style: element; "
                    f"left `{forms[0]}`{', right `' + forms[1] + '`' if len(forms) > 1 else ''}); red stars: the "

@@ -17,7 +17,7 @@ from __future__ import annotations
 from contract import paper
 
 from ..common.pendulum_cases import LADDER, converged_rung, describe_dynamic, gold_tips, ladder, pendulum_case
-from ..engine.report import Section, Table, figure
+from ..engine.report import Section, Table, element_color, figure, legend_outside
 
 
 STUDY = {
@@ -116,7 +116,7 @@ def _figure(ctx, sec: Section, g: dict, plot: dict, ptab: dict) -> None:
     fig, ax = figure(1, 1, figsize=(5.5, 4.0))
     for (f, el), pts in plot.items():
         ax.plot([n for n, _ in pts], [m for _, m in pts], marker="o", ls="-" if f == "plane-stress" else "--",
-                label=f"ours {el} `{f}`")
+                color=element_color(el), label=f"ours {el} `{f}`")
     for el in g["elements"]:
         pp = [(n, ptab[(el, n)]) for n in g["counts"] if (el, n) in ptab]
         ax.plot([n for n, _ in pp], [v for _, v in pp], marker="x", ls=":", color="grey", lw=0.8)
@@ -126,7 +126,7 @@ def _figure(ctx, sec: Section, g: dict, plot: dict, ptab: dict) -> None:
     ax.set_xlabel("number of elements")
     ax.set_ylabel("time for 0.5 s of motion (s)")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=6)
+    legend_outside(fig)
     sec.figure(ctx, fig, "table4_times", "Our wall times (median of serial warm runs, at each converged step) and "
                "the paper's CPU times, against the number of elements, log scales: the gap is the ratio column.")
 

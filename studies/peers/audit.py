@@ -1,8 +1,8 @@
 """The audit of the peer reports: ``peers.md`` and ``peers_work_precision.md``, which
 ``make bench-peers`` writes outside the study pipeline, rebuilt from their records in
 ``DIR/data/peers/`` by their own plain functions (:data:`PEER_REPORTS`) and compared line
-by line, with the data of the work-precision figures (registered as a rule of
-:mod:`studies.engine.audit`)."""
+by line, with the data of the work-precision figures (each scene's lead figure and its
+full cloud; registered as a rule of :mod:`studies.engine.audit`)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -47,14 +47,16 @@ def audit_peers(reports: Path, res: AuditResult) -> set[str]:
             from .precision_report import figure_csv, figure_name, read, scenes_of
             recs = read(rec)
             for scene in scenes_of(recs):
-                png = figure_name(scene)
-                data = png[:-4] + FIGURE_DATA
-                covered |= {png, data}
-                if not (reports / data).exists():
-                    res.problems.append(f"{reports / data}:1: missing (the records give this file)")
-                    continue
-                res.checked.append(data)
-                res.problems += compare_text(str(reports / data), figure_csv(recs, scene), (reports / data).read_text())
+                for every in (False, True):        # the lead figure and the full cloud
+                    png = figure_name(scene, every)
+                    data = png[:-4] + FIGURE_DATA
+                    covered |= {png, data}
+                    if not (reports / data).exists():
+                        res.problems.append(f"{reports / data}:1: missing (the records give this file)")
+                        continue
+                    res.checked.append(data)
+                    res.problems += compare_text(str(reports / data), figure_csv(recs, scene, every),
+                                                 (reports / data).read_text())
     return covered
 
 

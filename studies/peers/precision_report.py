@@ -141,15 +141,19 @@ def scenes_of(recs: list[dict]) -> list[str]:
     return [s for s in SCENES if s in have] + sorted(have - set(SCENES))
 
 
-def figure_name(scene: str) -> str:
-    return "peers_work_precision.png" if scene == SCENE else f"peers_work_precision_{scene}.png"
+def figure_name(scene: str, every: bool = False) -> str:
+    """The lead figure of a scene, or (``every``) its full cloud of every run."""
+    stem = "peers_work_precision" if scene == SCENE else f"peers_work_precision_{scene}"
+    return f"{stem}_all.png" if every else f"{stem}.png"
 
 
 def report(recs: list[dict], out: Path, rounds: list[dict] = (), costs: list[dict] = ()) -> str:
-    """The tables (markdown, :func:`report_markdown`) and one figure per scene from the records."""
+    """The tables (markdown, :func:`report_markdown`) and two figures per scene from the
+    records: the lead one (each element's front) and every run."""
     text = report_markdown(recs, rounds, costs)
     for scene in scenes_of(recs):
-        figure([r for r in recs if r.get("scene", SCENE) == scene], out / figure_name(scene), scene)
+        for every in (False, True):
+            figure([r for r in recs if r.get("scene", SCENE) == scene], out / figure_name(scene, every), scene, every)
     (out / "peers_work_precision.md").write_text(text)
     return text
 
@@ -251,7 +255,8 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = (), costs:
         lines.append(f"| {r['solver']} | {r['element']} | {r['elements']} | {r['dt'] * 1e3:g} | {r['status']} | "
                      + (f"{r['time_s']:.4f}" if r["time_s"] else "-") + f" | {spread(r)} | "
                      + (f"{100 * r['error']:.4f}" if r["error"] is not None else "-") + " |")
-    lines += ["", f"![work-precision, {scene}]({figure_name(scene)})", ""]
+    lines += ["", f"![work-precision, {scene}]({figure_name(scene)})", "",
+              f"![work-precision, {scene}, every run]({figure_name(scene, True)})", ""]
     return lines
 
 
@@ -281,13 +286,14 @@ def report_markdown(recs: list[dict], rounds: list[dict] = (), costs: list[dict]
     return "\n".join(lines)
 
 
-def figure(recs: list[dict], path: Path, scene: str = SCENE) -> None:
-    """The work-precision figure of one scene's records (``path``, a .png) and the data it
-    draws beside it (``<name>.figure.csv``, :func:`figure_csv`, which the audit compares)."""
+def figure(recs: list[dict], path: Path, scene: str = SCENE, every: bool = False) -> None:
+    """The work-precision figure of one scene's records (``path``, a .png; ``every``: the full
+    cloud, else the lead figure) and the data it draws beside it (``<name>.figure.csv``,
+    :func:`figure_csv`, which the audit compares)."""
     import matplotlib.pyplot as plt
 
-    fig = make_figure(recs, scene)
-    fig.savefig(path, dpi=150)
+    fig = (make_all_figure if every else make_figure)(recs, scene)
+    fig.savefig(path, dpi=150, bbox_inches="tight")
     path.with_name(path.stem + ".figure.csv").write_text(_csv(fig))
     plt.close(fig)
 
@@ -305,27 +311,96 @@ def _csv(fig) -> str:
     return buf.getvalue()
 
 
-def figure_csv(recs: list[dict], scene: str = SCENE) -> str:
-    """Every point the scene's figure draws, as the audit's figure data (CSV text)."""
+def figure_csv(recs: list[dict], scene: str = SCENE, every: bool = False) -> str:
+    """Every point the scene's figure draws (``every``: its full cloud's), as the audit's
+    figure data (CSV text)."""
     import matplotlib.pyplot as plt
 
-    fig = make_figure([r for r in recs if r.get("scene", SCENE) == scene], scene)
+    fig = (make_all_figure if every else make_figure)([r for r in recs if r.get("scene", SCENE) == scene], scene)
     try:
         return _csv(fig)
     finally:
         plt.close(fig)
 
 
+def _title(recs: list[dict], scene: str) -> str:
+    h = SCENES.get(scene, {}).get("height")
+    return (f"{scene}" + (f" (h = {h * 1e3:g} mm)" if h else "") + ", Yeoh, plane stress; "
+            f"step {1e3 * max(r['dt'] for r in recs):g} ms halving")
+
+
+def settled_fronts(recs: list[dict]) -> dict[tuple[str, str], list[dict]]:
+    """{(solver, element): its front}: each run's settled error (the largest over it and the
+    runs that refine it one way, :func:`finer`; None where one of them failed), and of a
+    registered element's runs (every Newton setting of ours, both modes of the cable) those no
+    cheaper one beats (:func:`studies.engine.report.front`): the first point of a front within
+    an accuracy is the element's cheapest run that :func:`holds` it."""
+    from ..engine.report import front
+
+    pts, runs = [], {}
+    for r in recs:                  # finer(r, ...) looks among r's own solver and element only
+        runs.setdefault((r["solver"], r["element"]), []).append(r)
+    for r in recs:
+        if r["error"] is None or not r["time_s"]:
+            continue
+        qs = finer(r, runs[(r["solver"], r["element"])])
+        if all(q["error"] is not None for q in qs):
+            key = (r["solver"], our_element(r["element"])[0] if r["solver"] == "ancf" else "cable")
+            pts.append({"key": key, "time": r["time_s"], "settled": max(q["error"] for q in qs), "run": r})
+    out = {}
+    for key in dict.fromkeys(p["key"] for p in pts):
+        out[key] = front([p for p in pts if p["key"] == key], error="settled")
+    return out
+
+
 def make_figure(recs: list[dict], scene: str = SCENE):
-    """The work-precision figure of one scene's records (a matplotlib Figure)."""
+    """The lead work-precision figure of one scene's records (a matplotlib Figure): each of our
+    elements' front (:func:`settled_fronts`, over its Newton settings) in its colour, the
+    Exudyn cable's front (over its two modes) in black beside them, the accuracies dotted."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..engine.report import draw_front, draw_targets, element_color, legend_outside, target_handle
+
+    fr = settled_fronts(recs)
+    fig, ax = plt.subplots(figsize=(5.6, 4.2), layout="constrained")
+    markers = dict(zip([k for k in fr if k[0] == "ancf"], itertools.cycle("o^vDpXh*P<>")))
+    for key, f in fr.items():
+        if key[0] == "ancf":
+            draw_front(ax, f, f"ours {key[1]}", error="settled", color=element_color(key[1]), marker=markers[key],
+                       zorder=3)
+    for key, f in fr.items():
+        if key[0] == "exudyn":
+            draw_front(ax, f, "Exudyn ANCFCable2D (either mode)", error="settled", color="k", marker="s", ls="--",
+                       lw=1.8, zorder=4)
+    draw_targets(ax, ACCURACIES)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.grid(True, alpha=0.3)
+    ax.minorticks_off()
+    ax.set_xlabel("solve wall time, median warm (s)")
+    ax.set_ylabel("settled max over t of |r - r_ref| / L")
+    ax.set_title(_title(recs, scene), fontsize=9)
+    h, l = ax.get_legend_handles_labels()
+    th, tl = target_handle(ACCURACIES)
+    legend_outside(fig, h + [th], l + [tl], title="fronts", title_fontsize=7)
+    return fig
+
+
+def make_all_figure(recs: list[dict], scene: str = SCENE):
+    """Every run of one scene's records (a matplotlib Figure): a curve per code, element (and
+    setting) and mesh along the step ladder."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.lines
     import matplotlib.pyplot as plt
 
+    from ..engine.report import draw_targets, legend_outside, target_handle
+
     els = list(dict.fromkeys(r["element"] for r in recs if r["solver"] == "ancf"))
     cables = list(dict.fromkeys(r["element"] for r in recs if r["solver"] == "exudyn"))
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    fig, ax = plt.subplots(figsize=(6.4, 4.6), layout="constrained")
     markers = {**{e: m for e, m in zip(cables, itertools.cycle("sx+"))},
                **{e: m for e, m in zip(els, itertools.cycle("o^vDpXh*P<>"))}}
     colors = dict(zip([("exudyn", e) for e in cables] + [("ancf", e) for e in els],
@@ -340,23 +415,19 @@ def make_figure(recs: list[dict], scene: str = SCENE):
             if ser:
                 ax.plot([r["time_s"] for r in ser], [r["error"] for r in ser], ms=3, lw=0.8, **style,
                         label=f"{'Exudyn ' + element if solver == 'exudyn' else 'ours ' + element} x {n}")
-                ax.annotate(str(n), (ser[0]["time_s"], ser[0]["error"]), fontsize=4, color=style["color"],
-                            xytext=(2, 2), textcoords="offset points")
         handles.append(matplotlib.lines.Line2D([], [], ms=3, lw=0.8, **style,
                                                label=f"{'Exudyn ' if solver == 'exudyn' else 'ours '}{element}"))
-    for a in ACCURACIES:
-        ax.axhline(a, color="grey", lw=0.6, ls=":", label=f"_accuracy {a:g}")   # (not in the legend)
+    draw_targets(ax, ACCURACIES)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.grid(True, alpha=0.3)
     ax.set_xlabel("solve wall time, median warm (s)")
     ax.set_ylabel("max over t of |r - r_ref| / L")
-    h = SCENES.get(scene, {}).get("height")
-    ax.set_title(f"{scene}" + (f" (h = {h * 1e3:g} mm)" if h else "") + ", Yeoh: ours (plane stress) vs Exudyn "
-                 f"ANCF cable; step {1e3 * max(r['dt'] for r in recs):g} ms halving", fontsize=9)
-    # one entry per element and solver (its meshes share its colour; each curve's element count
-    # is written at its largest step, every curve runs over the steps, halving)
-    ax.legend(handles=handles, fontsize=5, ncol=2, title="curve = one mesh (n at its largest step); "
-              "dashed: Exudyn, dotted: ours at cheap settings", title_fontsize=5)
-    fig.tight_layout()
+    ax.set_title(_title(recs, scene), fontsize=9)
+    # one entry per element and solver (its meshes share its colour; every curve runs over the
+    # steps, halving; which mesh a curve is: its label in the figure's data, and the run table)
+    th, tl = target_handle(ACCURACIES)
+    legend_outside(fig, handles + [th], [h.get_label() for h in handles] + [tl], fontsize=6,
+                   title="curve = one mesh over the steps;\ndashed: Exudyn, dotted: ours at cheap settings",
+                   title_fontsize=6)
     return fig

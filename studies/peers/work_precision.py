@@ -42,7 +42,7 @@ after the grid, each accuracy's two cheapest points are timed again alternately 
 machine's phase, the grid's two points need not); where the rounds miss a row's target, :mod:`studies.peers.step_cost` measures why
 (``peers-step-cost.json``: our run under each Newton a scene offers, and its step split into
 its parts); the table
-``<out>/peers_work_precision.md`` and the figures ``.png`` (one per scene) are drawn from
+``<out>/peers_work_precision.md`` and the figures ``.png`` (two per scene: each element's front, and every run) are drawn from
 those files alone by :mod:`studies.peers.precision_report` (``--report-only`` redraws
 them; ``--rescore`` first recomputes every error from the records' tip histories against
 the current references).

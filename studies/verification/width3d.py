@@ -25,7 +25,7 @@ from contract import paper
 
 from ..engine.case import make_case
 from ..common.gold import GOLD_3D, continuum_references, short
-from ..engine.report import Section, Table, figure, mm, pct, verdict
+from ..engine.report import Section, Table, figure, legend_outside, mm, pct, verdict
 
 
 STUDY = {
@@ -185,7 +185,7 @@ def report(ctx) -> Section:
         ax.set_xlabel("width / height")
         ax.set_ylabel("(uy_3D - uy_stress) / (uy_strain - uy_stress)")
         ax.set_title("3D beam between plane stress (0) and plane strain (1)")
-        ax.legend()
+        legend_outside(fig, fontsize=9)
         sec.figure(ctx, fig, "width_3d", "The 2D-assumption map: where the 3D beam's tip deflection lies between "
                    "plane stress (0) and plane strain (1), per width, for the three laws.")
     sec.text = _findings(data, conv, h)
