@@ -11,7 +11,8 @@ So :func:`configure` (called by ``ancf/__init__.py``, before any compiled functi
 defined) points numba at ``<base>/numba-<digest>``, the digest taken over the code of
 every module of the package (but its front end: the command line, the compiled-code
 loader, the output writers) and of ``mechanics`` (whose step rules the step loop
-compiles), comments and docstrings left out: an edit of code anywhere starts a fresh
+compiles), comments and docstrings left out by the records' normaliser
+(:func:`contract.source.normalised`): an edit of code anywhere starts a fresh
 cache (one compilation), and an unchanged package loads its compiled code as before. ``<base>`` is ``$NUMBA_CACHE_DIR``
 if set, else the package's ``__pycache__``, else (not writable) ``~/.cache/ancf``.
 numba has one cache directory per process, so other packages' cached functions defined
@@ -23,28 +24,15 @@ import hashlib
 import os
 from pathlib import Path
 
+from contract.source import normalised
+
 PACKAGE = Path(__file__).resolve().parent
 # the sibling packages whose functions ancf's compiled code compiles or inlines
 # (the time loop's step rules are compiled into the step loop)
 COMPILED_FROM = ("mechanics",)
-# front-end modules that no compiled code imports: an edit of them keeps the cache
-FRONT_END = ("__main__.py", "cli.py", "output.py", "warm.py", "compiled_cache.py")
-
-
-def _normalised(source: bytes) -> bytes:
-    """The module's syntax tree without docstrings, comments or line numbers: an edit
-    of those keeps the compiled code (numba's cache still checks each file's time stamp,
-    so a file that changed recompiles its own functions)."""
-    import ast
-
-    tree = ast.parse(source)
-    for node in ast.walk(tree):
-        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
-            body = node.body
-            if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
-                    and isinstance(body[0].value.value, str):
-                node.body = body[1:] or [ast.Pass()]
-    return ast.dump(tree, include_attributes=False).encode()
+# front-end modules that no compiled code imports (the command line, the warm-up, the scene
+# checks): an edit of them keeps the cache
+FRONT_END = ("__main__.py", "cli.py", "output.py", "warm.py", "compiled_cache.py", "admission.py")
 
 
 def _sources(package: Path) -> list[tuple[str, bytes]]:
@@ -80,7 +68,7 @@ def source_digest(package: Path = PACKAGE) -> str:
         pass
     h = hashlib.sha256()
     for name, text in sources:
-        h.update(name.encode() + b"\0" + _normalised(text) + b"\0")
+        h.update(name.encode() + b"\0" + normalised(text).encode() + b"\0")
     digest = h.hexdigest()[:16]
     try:
         memo.parent.mkdir(exist_ok=True)

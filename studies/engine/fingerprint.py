@@ -3,12 +3,22 @@
 A case's identity (:mod:`.case`) holds a *fingerprint* of its solver, taken per case:
 
 - **the code**: every project module the solver's run function can execute, found by
-  reading imports (module level and inside functions, followed to the end), each
-  *normalised*: parsed, docstrings dropped, dumped without line numbers, so that comments,
-  docstrings, blank lines and line wraps do not count and any change of behaviour does;
+  reading imports (module level and inside functions, followed to the end), taken as the
+  multiset of its top-level statements, each *normalised* (:mod:`contract.source`, the one
+  normaliser, shared with the compiled code's cache): parsed, docstrings dropped, dumped
+  without line numbers, imports and ``__all__`` left out. Comments, docstrings, blank
+  lines and line wraps do not count, and any change of behaviour does; and the statements
+  are hashed without the names of the modules they sit in, so a refactor that only moves
+  code (a definition to another module that the run reaches, a module renamed, split or
+  moved into a package, definitions reordered) recomputes nothing
+  (``tests/test_fingerprint_moves.py`` shows a move reused and an edited line recomputed);
 - **the packages**: the version of every installed distribution those modules import
   (numpy, scipy, numba, dolfinx, ufl, FElupe, tensortrax, ...), read from its metadata,
   plus the interpreter's minor version (the dump's format is the interpreter's).
+
+What a move can change is seen too: a definition moved into a module the run did not
+reach before brings that module's other statements along, and a call written through a
+module's name (``module.f``) changes with that name.
 
 Three rules keep it to what runs:
 
@@ -24,7 +34,7 @@ Three rules keep it to what runs:
   (:func:`backends`), so a change to FElupe's backend keeps DOLFINx's records, and the
   reverse;
 - modules that cannot change a result (:data:`NOT_RESULTS`: where compiled code is cached,
-  the command lines' console and output, the warm-up) never count.
+  the command lines' console and output, the warm-up, the scene checks) never count.
 
 :func:`fingerprint` returns ``{"code": sha256, "packages": {name: version}}``;
 :func:`modules` lists what it read (for a reader who wants to see why a record moved).
@@ -42,6 +52,8 @@ from importlib import metadata
 from pathlib import Path
 from typing import Callable, Iterable
 
+from contract.source import statements
+
 ROOT = Path(__file__).resolve().parents[2]
 # packages of this repository whose modules count whole (see the module doc)
 SOLVER_PACKAGES = ("ancf", "mechanics", "contract", "reference_fem", "examples")
@@ -51,8 +63,11 @@ BY_NAME_PACKAGES = ("studies",)
 DISCOVERS = ("mechanics.laws",)
 # modules that cannot change a result: where the compiled code is cached (its own source
 # digest keeps stale compiled code from running: tests/test_compiled_cache.py), the command
-# lines' console, output writers and warm-up; never part of a fingerprint
-NOT_RESULTS = ("ancf.compiled_cache", "ancf.cli", "ancf.output", "ancf.warm", "ancf.__main__", "contract.console")
+# lines' console, output writers and warm-up, and the scene checks (a check raises or
+# returns its scene untouched, and runs whenever a case is made: tests/test_admission.py);
+# never part of a fingerprint
+NOT_RESULTS = ("ancf.compiled_cache", "ancf.cli", "ancf.output", "ancf.warm", "ancf.__main__", "contract.console",
+               "ancf.admission")
 
 
 def backends() -> dict[str, str]:
@@ -63,18 +78,6 @@ def backends() -> dict[str, str]:
     return {name: b.package for name, b in BACKENDS.items()}
 # distributions a package's code depends on without importing them (JIT code generators)
 IMPLIED = {"fenics-dolfinx": ("fenics-ffcx", "fenics-basix", "fenics-ufl")}
-
-
-def normalised(source: str) -> str:
-    """The module's syntax tree without docstrings, line numbers or comments."""
-    tree = ast.parse(source)
-    for node in ast.walk(tree):
-        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
-            body = node.body
-            if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
-                    and isinstance(body[0].value.value, str):
-                node.body = body[1:] or [ast.Pass()]
-    return ast.dump(tree, annotate_fields=False, include_attributes=False)
 
 
 # -- finding modules --------------------------------------------------------------------
@@ -126,8 +129,8 @@ def _tree(path: Path) -> ast.Module:
 
 
 @lru_cache(maxsize=None)
-def _normalised_file(path: Path) -> str:
-    return normalised(path.read_text(encoding="utf-8"))
+def _statements_file(path: Path) -> tuple[str, ...]:
+    return tuple(statements(path.read_text(encoding="utf-8")))
 
 
 def _absolute(module: str, node: ast.ImportFrom) -> str:
@@ -168,7 +171,7 @@ def _parents(module: str) -> list[str]:
 @dataclass
 class _Reader:
     exclude: tuple[str, ...]
-    code: dict                 # key -> normalised text
+    code: dict                 # key -> its normalised top-level statements
     third_party: set
     by_name: tuple[str, ...] = BY_NAME_PACKAGES
 
@@ -194,7 +197,7 @@ class _Reader:
         if module in self.code or _in(module, self.exclude):
             return
         path = _path(module)
-        self.code[module] = _normalised_file(path)
+        self.code[module] = _statements_file(path)
         for node in ast.walk(_tree(path)):
             for target, nm in _targets(module, node):
                 self.name(target, nm) if nm else self.module(target)
@@ -213,7 +216,7 @@ class _Reader:
         if key in self.code or _in(module, self.exclude):
             return
         defs = [_unannotated(s) for s in _tree(_path(module)).body if _binds(s, name)]
-        self.code[key] = "\n".join(normalised(ast.unparse(s)) for s in defs)
+        self.code[key] = tuple(t for s in defs for t in statements(ast.unparse(s)))
         for s in defs:
             self._statement(module, s)
 
@@ -356,10 +359,15 @@ def _read(entries: tuple[str, ...], exclude: tuple[str, ...], whole: bool = Fals
 @lru_cache(maxsize=None)
 def _fingerprint(entries: tuple[str, ...], exclude: tuple[str, ...], whole: bool = False) -> tuple[str, tuple]:
     r = _read(entries, exclude, whole)
+    return code_digest(r.code.values()), tuple(packages(r.third_party).items())
+
+
+def code_digest(parts: Iterable[Iterable[str]]) -> str:
+    """sha256 of the multiset of normalised statements, whichever module holds each."""
     h = hashlib.sha256()
-    for key in sorted(r.code):
-        h.update(key.encode() + b"\0" + r.code[key].encode() + b"\0")
-    return h.hexdigest(), tuple(packages(r.third_party).items())
+    for text in sorted(t for part in parts for t in part):
+        h.update(text.encode() + b"\0")
+    return h.hexdigest()
 
 
 def entry(fn: Callable) -> str:
@@ -379,7 +387,7 @@ def fingerprint(entries: Iterable[str], backend: str | None = None, whole: bool 
 
 def clear_caches() -> None:
     """Forget every file read (a long-lived process that wants to see edits)."""
-    for f in (_path, _tree, _normalised_file, _top_names, _fingerprint):
+    for f in (_path, _tree, _statements_file, _top_names, _fingerprint):
         f.cache_clear()
 
 
