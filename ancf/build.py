@@ -1,7 +1,8 @@
 """Scene -> objects: the one place where the names in a scene become elements, laws,
-formulations, quadrature rules, supports and integrators. :func:`plan` checks a scene's
-names against ancf's registries once (:func:`check`) and resolves it into a frozen
-:class:`Plan` (element, formulation, rule, estimate, warnings); the builders take it."""
+formulations, quadrature rules, supports and integrators. :func:`plan` checks a scene once
+(:func:`ancf.admission.check`: its names against ancf's registries, and what each element
+admits) and resolves it into a frozen :class:`Plan` (element, formulation, rule, estimate,
+warnings); the builders take it."""
 from __future__ import annotations
 
 import math
@@ -11,13 +12,13 @@ from functools import cached_property
 import numpy as np
 
 from contract.capacity import Estimate, check_capacity
-from contract.errors import SceneError
-from contract.scene import MaterialSpec, Scene, check_names
+from contract.scene import MaterialSpec, Scene
 
-from .elements import ELEMENTS, get_element
-from .formulations import FORMULATIONS, get_formulation
+from .admission import check  # noqa: F401  (ancf.build.check: the name callers know)
 from .integrators import INTEGRATORS
-from mechanics.laws import LAWS, get_law
+from .elements import get_element
+from .formulations import get_formulation
+from mechanics.laws import get_law
 from .material import Material
 from .mesh import Mesh, fixed_dofs
 from .beam import BeamModel
@@ -27,70 +28,6 @@ from .element_model import ElementModel
 from .couple import Loading, end_face
 from .quadrature import gauss
 from .rank import default_quadrature, rule_warnings
-
-
-def check(scene: Scene) -> Scene:
-    """The scene's names against ancf's registries (one message naming the field and
-    the allowed values); an ANCF run needs the [ancf] table."""
-    if scene.ancf is None:
-        raise SceneError("ancf: the scene has no [ancf] table (element, elements)")
-    check_names(scene, laws=LAWS, formulations=FORMULATIONS, integrators=INTEGRATORS, elements=ELEMENTS)
-    _check_kinematics(scene)
-    _check_pressure_rule(scene)
-    _check_aspect(scene)
-    return scene
-
-
-def _check_aspect(scene: Scene) -> None:
-    """The element's basis must be determined by its nodal coordinates at this mesh's l_e and
-    h (and at l_e / h, the rank tests' scaling): an element absurdly stout (l_e / h = 1e-7
-    for HB2n-12 and HB3n-12) makes the nodal matrix singular in floating point."""
-    s, el = scene.ancf, get_element(scene.ancf.element)
-    le, h = scene.beam.length / s.elements, scene.beam.height
-    try:
-        el.dimensionless(le, h)
-        el.dimensionless(le / h, 1.0)
-    except ValueError:
-        raise SceneError(f"beam.height: an element of l_e / h = {le / h:.3g} (beam.length / ancf.elements / "
-                         f"beam.height) is singular for {el.name}: its nodal coordinates do not determine its "
-                         "basis in floating point (fewer elements or a more slender beam)") from None
-
-
-def _check_kinematics(scene: Scene) -> None:
-    """What an element's kinematics cannot run: a cable (``ElementSpec.formulations``)
-    integrates the law's uniaxial energy, with free lateral faces, so plane stress alone;
-    and its fibre stretch is not quadratic in u, so it has no discrete gradient."""
-    el = get_element(scene.ancf.element)
-    allowed = el.formulations
-    if allowed is not None and scene.material.formulation not in allowed:
-        raise SceneError(f"material.formulation: {scene.material.formulation!r} cannot run element {el.name} "
-                         f"({el.kinematics}: the section's fibres in uniaxial stress with free faces); "
-                         f"allowed for it: {', '.join(repr(f) for f in allowed)}")
-    a = scene.analysis
-    if a.kind == "dynamic" and a.newton == "linear" and INTEGRATORS[a.integrator].compiled != "alpha-family":
-        family = sorted(i for i, c in INTEGRATORS.items() if c.compiled == "alpha-family")
-        raise SceneError(f"analysis.newton: 'linear' (one solve per step) is a step of the generalized-alpha "
-                         f"family; integrator {a.integrator!r} runs full Newton: choose analysis.integrator from "
-                         f"{', '.join(repr(i) for i in family)}, or another analysis.newton")
-    if el.cable and scene.analysis.kind == "dynamic" and scene.analysis.integrator == "discrete-gradient":
-        others = sorted(i for i in INTEGRATORS if i != "discrete-gradient")
-        raise SceneError(f"analysis.integrator: 'discrete-gradient' cannot run element {el.name} (a cable's fibre "
-                         f"stretch is not quadratic in u: no exact discrete gradient here); allowed for it: "
-                         f"{', '.join(repr(i) for i in others)}")
-
-
-def _check_pressure_rule(scene: Scene) -> None:
-    """A rule the scene chose must resolve the element's pressure field where it carries
-    the penalty (a tensor rule with more points than the field's degree in x and in y)."""
-    s, el = scene.ancf, get_element(scene.ancf.element)
-    if not (el.pressure and s.quadrature is not None and get_formulation(scene.material.formulation).penalised):
-        return
-    dx = max(p.degree()[0] for p in el.pressure_polys)
-    dy = max(p.degree()[1] for p in el.pressure_polys)
-    if s.quadrature[0] <= dx or s.quadrature[1] <= dy:
-        raise SceneError(f"ancf.quadrature: {list(s.quadrature)} does not resolve the pressure field of "
-                         f"{el.name} (degree {dx} in x, {dy} in y): at least [{dx + 1}, {dy + 1}] points; "
-                         "or leave quadrature out for the element's default")
 
 
 # -- a scene resolved once ---------------------------------------------------------------

@@ -105,8 +105,19 @@ def _warm(args) -> int:
 
 
 def _list(registry: dict) -> int:
+    """One line per entry: its name and reference; an element's also what it refuses
+    (:func:`ancf.admission.refused_integrators`, ``ElementSpec.formulations``)."""
+    from .admission import refused_integrators
+    from .elements import ElementSpec
+
     for name, item in registry.items():
-        print(f"{name:16s} {getattr(item, 'reference', '') or getattr(item, 'doc', '')}")
+        line = f"{name:16s} {getattr(item, 'reference', '') or getattr(item, 'doc', '')}"
+        if isinstance(item, ElementSpec):
+            if refused := sorted(refused_integrators(item)):
+                line += f"  [refuses integrator {', '.join(refused)}]"
+            if item.formulations is not None:
+                line += f"  [formulation {', '.join(item.formulations)} only]"
+        print(line)
     return 0
 
 

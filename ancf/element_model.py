@@ -25,16 +25,15 @@ from .errors import InadmissibleState
 
 
 def refuse_discrete_gradient(model) -> None:
-    """ValueError naming the element if it has an assumed strain or is a cable: the
-    discrete gradient needs a and J quadratic in u at every point, and det C_bar is
-    quartic, a fibre's stretch not even polynomial."""
+    """ValueError naming the element if it cannot take the discrete gradient
+    (:func:`ancf.admission.refused_integrators`, the one rule; a scene that asks for it is
+    refused before, by the scene check)."""
+    from .admission import allowed_integrators, refused_integrators
+
     spec = model.mesh.element
-    if spec.cable:
-        raise ValueError(f"element {spec.name}: a cable has no discrete gradient here (its fibre stretch is not "
-                         "quadratic in u); use an alpha-family integrator (generalized-alpha, newmark, hht)")
-    if spec.assumed:
-        raise ValueError(f"element {spec.name}: an assumed strain ({', '.join(spec.assumed)}) has no discrete "
-                         "gradient here; use an alpha-family integrator (generalized-alpha, newmark, hht)")
+    why = refused_integrators(spec).get("discrete-gradient")
+    if why is not None:
+        raise ValueError(f"element {spec.name}: {why}; use one of {', '.join(allowed_integrators(spec))}")
 
 
 @dataclass

@@ -114,12 +114,13 @@ def cases(grid: dict, tiny: bool) -> list:
 
 
 def offered(grid: dict, changes: dict, integrator: str) -> bool:
-    """Whether ANCF offers the integrator for the case's element (an assumed strain has no
-    discrete gradient: such a scene is refused by name)."""
+    """Whether ANCF offers the integrator for the case's element
+    (:func:`ancf.admission.refused_integrators`: such a scene is refused by name)."""
+    from ancf.admission import refused_integrators
     from ancf.elements import get_element
 
     element = changes.get("element", grid["base"]["element"])
-    return not (integrator == "discrete-gradient" and get_element(element).assumed)
+    return integrator not in refused_integrators(get_element(element))
 
 
 def _definitions() -> str:
