@@ -170,7 +170,7 @@ def test_the_rule_is_the_one_the_models_and_the_stability_study_ask():
 
 
 @pytest.mark.slow(guard="test_every_pair_of_values_meets_in_a_scene_that_ends_without_a_traceback")
-@pytest.mark.parametrize("element", [*BUILTIN, "a user's"])
+@pytest.mark.parametrize("element", [*sorted(BUILTIN), "a user's"])
 def test_the_whole_product_ends_without_a_traceback(element):
     """Every combination, the Newton variants with the dynamic analyses only (a static run
     has one Newton)."""
