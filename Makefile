@@ -4,7 +4,7 @@ PY := .venv/bin/python
 export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 
-.PHONY: setup test test-full test-slow test-guards study study-full audit loops bench bench-penalty bench-peers docs clean-venv
+.PHONY: setup test test-full test-slow test-guards study study-full audit loops bench bench-penalty bench-peers external-exudyn docs clean-venv
 
 # The idempotent set-up every target runs first (tools/setup.sh): Debian's packages, the
 # venv .venv with the system's site packages, this project installed editable, FElupe pinned,
@@ -100,6 +100,12 @@ bench-peers: setup
 	$(PY) -m studies.peers.exudyn_published --report && $(PY) -m studies.peers.compare --report-only
 	$(PY) -m studies.peers.work_precision --scene pendulum $(PEER_ELEMENTS)
 	$(PY) -m studies.peers.work_precision --scene thick $(PEER_ELEMENTS)
+
+# Exudyn through the external-solver protocol (studies/peers/exudyn.toml, in .venv-peers):
+# the benchmark suite's cases it takes, its records in reports/external/data and its
+# verdicts in reports/external/benchmarks@exudyn.md
+external-exudyn: setup
+	bash tools/setup_peers.sh && $(PY) -m studies external studies/peers/exudyn.toml benchmarks --out reports/external
 
 # The documentation site (Sphinx with MyST Markdown and furo, Debian's packages):
 # docs/ -> docs/_build/html; every warning is an error; the reference pages and the results

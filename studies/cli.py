@@ -23,7 +23,12 @@
   records recomputed with today's code and compared field by field
   (:mod:`studies.engine.verify`); exits 1 naming record and field of each mismatch;
 - ``card NAME [NAME ...] [--import MODULE]``: the element report card (:mod:`studies.design.card`),
-  ``paper`` for the four paper elements; written to ``<out>/cards/``.
+  ``paper`` for the four paper elements; written to ``<out>/cards/``;
+- ``external DECLARATION NAME [NAME ...] [--out DIR]``: the ANCF cases of the named studies
+  run on an external solver declared in a TOML file (:mod:`studies.external`), those it
+  does not declare skipped with the reason; records in ``DIR/data/<study>@<solver>.jsonl``;
+- ``check-record FILE [FILE ...]``: a record checked against the schema
+  (:mod:`contract.record_schema`), each problem naming its key; exits 1 if any.
 
 Clusters: ``mpiexec -n N python -m mpi4py.futures -m studies run all --executor mpi``.
 """
@@ -243,6 +248,14 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--force", action="store_true", help="recompute the cards' runs and checks")
     c.add_argument("--workers", type=int, default=2)
     c.add_argument("--no-progress", action="store_true")
+    x = sub.add_parser("external", help="run studies' ANCF cases on an external solver declared in a TOML file")
+    x.add_argument("declaration", help="the solver's declaration (TOML)")
+    x.add_argument("names", nargs="+", metavar="NAME", help="studies whose ANCF cases it runs")
+    x.add_argument("--out", help="output directory (default reports/external)")
+    x.add_argument("--tiny", action="store_true", help="the studies' CI grids")
+    x.add_argument("--workers", type=_positive(int), default=1, help="runs at once (default 1)")
+    cr = sub.add_parser("check-record", help="check record files against the record schema, naming each bad key")
+    cr.add_argument("files", nargs="+", metavar="FILE")
     for sp in (ls, r, rp, au):
         sp.add_argument("--catalog", type=Path, default=CASES_TOML,
                         help="a TOML file of study tables to run instead of the studies declared in their modules "
@@ -250,10 +263,34 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
+def _external(args) -> int:
+    from .external.protocol import run_study
+
+    out = Path(args.out) if args.out else Path("reports") / "external"
+    summary = run_study(args.declaration, args.names, out, tiny=args.tiny, workers=args.workers)
+    print(f"records: {out / 'data'} ({sum(s['failed'] for s in summary.values())} failed runs, each with its "
+          "status and reason)")
+    return 0
+
+
+def _check_record(args) -> int:
+    from contract.record_schema import read
+
+    bad = 0
+    for path in args.files:
+        _, found = read(path)
+        for p in found:
+            print(f"{path}: {p}")
+        if not found:
+            print(f"{path}: OK")
+        bad += bool(found)
+    return 1 if bad else 0
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     run = {"list": _list, "run": _run, "report": _report, "gold": _gold, "diff": _diff, "card": _card,
-           "audit": _audit, "verify": _verify}[args.command]
+           "audit": _audit, "verify": _verify, "external": _external, "check-record": _check_record}[args.command]
     return command("studies", lambda: run(args), errors=(ValueError, ImportError),
                    interrupt_note=" (every finished record is kept; a rerun does the rest)")
 

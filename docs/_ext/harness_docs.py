@@ -336,7 +336,17 @@ def _rules(spec) -> str:
     return "; ".join(parts)
 
 
+def _refuses(e, refused: dict) -> str:
+    """What a scene may not ask of the element: its refused integrators and, for a
+    kinematics that runs only some, the formulations it takes."""
+    parts = [f"{_code(i)}: {why}" for i, why in sorted(refused.items())]
+    if e.formulations is not None:
+        parts.append(f"formulations other than {', '.join(_code(f) for f in e.formulations)}")
+    return "; ".join(parts) or "-"
+
+
 def registries(warn: Callable[[str], None]) -> str:
+    from ancf.admission import refused_integrators
     from ancf.elements import ELEMENTS
     from ancf.formulations import FORMULATIONS
     from ancf.integrators import INTEGRATORS
@@ -350,9 +360,10 @@ def registries(warn: Callable[[str], None]) -> str:
         dof = 2 * len(e.nodes) * len(e.kinds)
         rows.append([_code(name), ", ".join(f"{x:g}" for x in e.nodes), ", ".join(e.kinds), dof,
                      ", ".join(e.pressure) or "-", ", ".join(f"C_{c}" for c in e.assumed) or "-",
-                     _rules(e), e.reference])
+                     _rules(e), _refuses(e, refused_integrators(e)), e.reference])
     out.append(_table(["element", "nodes (x / l_e)", "nodal coordinates per node", "dof",
-                       "pressure basis", "assumed strain", "default elastic rule", "reference"], rows))
+                       "pressure basis", "assumed strain", "default elastic rule",
+                       "refuses (ancf.admission)", "reference"], rows))
     out.append("\n## Laws\n")
     rows = []
     for name, law in LAWS.items():
@@ -523,7 +534,8 @@ def results(warn: Callable[[str], None], out: Path = RESULTS) -> dict[str, list[
     captions = table_captions()
     kinds: dict[str, list[str]] = {"summary": [], "peers": [], "reports": [], "tables": [], "cards": []}
     written = set()
-    for src in sorted(REPORTS.glob("*.md")) + sorted((REPORTS / "cards").glob("*.md")):
+    for src in (sorted(REPORTS.glob("*.md")) + sorted((REPORTS / "cards").glob("*.md"))
+                + sorted((REPORTS / "external").glob("*.md"))):
         rel = src.relative_to(REPORTS)
         page = out / rel
         _write(page, render_report(src, page, figures, captions, warn))
@@ -531,7 +543,7 @@ def results(warn: Callable[[str], None], out: Path = RESULTS) -> dict[str, list[
         stem = rel.with_suffix("").as_posix()
         text = src.read_text(encoding="utf-8")
         kind = ("summary" if stem == "README" else "cards" if stem.startswith("cards/")
-                else "peers" if stem.startswith("peers") else
+                else "peers" if stem.startswith(("peers", "external/")) else
                 "reports" if any(l.startswith("# ") for l in text.splitlines()) else "tables")
         first = next((l for l in text.splitlines() if l.strip()), "")
         if kind == "tables" and rel.as_posix() not in captions and first.startswith("|"):
