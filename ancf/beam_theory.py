@@ -13,9 +13,14 @@
 from __future__ import annotations
 
 import numpy as np
+
 from scipy.integrate import solve_bvp
 
 from .material import Material
+
+# the trapezoidal rule: numpy 2 names it trapezoid and no longer has trapz (a plain venv's
+# numpy from PyPI), numpy 1.24 (Debian's) has trapz alone
+_trapezoid = getattr(np, "trapezoid", None) or np.trapz
 
 
 def effective_modulus(material: Material) -> float:
@@ -48,8 +53,8 @@ def cantilever_tip_deflection(q: float, L: float, E: float, G: float, h: float, 
 def _tip(theta_sol, L):
     s = np.linspace(0.0, L, 4001)
     th = theta_sol.sol(s)[0]
-    x = np.trapz(np.cos(th), s)
-    y = np.trapz(np.sin(th), s)
+    x = _trapezoid(np.cos(th), s)
+    y = _trapezoid(np.sin(th), s)
     return x - L, y
 
 
@@ -92,4 +97,4 @@ def elastica_tip_load(P: float, L: float, EI: float, side: float = 1.0) -> tuple
     sol = shoot(k, dense=True)
     s = np.linspace(0.0, L, 4001)
     th = np.sign(side) * sol.sol(s)[0]
-    return np.trapz(np.cos(th), s) - L, np.trapz(np.sin(th), s)
+    return _trapezoid(np.cos(th), s) - L, _trapezoid(np.sin(th), s)

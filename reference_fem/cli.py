@@ -248,12 +248,35 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
+# the FEniCSx stack's modules: a run that needs one this Python cannot import is a choice of
+# backend, said in one line (exit 2), not a traceback
+FENICSX = ("dolfinx", "ufl", "basix", "ffcx", "petsc4py", "mpi4py", "gmsh")
+
+
+def _stack_named(run):
+    """``run``, with an ImportError of the FEniCSx stack turned into one line naming
+    ``fem.backend`` and what to do."""
+    def guarded():
+        try:
+            return run()
+        except ModuleNotFoundError as e:
+            if (e.name or "").split(".")[0] not in FENICSX:
+                raise
+            from reference_fem.backends import BACKENDS
+
+            others = ", ".join(repr(b) for b in BACKENDS if b != "dolfinx")
+            raise ValueError(f"fem.backend: 'dolfinx' needs the FEniCSx stack, which this Python cannot import "
+                               f"(no module {e.name!r}): install it (Debian: python3-dolfinx; conda-forge: "
+                               f"fenics-dolfinx) or choose fem.backend from {others}") from None
+    return guarded
+
+
 def main(argv: list[str] | None = None) -> int:
     from contract.console import command
 
     args = parser().parse_args(argv)
     run = {"run": _run, "converge": _converge, "gold": _gold, "report": _report, "pendulum": _pendulum}[args.command]
-    return command("reference_fem", lambda: run(args), errors=(ValueError,))
+    return command("reference_fem", _stack_named(lambda: run(args)), errors=(ValueError,))
 
 
 if __name__ == "__main__":
