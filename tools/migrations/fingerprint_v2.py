@@ -9,7 +9,8 @@ re-keys the record from the old id to the new one only where the old id is the r
 own, so that only a record that is current for this code is carried over; a card's checks
 record (``card-*-checks.json``) gets its ``source`` digest the same way. It prints, per
 file, how many records it carried over and how many it left (stale, or not an engine
-record), and changes nothing else in a line.
+record), and changes nothing else in a line. Once it has run, the records carry the new ids
+and a second run finds nothing to carry over (it says so per file).
 
     .venv/bin/python tools/migrations/fingerprint_v2.py [--dry-run]
 """
@@ -77,7 +78,7 @@ def _cases() -> list:
     out = []
     for study in load_catalog().values():
         out += study.cases()
-    for element, tiny in recorded_cards(ROOT / "reports"):
+    for element, tiny in recorded_cards(ROOT / "reports", stale=[]):
         out += card_cases(element, tiny)
     return out
 
