@@ -29,7 +29,6 @@ sys.path.insert(0, str(ROOT))
 from contract.source import normalised  # noqa: E402
 from studies.engine import case as case_mod  # noqa: E402
 from studies.engine import fingerprint as fp  # noqa: E402
-from studies.engine.case import canonical  # noqa: E402
 
 
 def _v1_text(key: str) -> str:
