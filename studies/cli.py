@@ -253,7 +253,6 @@ def parser() -> argparse.ArgumentParser:
     x.add_argument("names", nargs="+", metavar="NAME", help="studies whose ANCF cases it runs")
     x.add_argument("--out", help="output directory (default reports/external)")
     x.add_argument("--tiny", action="store_true", help="the studies' CI grids")
-    x.add_argument("--workers", type=_positive(int), default=1, help="runs at once (default 1)")
     cr = sub.add_parser("check-record", help="check record files against the record schema, naming each bad key")
     cr.add_argument("files", nargs="+", metavar="FILE")
     for sp in (ls, r, rp, au):
@@ -267,7 +266,7 @@ def _external(args) -> int:
     from .external.protocol import run_study
 
     out = Path(args.out) if args.out else Path("reports") / "external"
-    summary = run_study(args.declaration, args.names, out, tiny=args.tiny, workers=args.workers)
+    summary = run_study(args.declaration, args.names, out, tiny=args.tiny)
     print(f"records: {out / 'data'} ({sum(s['failed'] for s in summary.values())} failed runs, each with its "
           "status and reason)")
     return 0

@@ -265,7 +265,7 @@ def test_the_committed_exudyn_report_is_its_records_verdicts(tmp_path):
     solver = register_external(decl_path)
     try:
         _, skipped = retarget(load_catalog()["benchmarks"].cases(), solver)
-        page = benchmark_report(tmp_path, solver.declaration, skipped, solver.declaration.causes)
+        page = benchmark_report(tmp_path, solver.declaration, skipped)
     finally:
         del SOLVERS[solver.name]
     assert page.read_text() == (root / "reports" / "external" / "benchmarks@exudyn.md").read_text()

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from contract.record import new_record
-from contract.record_schema import problems
+from contract.record_schema import problems, read
 from contract.source import normalised
 
 from ..engine import fingerprint as fp
@@ -77,6 +77,14 @@ def _scene_file(decl: Declaration, scene: dict, folder: Path) -> Path:
     return path
 
 
+def _checked(decl: Declaration, scene: dict, rec: dict | None, found: list[str]) -> dict:
+    """The solver's record if the schema's check found nothing, else a failed record naming
+    the first problems."""
+    if found:
+        return failed(decl, scene, f"{decl.name}: malformed record: {'; '.join(found[:5])}")
+    return rec
+
+
 def _tail(text: str) -> str:
     text = " ".join(text.split())
     return text if len(text) <= STDERR_TAIL else "..." + text[-STDERR_TAIL:]
@@ -110,11 +118,7 @@ def _run_command(decl: Declaration, scene: dict) -> dict:
         if p.returncode != 0:
             return failed(decl, scene, f"{decl.name}: the command exited with status {p.returncode}: "
                                        f"{_tail(err) or 'no error output'}")
-        from contract.record_schema import read
-
-        rec, found = read(out)
-        if found:
-            return failed(decl, scene, f"{decl.name}: malformed record: {'; '.join(found[:5])}")
+        rec = _checked(decl, scene, *read(out))
         rec.setdefault("process_s", wall)
         return rec
 
@@ -128,10 +132,7 @@ def _run_python(decl: Declaration, scene: dict) -> dict:
         rec = json.loads(json.dumps(rec, allow_nan=False))
     except (TypeError, ValueError) as e:
         return failed(decl, scene, f"{decl.name}: malformed record: not JSON ({e})")
-    found = problems(rec)
-    if found:
-        return failed(decl, scene, f"{decl.name}: malformed record: {'; '.join(found[:5])}")
-    return rec
+    return _checked(decl, scene, rec, problems(rec))
 
 
 def _runner(decl: Declaration):
@@ -192,9 +193,10 @@ def retarget(cases: list[Case], solver: ExternalSolver, of: str = "ancf") -> tup
     return out, skipped
 
 
-def run_study(path: str | Path, study_names: list[str], out: Path, tiny: bool = False, workers: int = 1,
-              log=print) -> dict:
-    """Every ANCF case of the named studies run on the declared solver, into
+def run_study(path: str | Path, study_names: list[str], out: Path, tiny: bool = False, log=print) -> dict:
+    """Every ANCF case of the named studies run on the declared solver, one after the other
+    in this process (the engine's pool workers start afresh and would not know a solver
+    registered from a declaration here; a command runs in a process of its own anyway), into
     ``out/data/<study>@<solver>.jsonl`` (and, for the benchmark suite, its verdicts:
     :func:`studies.external.verdicts.benchmark_report`); returns {study: {"cases", "computed", "reused",
     "failed", "skipped": [(name, reason)]}} and logs one line per study."""
@@ -210,8 +212,8 @@ def run_study(path: str | Path, study_names: list[str], out: Path, tiny: bool = 
             raise ValueError(f"study: unknown value {name!r}; allowed: {', '.join(sorted(catalog))}")
         cases, skipped = retarget(catalog[name].cases(), solver)
         store = store_for(out, f"{name}@{solver.name}")
-        s = run_cases(f"{name}@{solver.name}", cases, store, "serial" if workers <= 1 else None, workers,
-                      progress=False, timeout_s=solver.declaration.wall_time + 30.0)
+        s = run_cases(f"{name}@{solver.name}", cases, store, "serial", 1, progress=False,
+                      timeout_s=solver.declaration.wall_time + 30.0)
         summary[name] = {"cases": s.cases, "computed": s.computed, "reused": s.reused, "failed": s.failed,
                          "skipped": skipped}
         log(f"{name} on {solver.name}: {s.cases} cases, {s.reused} reused, {s.computed} computed, {s.failed} "
@@ -221,6 +223,6 @@ def run_study(path: str | Path, study_names: list[str], out: Path, tiny: bool = 
         if name == "benchmarks":
             from .verdicts import benchmark_report
 
-            path = benchmark_report(out, solver.declaration, skipped, solver.declaration.causes, tiny)
+            path = benchmark_report(out, solver.declaration, skipped, tiny)
             log(f"  verdicts: {path}")
     return summary

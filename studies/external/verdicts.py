@@ -43,13 +43,12 @@ def _fmt(x, spec: str) -> str:
     return "-" if x is None else format(x, spec)
 
 
-def benchmark_report(out: Path, decl: Declaration, skipped: list[tuple[str, str]], causes: dict | None = None,
-                     tiny: bool = False) -> Path:
+def benchmark_report(out: Path, decl: Declaration, skipped: list[tuple[str, str]], tiny: bool = False) -> Path:
     """``<out>/benchmarks@<solver>.md``: every case the solver ran with its verdict, each
-    miss with its cause (``causes``: {case kind: why}, else "cause not found"), and every
-    case it was not run on with the reason."""
+    miss with its cause (the declaration's ``[causes]``: {case kind: why}, else "cause not
+    found"), and every case it was not run on with the reason."""
     rows = benchmark_rows(out, decl, tiny)
-    causes = causes or {}
+    causes = decl.causes
     passed = sum(r.verdict == "pass" for r in rows)
     lines = [f"# {decl.name} on the harness's references", "",
              f"The benchmark suite's cases run on `{decl.name}` {decl.version} through its declaration "
