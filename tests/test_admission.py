@@ -2,7 +2,9 @@
 assumed-strain elements, the cable, and the examples' elements, registered from a user's
 module) x formulation x law x support x load x analysis (static, or each integrator with
 each Newton variant) goes through the scene check and one step, and ends in a SceneError
-naming a field or in a record with a status. The one rule of which integrators an element
+naming a field or in a record that passes the record schema's check
+(:func:`contract.record_schema.problems`: a status, a reason where it failed, a finite tip
+where it converged). The one rule of which integrators an element
 refuses (:func:`ancf.admission.refused_integrators`) is what the check, the models, the
 warm-up and the stability study ask.
 
@@ -27,10 +29,11 @@ from ancf.integrators import INTEGRATORS
 from ancf.simulation import run_scene
 from contract import paper
 from contract.errors import SceneError
+from contract.record import sanitize
+from contract.record_schema import problems
 from contract.scene import NEWTON, SUPPORTS, scene_from_dict
 from mechanics.laws import LAWS
 
-STATUSES = {"converged", "failed", "unstable", "stopped"}
 SUPPORT_VARIANTS = [("clamp", "face"), ("clamp", "all"), *((s, None) for s in SUPPORTS if s != "clamp")]
 LOADS = ("gravity", "tip_force", "end_moment")
 ANALYSES = ("static", *INTEGRATORS)
@@ -99,8 +102,7 @@ def run_one(values: tuple) -> str:
         field = str(e).split(":")[0]
         assert "." in field or field in ("ancf", "material", "analysis", "loads", "supports", "beam"), str(e)
         return f"refused: {field}"
-    assert rec["status"] in STATUSES, rec["status"]
-    assert rec["status"] == "converged" or rec["reason"], f"{values}: {rec['status']} without a reason"
+    assert not problems(sanitize(rec)), f"{values}: {problems(sanitize(rec))}"   # a status, a reason if failed
     return rec["status"]
 
 
