@@ -6,7 +6,7 @@ Imports only exudyn, numpy and the standard library (not ``ancf``): this file ru
 separate venv that ``tools/setup_peers.sh`` creates, never in ``.venv``. Its builders are the
 peer's one set-up of the cable, shared with the checks against Exudyn's published numbers
 (``exudyn_published.py``): :func:`add_cable` (the elements, gravity, the first node's support,
-a tip force), :func:`common_settings` and :func:`static_settings`.
+a tip force), :func:`common_settings`, :func:`static_settings` and :func:`dynamic_settings`.
 
 The model: 32 (``--elements``) ObjectANCFCable2D elements (Euler-Bernoulli, linear elastic, 2 nodes with
 position and slope, 8 coordinates each), L = 0.350 m, h = 0.005 m (``--height``), w = 0.007 m, density
@@ -133,12 +133,22 @@ def build(exu, dt: float, rho_inf: float, elements: int = ELEMENTS, newton: str 
                                    storeInternal=True, writeToFile=False))
     mbs.Assemble()
 
+    s = dynamic_settings(exu, dt, T_END, rho_inf, newton)
+    return SC, mbs, s, tip
+
+
+def dynamic_settings(exu, dt: float, t_end: float, rho_inf: float, newton: str = "modified",
+                     newmark: bool = False):
+    """SimulationSettings for ``SolveDynamic``: :func:`common_settings`, generalized-alpha at
+    ``rho_inf`` (``newmark``: Exudyn's Newmark form of it), a fixed step ``dt`` to ``t_end``
+    (no adaptive or automatic step: a failed step stops the run), the sensors sampled every
+    step, verbose off; ``newton`` (:data:`NEWTON`) as in :func:`build`."""
     s = exu.SimulationSettings()
     common_settings(exu, s)
     ti = s.timeIntegration
     ti.solverType = exu.DynamicSolverType.GeneralizedAlpha
     ti.generalizedAlpha.spectralRadius = rho_inf
-    ti.generalizedAlpha.useNewmark = False
+    ti.generalizedAlpha.useNewmark = newmark
     ti.generalizedAlpha.useIndex2Constraints = False
     ti.generalizedAlpha.computeInitialAccelerations = True
     # linear: one solve per step with the Jacobian at the step's predictor (newton.active =
@@ -147,14 +157,14 @@ def build(exu, dt: float, rho_inf: float, elements: int = ELEMENTS, newton: str 
     ti.newton.useModifiedNewton = newton != "linear"
     ti.newton.active = newton != "linear"
     ti.startTime = 0.0
-    ti.endTime = T_END
-    ti.numberOfSteps = int(round(T_END / dt))
+    ti.endTime = t_end
+    ti.numberOfSteps = int(round(t_end / dt))
     ti.adaptiveStep = False
     ti.automaticStepSize = False
     ti.verboseMode = 0
     ti.verboseModeFile = 0
-    s.solution.sensors.writePeriod = dt       # sample every step; output times picked below
-    return SC, mbs, s, tip
+    s.solution.sensors.writePeriod = dt       # sample every step; output times picked by the caller
+    return s
 
 
 def settings_summary(exu, s, steps: int, dt: float, elements: int = ELEMENTS) -> dict:

@@ -52,7 +52,7 @@ def run(scene: dict) -> dict:
     import exudyn as exu
     import numpy as np
     from exudyn.itemInterface import SensorNode
-    from exudyn_pendulum import CLAMP, PIN, add_cable, common_settings, static_settings
+    from exudyn_pendulum import CLAMP, PIN, add_cable, dynamic_settings, static_settings
 
     a, loads = scene["analysis"], scene.get("loads", {})
     L, n = scene["beam"]["length"], scene["ancf"]["elements"]
@@ -82,18 +82,8 @@ def run(scene: dict) -> dict:
         what = "SolveStatic"
         ok = _solve(mbs.SolveStatic, s, rec, what)
     else:
-        s = exu.SimulationSettings()
-        common_settings(exu, s)
-        ti = s.timeIntegration
-        ti.solverType = exu.DynamicSolverType.GeneralizedAlpha
-        ti.generalizedAlpha.useNewmark = a.get("integrator") == "newmark"
-        ti.generalizedAlpha.spectralRadius = a.get("rho_inf", 0.5)
-        ti.generalizedAlpha.computeInitialAccelerations = True
-        ti.startTime, ti.endTime = 0.0, a["t_end"]
-        ti.numberOfSteps = int(round(a["t_end"] / a["dt"]))
-        ti.adaptiveStep = False
-        ti.verboseMode = 0
-        s.solution.sensors.writePeriod = a["dt"]
+        s = dynamic_settings(exu, a["dt"], a["t_end"], a.get("rho_inf", 0.5),
+                             newmark=a.get("integrator") == "newmark")
         what = "SolveDynamic"
         ok = _solve(mbs.SolveDynamic, s, rec, what)
     rec["wall_s"], rec["cpu_s"] = time.perf_counter() - t0, time.process_time() - c0
@@ -109,7 +99,7 @@ def run(scene: dict) -> dict:
         for t in times:
             k = int(np.argmin(np.abs(data[:, 0] - t)))
             history.append({"t": float(t), "x": float(data[k, 1]), "y": float(data[k, 2])})
-        rec["tip_history"], rec["steps"] = history, int(ti.numberOfSteps)
+        rec["tip_history"], rec["steps"] = history, int(s.timeIntegration.numberOfSteps)
     return rec
 
 
