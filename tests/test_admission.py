@@ -31,11 +31,12 @@ from contract import paper
 from contract.errors import SceneError
 from contract.record import sanitize
 from contract.record_schema import problems
-from contract.scene import NEWTON, SUPPORTS, scene_from_dict
+from contract.scene import NEWTON, SUPPORTS, keys_of, scene_from_dict
 from mechanics.laws import LAWS
 
 SUPPORT_VARIANTS = [("clamp", "face"), ("clamp", "all"), *((s, None) for s in SUPPORTS if s != "clamp")]
-LOADS = ("gravity", "tip_force", "end_moment")
+LOADS = tuple(k.name for k in keys_of("loads"))    # the scene's load keys
+LOAD_VALUES = {"gravity": [0.0, -9.81], "tip_force": [0.0, -1e-3], "end_moment": 1e-5}   # N, N m
 ANALYSES = ("static", *INTEGRATORS)
 # a user's modules, each registering an element when imported (imported by the tests, not
 # at collection: other files' parametrisations see the built-in elements alone)
@@ -76,8 +77,7 @@ def scene_dict(element, formulation, law, support, load, analysis, newton) -> di
     d["material"] = {**kept, "law": law, **_constants(law)}
     left, clamp = support
     d["supports"] = {"left": left, **({"clamp": clamp} if clamp else {})}
-    d["loads"] = {"gravity": [0.0, -9.81]} if load == "gravity" else \
-        {"tip_force": [0.0, -1e-3]} if load == "tip_force" else {"end_moment": 1e-5}
+    d["loads"] = {load: LOAD_VALUES[load]}        # a new load key fails here until it has a value
     return d
 
 

@@ -40,9 +40,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from contract.errors import SceneError
-from contract.scene import ANALYSES, SUPPORTS
+from contract.scene import ANALYSES, SUPPORTS, keys_of
 
-LOADS = ("gravity", "tip_force", "end_moment")
+LOADS = tuple(k.name for k in keys_of("loads"))    # the scene's load keys
 SCENE_FORMATS = ("toml", "json")
 FEATURES = ("analysis", "integrators", "laws", "formulations", "supports", "loads")
 SOLVER_KEYS = ("name", "version", "element", "command", "python", "adapter", "wall_time", "scene_format")
