@@ -30,8 +30,14 @@ The generalized-alpha family (Chung-Hulbert):
     u_(n+1) = u_pred + beta h^2 (a_(n+1) - a_n),  u_pred = u_n + h v_n + h^2 a_n / 2,
     v_(n+1) = v_n + h ((1 - gamma) a_n + gamma a_(n+1)),
 
-by Newton on u_(n+1) from the predictor a_(n+1) = a_n, with the step matrix
-S = (1 - alpha_f) K + (1 - alpha_m) / (beta h^2) M, factorised by LDL^T without pivoting
+by Newton on u_(n+1) from the predictor a_(n+1) = a_n; in Arnold and Bruls's form (2007) the
+forces are taken at the ends of the step, not at a configuration between them,
+
+    M a_(n+1-alpha_m) + (1 - alpha_f) f_int(u_(n+1)) + alpha_f f_int(u_n) = f_ext,
+
+a the pseudo-acceleration (``inewton[I_FORCES_AT_ENDS]``; f_int(u_n) is carried from step
+to step). The step matrix is the same in both forms,
+S = (1 - alpha_f) K + (1 - alpha_m) / (beta h^2) M (K at u_(n+1-alpha_f) or at u_(n+1)), factorised by LDL^T without pivoting
 (:func:`ancf.bandsolve.col_ldlt`): S need not be positive definite at a Newton iterate (a
 compressed beam with a stiff penalty, at the predictor), so only a (near) zero pivot
 rejects the step.
@@ -113,6 +119,7 @@ COUNTER_NAMES = ("steps", "iterations", "residuals", "tangents", "factorisations
 
 # Integer Newton settings (``inewton``) and float ones (``fnewton``).
 I_MAX_IT, I_MODIFIED, I_STOP, I_MAX_MODIFIED, I_ENERGY_EVERY, I_JAC_PER_STEP, I_SCHEME, I_MASS_SPLIT, I_LINEAR = range(9)
+I_FORCES_AT_ENDS = 9                              # 1: Arnold-Bruls (forces at u_(n+1) and u_n)
 ALPHA_FAMILY, DISCRETE_GRADIENT = 0, 1            # inewton[I_SCHEME]
 STOP_RESIDUAL, STOP_BOTH = 0, 1
 F_RTOL, F_UTOL, F_KAPPA, F_HBEAM, F_ELIMIT = range(5)
@@ -189,6 +196,14 @@ def _correct(S, first, r, du, u, counters):
 
 
 @njit(cache=True)
+def _mix_forces(f, f_n, f_new, af):
+    """Arnold-Bruls: f_new <- f = f(u_(n+1)), then f <- (1 - af) f + af f_n."""
+    for i in range(f.shape[0]):
+        f_new[i] = f[i]
+        f[i] = (1.0 - af) * f[i] + af * f_n[i]
+
+
+@njit(cache=True)
 def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, inewton, fnewton,
          u_n, v_n, a_n, h, u, v, a, S, fstate, counters, wk, chunk, R, Fb, ab, Jb, ew, full):
     """One step u_n, v_n, a_n -> u, v, a of size h. S holds the current factorisation
@@ -204,6 +219,11 @@ def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, i
     rtol, utol, kappa, hbeam = fnewton[F_RTOL], fnewton[F_UTOL], fnewton[F_KAPPA], fnewton[F_HBEAM]
     n = u.shape[0]
     u_pred, f, Ma_n, r, du = wk[0], wk[1], wk[2], wk[3], wk[4]
+    # Arnold-Bruls: the forces at the ends of the step, (1 - af) f(u_(n+1)) + af f(u_n), with
+    # f(u_n) in f_n (wk[7]); f(u_(n+1)) is left in wk[8] for the next step
+    ends = inewton[I_FORCES_AT_ENDS] != 0
+    f_n, f_new = wk[7], wk[8]
+    af_at = 0.0 if ends else af                       # where the assembly evaluates
     bh2 = beta * h * h
     c = (1.0 - am) / bh2
     for i in range(n):
@@ -221,12 +241,14 @@ def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, i
     while True:
         # residual M((1 - am) a + am a_n) + f(ue) - f_ext, with M a = c' M (u - u_pred) + M a_n
         refactor = (not modified) or fstate[1] == 0.0
-        status = element_assemble(u, u_n, af, dN, w, dofs, ops, consts, pr, f, S, refactor, chunk, R, Fb, ab, Jb, ew)
+        status = element_assemble(u, u_n, af_at, dN, w, dofs, ops, consts, pr, f, S, refactor, chunk, R, Fb, ab, Jb, ew)
         counters[C_RESIDUALS] += 1
         if refactor:
             counters[C_TANGENTS] += 1
         if status != OK:
             return status, it
+        if ends:
+            _mix_forces(f, f_n, f_new, af)
         rn = _residual(Mc, first, split, c, u, u_pred, Ma_n, f, f_ext, is_free, du, r, it == 0)
         if not rn < 1e300:
             return NEWTON_FAILED, it
@@ -237,10 +259,12 @@ def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, i
         rho = rn / r_prev if since > 0 else -1.0      # contraction of the last iteration (-1: none yet)
         if modified and not refactor and (since >= max_mod or rho > kappa):
             refactor = True                           # poor contraction: tangent at this iterate
-            status = element_assemble(u, u_n, af, dN, w, dofs, ops, consts, pr, f, S, True, chunk, R, Fb, ab, Jb, ew)
+            status = element_assemble(u, u_n, af_at, dN, w, dofs, ops, consts, pr, f, S, True, chunk, R, Fb, ab, Jb, ew)
             counters[C_TANGENTS] += 1
             if status != OK:
                 return status, it
+            if ends:
+                _mix_forces(f, f_n, f_new, af)
         if refactor:
             # S = (1 - af) K + c M, constrained, factorised in place
             if _factorise(S, 1.0 - af, Mc, c, fixed, first, wk[5:7], counters) < 0:
@@ -261,6 +285,13 @@ def step(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, coef, i
             break
         if dumax <= (utol if stop == STOP_BOTH else ROUNDOFF * utol) * max(umax, hbeam):
             break
+    if ends and it > 0 and (linear or rn > tol):
+        # stopped after a correction: f(u_(n+1)) for the next step at the final u
+        status = element_assemble(u, u, 0.0, dN, w, dofs, ops, consts, pr, f_new, np.empty((0, 0)), False, chunk, R,
+                                  Fb, ab, Jb, ew)
+        counters[C_RESIDUALS] += 1
+        if status != OK:
+            return status, it
     for i in range(n):
         a[i], v[i] = _update(u[i], u_pred[i], v_n[i], a_n[i], h, beta, gamma)
     return OK, it
@@ -275,8 +306,10 @@ def step_dg(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, inew
     R = M (2 (u - u_n) / h^2 - 2 v_n / h) + f_dg(u_n, u) - f_ext with the tangent
     K(u_m) / 2 + 2 M / h^2 at every iteration; stops on the residual
     |R| <= rtol (|f_ext| + |M a_n|) or on a correction below 1e-3 utol of the state (its
-    Jacobian is not exact: a linear rate, so the tighter test). Returns (status,
-    iterations) with the Python step's count."""
+    Jacobian is not exact: a linear rate, so the tighter test), or, where the residual has
+    stopped contracting (|R_k| > KAPPA |R_(k-1)|: its round-off floor, which a stiff
+    near-rigid beam raises above the residual test), on the alpha family's correction test,
+    utol of the state. Returns (status, iterations) with the Python step's count."""
     max_it = inewton[I_MAX_IT]
     rtol, utol, hbeam = fnewton[F_RTOL], fnewton[F_UTOL], fnewton[F_HBEAM]
     n = u.shape[0]
@@ -291,6 +324,8 @@ def step_dg(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, inew
     for i in range(n):
         Mv[i] *= -2.0 / h                             # the residual's constant part, -2 M v_n / h
     it = 0
+    r_prev = math.inf
+    stalled = False
     while True:
         status = element_assemble_dg(u_n, u, dN, w, dofs, ops, consts, pr, f, S, *scratch)
         counters[C_RESIDUALS] += 1
@@ -307,9 +342,11 @@ def step_dg(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, inew
             return NEWTON_FAILED, it
         if _factorise(S, 0.5, Mc, c, fixed, first, wk[5:7], counters) < 0:
             return SINGULAR, it
+        stalled = rn > KAPPA * r_prev
+        r_prev = rn
         umax, dumax = _correct(S, first, r, du, u, counters)
         it += 1
-        if dumax <= 1e-3 * utol * max(umax, hbeam):
+        if dumax <= (utol if stalled else 1e-3 * utol) * max(umax, hbeam):
             break
     for i in range(n):
         a[i], v[i] = _midpoint(u_n[i], u[i], v_n[i], h)
@@ -361,8 +398,16 @@ def advance(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, fixed, coef, 
     is_free = np.ones(n, np.bool_)
     for k in fixed:
         is_free[k] = False
-    wk = np.empty((7, n))
+    wk = np.empty((9, n))
     chunk, R, Fb, ab, Jb, ew = element_work(ops, dN, pr)
+    ends = inewton[I_FORCES_AT_ENDS] != 0 and inewton[I_SCHEME] != DISCRETE_GRADIENT
+    if ends:
+        # f(u_n) at this call's first state (Arnold-Bruls); then carried from step to step
+        status = element_assemble(u, u, 0.0, dN, w, dofs, ops, consts, pr, wk[7], np.empty((0, 0)), False, chunk, R,
+                                  Fb, ab, Jb, ew)
+        if status != OK:
+            tstate[2] = 0
+            return status
     dg = inewton[I_SCHEME] == DISCRETE_GRADIENT
     scratch = dg_scratch(ops.shape[0] if dg else 1, dN, pr)   # (unused without dg: one op)
     un, vn, an = np.empty(n), np.empty(n), np.empty(n)
@@ -406,6 +451,8 @@ def advance(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, q_ref, fixed, coef, 
             return status
         counters[C_STEPS] += 1
         done += 1
+        if ends:
+            wk[7, :] = wk[8]
         t = t_out if land else t + step_h
         h = _after_acceptance(h, step_h, 0.0, 0.0, dt, land)
         if every > 0 and not land and (offset + done) % every == 0:
@@ -476,9 +523,11 @@ class CompiledLoop:
 
     def __init__(self, model, M, f_ext: np.ndarray, coefficients: dict, newton: str = "chord",
                  rtol: float = 1e-8, max_iterations: int = 25, utol: float = 1e-6,
-                 discrete_gradient: bool = False):
+                 discrete_gradient: bool = False, forces_at_ends: bool = False):
         """``discrete_gradient``: step by :func:`step_dg` (full Newton; ``newton`` and the
-        coefficients do not apply), else by :func:`step` with ``newton``."""
+        coefficients do not apply), else by :func:`step` with ``newton``; ``forces_at_ends``:
+        the Arnold-Bruls form of :func:`step` (the forces at u_(n+1) and u_n, not at
+        u_(n+1-alpha_f))."""
         if newton not in NEWTON:
             raise ValueError(f"newton: {newton!r} is not one of {', '.join(NEWTON)}")
         if discrete_gradient:
@@ -493,7 +542,7 @@ class CompiledLoop:
         c = coefficients
         self.coef = np.array([c["alpha_m"], c["alpha_f"], c["beta"], c["gamma"]], dtype=float)
         self.newton = newton
-        self.inewton = np.zeros(9, np.int64)
+        self.inewton = np.zeros(10, np.int64)
         self.inewton[I_MASS_SPLIT] = int(same_component_only(self.data[6]))
         self.inewton[I_SCHEME] = DISCRETE_GRADIENT if discrete_gradient else ALPHA_FAMILY
         self.inewton[I_MAX_IT] = max_iterations
@@ -502,6 +551,7 @@ class CompiledLoop:
         self.inewton[I_MAX_MODIFIED] = MAX_MODIFIED
         self.inewton[I_JAC_PER_STEP] = int(newton in ("chord", "linear"))
         self.inewton[I_LINEAR] = int(newton == "linear")
+        self.inewton[I_FORCES_AT_ENDS] = int(forces_at_ends)
         self.fnewton = np.zeros(5)
         self.fnewton[F_RTOL], self.fnewton[F_UTOL] = rtol, utol
         self.fnewton[F_KAPPA], self.fnewton[F_HBEAM] = KAPPA, float(model.mesh.height)

@@ -51,10 +51,12 @@ def tip_difference(r1, r2) -> float:
 @pytest.mark.parametrize("analysis", [
     dict(dt=3e-3),                                   # 3 ms does not divide the outputs: landing steps
     dict(integrator="newmark"),
+    dict(integrator="arnold-bruls", dt=3e-3),        # the forces at the step's ends, carried
+    dict(integrator="arnold-bruls", max_iterations=1),
     dict(max_iterations=1),                          # every other step rejected and halved
     dict(integrator="discrete-gradient", dt=3e-3),
     dict(integrator="discrete-gradient", max_iterations=2),
-], ids=["ga-landing", "newmark", "rejections", "dg-landing", "dg-rejections"])
+], ids=["ga-landing", "newmark", "ab-landing", "ab-rejections", "rejections", "dg-landing", "dg-rejections"])
 def test_full_newton_reproduces_the_python_loop_step_for_step(analysis):
     """newton = "full" is the Python loop's method: the same accepted and rejected steps,
     the same Newton iterations, tips equal to round-off (measured 1e-12 mm). The
@@ -73,7 +75,7 @@ def test_full_newton_reproduces_the_python_loop_step_for_step(analysis):
         assert o2.energy.total == pytest.approx(o1.energy.total, rel=1e-9, abs=1e-12)
 
 
-@pytest.mark.parametrize("integrator", ["generalized-alpha", "discrete-gradient"])
+@pytest.mark.parametrize("integrator", ["generalized-alpha", "arnold-bruls", "discrete-gradient"])
 def test_a_pressure_element_steps_as_the_python_loop(integrator):
     """HB2n-40p in penalised plane strain (its pressure field in the compiled kernels as
     data): full Newton step for step as the Python loop, whose force, tangent and energy

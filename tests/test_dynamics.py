@@ -8,7 +8,7 @@ from .conftest import tiered
 from scipy.integrate import solve_ivp
 
 from ancf.banded import Banded
-from ancf.integrators import INTEGRATORS, DiscreteGradient, GeneralizedAlpha, Newmark
+from ancf.integrators import INTEGRATORS, ArnoldBruls, DiscreteGradient, GeneralizedAlpha, Newmark
 from ancf.simulation import run_scene
 from mechanics.time_loop import integrate
 from contract import paper
@@ -40,14 +40,15 @@ def test_generalized_alpha_coefficients(rho):
     # second order and unconditionally stable: alpha_m <= alpha_f <= 1/2
     assert g["alpha_m"] <= g["alpha_f"] <= 0.5 + 1e-15
     assert Newmark.coefficients(rho) == {"alpha_m": 0.0, "alpha_f": 0.0, "gamma": 0.5, "beta": 0.25}
-    assert set(INTEGRATORS) == {"generalized-alpha", "newmark", "discrete-gradient"}
+    assert ArnoldBruls.coefficients(rho) == g      # the same coefficients, another equation
+    assert set(INTEGRATORS) == {"generalized-alpha", "arnold-bruls", "newmark", "discrete-gradient"}
 
 
 def test_scenes_name_the_registered_integrators():
     from ancf.build import check
     d = pendulum_scene(integrator="leapfrog")
     with pytest.raises(SceneError, match=r"analysis\.integrator: unknown value 'leapfrog'; allowed: "
-                                         r"'discrete-gradient', 'generalized-alpha', 'newmark'"):
+                                         r"'arnold-bruls', 'discrete-gradient', 'generalized-alpha', 'newmark'"):
         check(scene_from_dict(d))
 
 
@@ -99,8 +100,9 @@ def oscillator_exact(t, u0=(1e-3, 0.0)):
     return V @ (np.cos(np.sqrt(w2) * t) * (V.T @ np.array(u0)))
 
 
-@pytest.mark.parametrize("cls,rho", tiered([(GeneralizedAlpha, 0.0), (GeneralizedAlpha, 0.8), (Newmark, 1.0),
-                                            (DiscreteGradient, 1.0)], lambda cls, rho: rho == 0.8 or cls is Newmark,
+@pytest.mark.parametrize("cls,rho", tiered([(GeneralizedAlpha, 0.0), (GeneralizedAlpha, 0.8), (ArnoldBruls, 0.0),
+                                            (ArnoldBruls, 0.5), (Newmark, 1.0), (DiscreteGradient, 1.0)],
+                                           lambda cls, rho: rho in (0.5, 0.8) or cls is Newmark,
                                            "test_second_order_accuracy_on_a_linear_oscillator"))
 def test_second_order_accuracy_on_a_linear_oscillator(cls, rho):
     errors = []
@@ -121,6 +123,8 @@ def test_energy_on_a_conservative_linear_problem():
     e = energies(oscillate(Newmark, 1.0, 1 / 50, t_end=5.0))
     assert np.abs(e - e[0]).max() < 1e-10 * e[0]
     e = energies(oscillate(GeneralizedAlpha, 0.5, 1 / 50, t_end=5.0))
+    assert e.max() <= e[0] * (1 + 1e-12) and e[-1] < 0.99 * e[0]
+    e = energies(oscillate(ArnoldBruls, 0.5, 1 / 50, t_end=5.0))
     assert e.max() <= e[0] * (1 + 1e-12) and e[-1] < 0.99 * e[0]
     e = energies(oscillate(DiscreteGradient, 1.0, 1 / 50, t_end=5.0))
     assert np.abs(e - e[0]).max() < 1e-10 * e[0]
@@ -145,6 +149,78 @@ def test_stiff_pendulum_follows_the_rigid_compound_pendulum():
     for h in rec["tip_history"]:
         theta = np.arctan2(h["y"], h["x"])
         assert theta == pytest.approx(sol.sol(h["t"])[0], abs=2e-4), h
+
+
+# the near-rigid pendulum: every law constant x 2e4 (C10 = 1.1e10 Pa), 16 x HB2n-12, dt 1 ms
+NEAR_RIGID = 2e4
+# Swing-time tolerance, stated before the runs: the time discretisation of a second-order method,
+# (omega dt)^2 = 4.2e-5 at dt = 1 ms (omega^2 = 3 g / (2 L)), plus the flexure under the swing's
+# transverse load rho A g cos(theta) (1 - 3 s / (2 L)) (self-equilibrated about the pin, |M| <=
+# 0.03 q L^2), a deflection of ~0.004 q L^3 / EI = 3e-6 of L, rounded up
+SWING_TOL = 1e-4
+
+
+def crossing_time(rec: dict) -> float:
+    """The first time the tip reaches x = 0 (the vertical), by a cubic through the four outputs
+    around the crossing (the outputs' own interpolation error is (ω Δt)^4, negligible)."""
+    t = np.array([h["t"] for h in rec["tip_history"]])
+    x = np.array([h["x"] for h in rec["tip_history"]])
+    i = int(np.nonzero(x <= 0)[0][0])
+    k = slice(max(i - 2, 0), i + 2)
+    p = np.polynomial.Polynomial.fit(t[k], x[k], 3)
+    roots = [r.real for r in p.roots() if abs(r.imag) < 1e-12 and t[i - 1] <= r.real <= t[i]]
+    return roots[0]
+
+
+def test_the_rigid_swing_time_is_the_compound_pendulum_s():
+    """The closed form (studies.verification.closed_forms.rigid_swing_time) against the rigid
+    compound pendulum integrated by scipy: theta'' = -(m g L / 2) / I cos(theta)."""
+    from studies.verification.closed_forms import rigid_swing_time
+
+    L, h, g = PENDULUM["length"], PENDULUM["height"], paper.GRAVITY
+    w2 = g * L / 2 / (L * L / 3 + h * h / 12)
+    hit = lambda t, y: y[0] + np.pi / 2          # noqa: E731
+    hit.terminal = True
+    sol = solve_ivp(lambda t, y: [y[1], -w2 * np.cos(y[0])], [0, 1], [0.0, 0.0], events=hit, rtol=1e-12, atol=1e-14)
+    assert rigid_swing_time(L, h, g) == pytest.approx(sol.t_events[0][0], rel=1e-9)
+
+
+@pytest.mark.parametrize("rho", [0.5, 0.8])
+def test_arnold_bruls_holds_the_near_rigid_pendulum_that_chung_hulbert_heats(rho):
+    """C10 x 2e4: Chung-Hulbert's generalized-alpha takes the forces at u_(n+1-alpha_f), the chord
+    between two rotated configurations, which is strained: it gains energy and is stopped by the
+    guard before t = 0.2 s (measured 0.16-0.17 s). Arnold and Bruls's form (forces at the ends of
+    the step) swings to the vertical at the rigid compound pendulum's time within SWING_TOL
+    (measured 2e-5) and its energy never rises (numerical dissipation only)."""
+    from studies.verification.closed_forms import rigid_swing_time
+
+    s = pendulum_scene(n=16, t_end=0.3, dt=1e-3, rho_inf=rho)
+    s["analysis"]["output_times"] = list(np.round(np.arange(0, 0.3001, 0.005), 12))
+    for k in ("C10", "C20", "C30"):
+        s["material"][k] *= NEAR_RIGID
+    rec, _ = run_scene(scene_from_dict(s))
+    assert rec["status"] == "failed" and rec["reason"].startswith("energy-growth")
+    assert rec["tip_history"][-1]["t"] < 0.2
+    s["analysis"]["integrator"] = "arnold-bruls"
+    rec, _ = run_scene(scene_from_dict(s))
+    assert rec["status"] == "converged", rec["reason"]
+    e = np.array([x["total"] for x in rec["energy"]])
+    assert (e - e[0]).max() <= 1e-12
+    T = rigid_swing_time(PENDULUM["length"], PENDULUM["height"], paper.GRAVITY)
+    assert crossing_time(rec) == pytest.approx(T, rel=SWING_TOL)
+
+
+def test_arnold_bruls_at_rho_inf_one_is_newmarks_average_acceleration():
+    """At rho_inf = 1 (alpha_m = alpha_f = 1/2) the mean of the pseudo-acceleration over a step
+    is the mean of the acceleration, so the steps are Newmark's (gamma = 1/2, beta = 1/4): the
+    same tips to Newton's tolerance on the flexible pendulum (a nonlinear problem: a second
+    route to the force bookkeeping of the step's ends)."""
+    tips = []
+    for integ in ("arnold-bruls", "newmark"):
+        rec, _ = run_scene(scene_from_dict(pendulum_scene(t_end=0.1, integrator=integ, rho_inf=1.0, newton="full")))
+        assert rec["status"] == "converged"
+        tips.append(np.array([[h["x"], h["y"]] for h in rec["tip_history"]]))
+    assert np.abs(tips[0] - tips[1]).max() < 1e-9
 
 
 @pytest.mark.parametrize("form", ["plane-stress", "paper", "plane-strain"])
