@@ -52,12 +52,12 @@ RTOL = 1e-10                 # Newton's, on the residual
 
 
 def _scene(M: float, slender: float, cells_height: int = 4, left: str = "clamp", steps: int = 20,
-           backend: str = "dolfinx", aspect: float = 2.0, **fem):
+           backend: str = "dolfinx", aspect: float = 2.0, max_iterations: int = 25, **fem):
     return scene_from_dict({
         "name": f"end-moment-{left}-{slender:g}", "beam": {"length": slender * H, "height": H, "width": W},
         "material": {"law": "neo-hookean", "formulation": "plane-stress", "density": 1000.0, "C10": C10},
         "supports": {"left": left}, "loads": {"end_moment": M},
-        "analysis": {"kind": "static", "load_steps": steps, "newton_rtol": RTOL},
+        "analysis": {"kind": "static", "load_steps": steps, "newton_rtol": RTOL, "max_iterations": max_iterations},
         "fem": {"cells_height": cells_height, "aspect": aspect, "backend": backend, **fem}})
 
 
@@ -395,3 +395,17 @@ def test_3d_with_plane_strain_sides_is_the_2d_plane_strain_answer(backend):
     assert a["tip"]["rotation"] == pytest.approx(0.5, abs=0.01)
     for k in ("rotation", "ux", "uy"):
         assert b["tip"][k] == pytest.approx(a["tip"][k], rel=1e-8)
+
+
+def test_a_failed_path_whose_eigen_solve_does_not_answer_is_still_a_record(monkeypatch):
+    """A failed static run is diagnosed (unstable directions along the failed increment); when
+    the eigen solve gives no count (None), the record says "failed" with its reason instead of
+    the run ending in a TypeError (it wrote no record before)."""
+    from reference_fem.dolfinx_backend.fem import NonlinearSystem
+    from reference_fem.simulation import run_scene
+
+    monkeypatch.setattr(NonlinearSystem, "unstable_directions", lambda self: None)
+    sc = _scene(2 * math.pi * EI / (4 * H), 4.0, cells_height=2, steps=1, max_iterations=1)
+    rec = run_scene(sc)
+    assert rec["status"] == "failed" and rec["reason"]
+    assert rec["failure"]["unstable_directions"] == 0

@@ -235,6 +235,8 @@ class Problem:
                 self.system.residual_norm()
                 self.system.newton_update()
                 n = self.system.unstable_directions()
+                if n is None:                 # the eigen solve did not answer: nothing to count
+                    break
                 if peak is None or n > found:
                     found, peak = n, self.setup.disc.dof_point(self.system.last_increment())
                 if n > 0:
