@@ -154,12 +154,13 @@ def test_a_refused_integrator_is_named_with_the_allowed_ones(element):
 
 def test_the_rule_is_the_one_the_models_and_the_stability_study_ask():
     from ancf.element_model import refuse_discrete_gradient
-    from studies.verification.dynamics_stability import offered
+    from studies.verification.dynamics_stability import STUDY, offered
 
     user_elements()
     for name, el in ELEMENTS.items():
         refused = "discrete-gradient" in refused_integrators(el)
-        assert offered({"base": {"element": name}}, {}, "discrete-gradient") is not refused
+        assert offered(STUDY["grid"], {"element": name}, "discrete-gradient") is not refused
+        assert offered(STUDY["grid"], {"element": name}, "arnold-bruls")
 
         class Model:
             class mesh:

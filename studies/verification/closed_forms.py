@@ -31,7 +31,12 @@ W1 = dW/dI1 and W2 = dW/dI2 are typed here again (:data:`DERIVATIVES`), so a sli
   reference length) the face stretches lambda_b = 1 / lambda_a = exp(asinh(kappa h) / 2) and the couple
   M / w = 2 / kappa^2 int_0^asinh(kappa h) (W1 + W2)(1 + 2 cosh s) sinh(s)^2 ds (quadrature);
   :func:`rivlin_curvature` inverts it, :func:`rivlin_moment_mooney_rivlin` is its closed form for the
-  Mooney-Rivlin family (neo-Hookean included).
+  Mooney-Rivlin family (neo-Hookean included);
+- :func:`rigid_swing_time`: the rigid limit of the pinned pendulum released from the horizontal, the
+  time to the vertical K(1/sqrt 2) sqrt(I / (m g c)) (the compound pendulum of amplitude pi / 2, a
+  quarter of its period 4 sqrt(I / (m g c)) K(sin(theta_0 / 2)); e.g. Landau and Lifshitz, Mechanics,
+  section 11, problem 1), for a bar of length L and height h pinned at the centre of an end face:
+  c = L / 2, I / m = L^2 / 3 + h^2 / 12.
 """
 from __future__ import annotations
 
@@ -125,6 +130,14 @@ MATTIASSON_1981 = {1.0: (0.05643, 0.30172), 2.0: (0.16064, 0.49346), 5.0: (0.387
 MATTIASSON_1981_DIGITS = 5
 # Bisshopp and Drucker's (1945) own table of u / L, v / L against alpha is not here: no copy of its
 # digits that could be cited exactly was at hand, and none is typed from memory.
+
+
+def rigid_swing_time(length: float, height: float, g: float) -> float:
+    """Seconds from the horizontal (at rest) to the vertical of a rigid bar pinned at the centre of
+    an end face (see the module doc); scipy's ellipk takes the parameter m = k^2 = 1 / 2."""
+    from scipy.special import ellipk
+
+    return float(ellipk(0.5)) * math.sqrt((length ** 2 / 3 + height ** 2 / 12) / (g * length / 2))
 
 
 # --- Rivlin's flexure: pure bending of an incompressible block in plane strain -----------------------------

@@ -4,9 +4,12 @@ does it hold the energy bound, when the pendulum is made hard?
 From a base pendulum (``base`` grid key: law, formulation, element, count, step, time),
 and the same with each element of ``elements`` (the lock-free ones), one change at a time: rho_inf over ``rho_inf``; penalty alpha = factor x C10 over
 ``penalty_factors`` in each of ``penalty_formulations``; ``long_t_end`` s of motion;
-``many_elements`` elements; every law constant times ``softer``; a step
-``larger_step`` times the base step. Each with every integrator of ``integrators``
-(rho_inf applies to generalized-alpha only: for the others those rows are the base run).
+``many_elements`` elements; every law constant times ``softer``; every law constant times
+``stiffer`` (the near-rigid pendulum, also timed against the rigid compound pendulum's swing to
+the vertical, :func:`swing_verdicts`); a step ``larger_step`` times the base step. Each with every
+integrator of ``integrators`` that ANCF admits for the case (rho_inf applies to the methods whose
+coefficients depend on it, the two forms of generalized-alpha: for the others those rows are the
+base run).
 
 The bound, stated before measuring: |E(t) - E(0)| <= 1e-3 m g L / 2 for the
 conservative settings (Newmark average acceleration, the discrete gradient,
@@ -41,13 +44,15 @@ STUDY = {
                  "rho_inf": 0.5},
         # every hard case again with each of these (stability-elements: the lock-free ones)
         "elements": ["HB2n-12"],
-        "integrators": ["generalized-alpha", "newmark", "discrete-gradient"],
+        "integrators": ["generalized-alpha", "arnold-bruls", "newmark", "discrete-gradient"],
         "rho_inf": [0.0, 0.5, 0.8, 1.0],
         "penalty_factors": [10.0, 1000.0, 100000.0],  # alpha = factor x C10
         "penalty_formulations": ["paper", "plane-strain"],
         "long_t_end": 5.0,
         "many_elements": 128,
         "softer": 0.1,
+        "stiffer": 2e4,        # near-rigid: C10 = 1.1e10 Pa
+        "stiffer_every": 0.005,  # s: its output times (the swing time is read between them)
         "larger_step": 10,
         "energy_every": 0.01,  # s: output times, where E is sampled
         "long_energy_every": 0.05,
@@ -71,6 +76,13 @@ STUDY = {
 }
 
 CONSERVATIVE = ("newmark", "discrete-gradient")
+# The near-rigid pendulum's swing to the vertical against the rigid compound pendulum
+# (studies.verification.closed_forms.rigid_swing_time). Tolerance, stated before the runs: the
+# time discretisation of a second-order method, (omega dt)^2 = 4.2e-5 at dt = 1 ms (omega^2 =
+# 3 g / (2 L)), plus the flexure under the swing's transverse load rho A g cos(theta) (1 - 3 s /
+# (2 L)) (self-equilibrated about the pin, |M| <= 0.03 q L^2: a deflection of ~0.004 q L^3 / EI,
+# 3e-6 of L at x 2e4), rounded up; relative
+SWING_TOL = 1e-4
 HOLDS = ("holds", "no growth (dissipative)")
 DAMPED = 0.01    # a dissipative run that lost more than 1 % of m g L / 2 (ten bounds) is named below its table
 
@@ -91,6 +103,8 @@ def hard_cases(grid: dict) -> list[tuple[str, str, dict]]:
                                                                        "every": grid["long_energy_every"]}),
                 ("many", f"{tag}{grid['many_elements']} elements", {**ch0, "n": grid["many_elements"]}),
                 ("softer", f"{tag}material x {grid['softer']:g} (softer)", {**ch0, "stiffness_scale": grid["softer"]}),
+                ("stiffer", f"{tag}material x {grid['stiffer']:g} (near-rigid)",
+                 {**ch0, "stiffness_scale": grid["stiffer"], "every": grid["stiffer_every"]}),
                 ("larger-step", f"{tag}step x {grid['larger_step']:g} ({1e3 * b['dt'] * grid['larger_step']:g} ms)",
                  {**ch0, "dt": b["dt"] * grid["larger_step"]})]
     return out
@@ -101,9 +115,17 @@ def scene_for(grid: dict, changes: dict, integrator: str) -> dict:
     kw = {"element": b["element"], "n": b["elements"], "formulation": b["formulation"], "dt": b["dt"],
           "rho_inf": b["rho_inf"], "law": b.get("law", paper.PENDULUM_LAW), "t_end": b["t_end"], "every": grid["energy_every"]}
     kw.update(changes)
-    if integrator != "generalized-alpha":
+    if not takes_rho_inf(integrator):
         kw["rho_inf"] = b["rho_inf"]          # not used by the method: the same run as the base's
     return pendulum_dict(integrator=integrator, **kw)
+
+
+def takes_rho_inf(integrator: str) -> bool:
+    """Whether the method's coefficients depend on rho_inf (its class in the registry says)."""
+    from ancf.integrators import INTEGRATORS
+
+    c = INTEGRATORS[integrator].coefficients
+    return c(0.0) != c(1.0)
 
 
 def cases(grid: dict, tiny: bool) -> list:
@@ -114,13 +136,59 @@ def cases(grid: dict, tiny: bool) -> list:
 
 
 def offered(grid: dict, changes: dict, integrator: str) -> bool:
-    """Whether ANCF offers the integrator for the case's element
-    (:func:`ancf.admission.refused_integrators`: such a scene is refused by name)."""
-    from ancf.admission import refused_integrators
-    from ancf.elements import get_element
+    """Whether ANCF admits the case's scene (:func:`ancf.admission.check`: an integrator the
+    element refuses, a formulation a cable does not take; such a scene is refused by name)."""
+    from ancf.admission import check
+    from contract.errors import SceneError
+    from contract.scene import scene_from_dict
 
-    element = changes.get("element", grid["base"]["element"])
-    return integrator not in refused_integrators(get_element(element))
+    try:
+        check(scene_from_dict(scene_for(grid, changes, integrator)))
+    except SceneError:
+        return False
+    return True
+
+
+def swing_time(rec: dict) -> float | None:
+    """The first time the tip reaches x = 0 (the vertical), by the cubic through the four outputs
+    around the crossing (its own error is of order (omega dt_out)^4 / 100, 1e-8 at 5 ms); None if
+    the record never gets there."""
+    import numpy as np
+
+    t = np.array([h["t"] for h in rec.get("tip_history") or []])
+    x = np.array([h["x"] for h in rec.get("tip_history") or []])
+    below = np.nonzero(x <= 0)[0]
+    if len(below) == 0 or below[0] < 2 or below[0] + 2 > len(t):
+        return None
+    i = int(below[0])
+    p = np.polynomial.Polynomial.fit(t[i - 2:i + 2], x[i - 2:i + 2], 3)
+    roots = [r.real for r in p.roots() if abs(r.imag) < 1e-12 and t[i - 1] <= r.real <= t[i]]
+    return float(roots[0]) if roots else None
+
+
+def swing_rows(rows: list[dict]) -> list[list]:
+    """[case, integrator, status, swing time, closed form, relative error, verdict] of the
+    near-rigid rows (:data:`SWING_TOL`)."""
+    from contract import paper as _paper
+    from .closed_forms import rigid_swing_time
+
+    b = _paper.PENDULUM
+    T = rigid_swing_time(b["length"], b["height"], _paper.GRAVITY)
+    out = []
+    for x in rows:
+        if x["group"] != "stiffer" or x["same_as_base"]:
+            continue
+        d = x["d"]
+        ts = swing_time(x["record"]) if d["status"] == "converged" else None
+        err = None if ts is None else ts / T - 1
+        if err is not None:
+            v = "meets" if abs(err) <= SWING_TOL else "misses"
+        elif d["status"] == "converged":
+            v = f"not reached by t = {d['t_end']:g} s"
+        else:
+            v = "failed: " + str(d["reason"] or "?").split(":")[0]
+        out.append([x["label"], x["integrator"], d["status"], ts, T, err, v])
+    return out
 
 
 def _definitions() -> str:
@@ -232,7 +300,7 @@ def rows_of(ctx) -> list[dict]:
             out.append({"group": group, "label": label, "changes": ch, "integrator": integ, "d": d, "drift": drift, "rise": rise,
                         "lost": lost, "bound": bound, "enforced": r.get("energy_limit"), "verdict": verdict(d, drift, rise, bound),
                         "wall": med if med is not None else d["wall_s"], "timed": med is not None,
-                        "checked": energy_checked(r),
+                        "checked": energy_checked(r), "record": r,
                         "same_as_base": c.id in seen or r["case_id"] in seen})
             seen.update((c.id, r["case_id"]))
     return out
@@ -280,6 +348,19 @@ def report(ctx) -> Section:
               and x["lost"] > DAMPED]
     lines += [f"- {x['label']}, {x['integrator']}: no energy gained, but numerical damping took "
               f"{100 * x['lost']:.3g} % of m g L / 2 by t = {x['d']['t_end']:g} s." for x in damped]
+    swings = swing_rows(rows)
+    if swings:
+        sec.table(ctx, Table(f"{stem}_swing", ["hard case", "integrator", "status", "swing time (s)",
+                                              "rigid pendulum (s)", "relative error", "verdict"], swings,
+                             {3: ".6f", 4: ".6f", 5: "+.2e"}),
+                  "The near-rigid pendulum's time from the horizontal to the vertical against the rigid compound "
+                  "pendulum's, K(1/sqrt 2) sqrt(I / (m g L / 2)) with I / m = L^2 / 3 + h^2 / 12 (the closed form: "
+                  "studies.verification.closed_forms.rigid_swing_time). Tolerance stated before the runs: "
+                  f"{SWING_TOL:g} relative, the time discretisation (omega dt)^2 = 4.2e-5 at dt = 1 ms plus the "
+                  "bar's flexure under the swing's self-equilibrated transverse load (3e-6 of L), rounded up.")
+        lines.append(f"- Near-rigid pendulum: {sum(1 for r in swings if r[-1] == 'meets')} of {len(swings)} runs "
+                     f"swing to the vertical within {SWING_TOL:g} of the rigid pendulum's time"
+                     + "".join(f"; {r[0]}, {r[1]}: {r[-1]}" for r in swings if r[-1] != "meets") + ".")
     sec.text = "\n".join(lines)
     margins = margin_rows(ctx) if ctx.study.name == "stability" else []
     if margins:
@@ -295,6 +376,7 @@ def report(ctx) -> Section:
     (ctx.out / f"{stem}.md").write_text(
         f"# {ctx.study.title}\n\n{DEFINITIONS}\n\n{sec.intro}\n\n{(ctx.out / f'{stem}_runs.md').read_text()}\n"
         f"{sec.text}\n\n"
+        + (f"## The near-rigid pendulum's swing time\n\n{(ctx.out / f'{stem}_swing.md').read_text()}\n" if swings else "")
         + (f"## Static verdicts and their margins\n\n{(ctx.out / 'stability_margins.md').read_text()}\n" if margins else "")
         + f"Generated by `python -m studies run {name}` from the records in `data/{name}.jsonl`"
         + (" and `data/table3.jsonl`" if margins else "") + f" (CSV: [{stem}_runs.csv]({stem}_runs.csv)"

@@ -20,14 +20,16 @@ STUDY = {
                  "t_end": 0.5,
                  "rho_inf": 0.5},
         # every hard case again with each of these (stability-elements: the lock-free ones)
-        "elements": ["HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", "HB2n-60p"],
-        "integrators": ["generalized-alpha", "newmark", "discrete-gradient"],
+        "elements": ["HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", "HB2n-60p", "HC2n-8"],
+        "integrators": ["generalized-alpha", "arnold-bruls", "newmark", "discrete-gradient"],
         "rho_inf": [0.0, 0.5, 0.8, 1.0],
         "penalty_factors": [10.0, 1000.0, 100000.0],  # alpha = factor x C10
         "penalty_formulations": ["paper", "plane-strain"],
         "long_t_end": 5.0,
         "many_elements": 128,
         "softer": 0.1,
+        "stiffer": 2e4,        # near-rigid: C10 = 1.1e10 Pa
+        "stiffer_every": 0.005,
         "larger_step": 10,
         "energy_every": 0.01,  # s: output times, where E is sampled
         "long_energy_every": 0.05,
