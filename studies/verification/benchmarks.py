@@ -51,17 +51,27 @@ The cases (the references in :mod:`studies.verification.closed_forms`):
    round-off: :func:`studies.verification.closed_forms.plane_stress_bending`). The strip (h = 5 mm) stands
    on its symmetry plane x = 0 (``slide``) under the end moment (:mod:`contract.loads`) of
    the exact solution at kappa h = 0.2 and 0.5 in plane stress, 0.2 and 0.3 in plane strain
-   (Gent: 0.1, 0.2, below its lock). Past kappa h of about 0.35 in penalised plane strain the
-   last ANCF elements under the couple distort (det F 0.78 at a point of the last element at
-   kappa h = 0.34 with HB2n-40p, 2 elements per h) and the load path ends there whatever its
-   steps: an end-zone limit of the elements, not the flexure's. The continuum is no reference
-   there either: measured outside the records (a thick block, L/h = 8, the same support and
-   couple, penalty 1e9), DOLFINx departs from Rivlin's flexure at kappa h = 0.39 by 1.8 / 4.5 /
-   4.6 % for L = 4 / 8 / 12 h, and that departure does not converge with its cells (2 / 4 / 8
-   cells across h: 1.2 / 4.6 / 3.3 %); read as this case reads it (the inner curvature) it is exact at
-   kappa h = 0.30 and 2.1 / 1.9 % off at 0.35 / 0.39. Its cause is open (the couple's
-   definition, the end rotation crossing pi and the load path are suspects), so this case
-   stops at 0.3. The couple
+   (Gent: 0.1, 0.2, below its lock). The case stops at kappa h = 0.3 because past about 0.35
+   neither solver holds the flexure under this couple, for two causes found together
+   (``experiments/bending_departure/REPORT.md``, every number there re-run by its scripts):
+   the couple's traction is linear and symmetric in Y while Rivlin's end traction is not
+   (-1.80 / +1.23 MPa on the inner / outer face at kappa h 0.39, the couple's -+1.42), so it
+   leaves a self-equilibrated end zone, whose inner corner collapses as kappa h grows
+   (DOLFINx Q2 at h / 4: det F 0.96 -> 0.10 from 0.30 to 0.40 while the interior stays
+   Rivlin's to 1e-4): that collapsed zone is what the end rotation measured at 0.39 (1.8 to
+   4.6 % off in the first runs, 1.45 / 0.32 % at h / 4 / h / 8 in these: near the threshold it
+   depends on the mesh, the length and the path) and what stops ANCF (HB2n-40p x 16 fails
+   from 0.33); and above 0.40-0.42 the
+   exact flexure is an unstable state of the Q2 quadrilateral itself (Q2/Q1 mixed and
+   penalty: 2 unstable directions at 0.42, a mode two cells long whatever the mesh), while
+   P2/P1 triangles hold it stable to 0.50 and the real block is far from wrinkling (stretch
+   0.544, kappa h 1.55) or creasing (about 0.65). Neither the end rotation crossing pi (the
+   extra rotation is 0.0100 rad at kappa h 0.39 for every L from 2 h to 12 h) nor the load
+   path is the cause. Loaded through a straight end face free to slide and to thin (the couple
+   as a multiplier on the face's line: zero resultant, moment exactly M, a shear-free normal
+   traction the block distributes), both solvers meet Rivlin to 1e-4 to 5e-4 up to kappa h =
+   0.50 (Q2 only to 0.41); that couple is not yet a load of the scenes, so this case stops at
+   0.3. The couple
    is applied as a conservative couple on the end face's rotation, not as Rivlin's end
    tractions: the two differ by a self-equilibrated load whose effect stays within about h
    of the end (Saint-Venant), so the strip is run at two lengths, 8 h and 16 h, and the
