@@ -37,8 +37,8 @@ forces are taken at the ends of the step, not at a configuration between them,
 
 a the pseudo-acceleration (``inewton[I_FORCES_AT_ENDS]``; f_int(u_n) is carried from step
 to step). The step matrix is the same in both forms,
-S = (1 - alpha_f) K + (1 - alpha_m) / (beta h^2) M (K at u_(n+1-alpha_f) or at u_(n+1)), factorised by LDL^T without pivoting
-(:func:`ancf.bandsolve.col_ldlt`): S need not be positive definite at a Newton iterate (a
+S = (1 - alpha_f) K + (1 - alpha_m) / (beta h^2) M (K at u_(n+1-alpha_f) or at u_(n+1)),
+factorised by LDL^T without pivoting (:func:`ancf.bandsolve.col_ldlt`): S need not be positive definite at a Newton iterate (a
 compressed beam with a stiff penalty, at the predictor), so only a (near) zero pivot
 rejects the step.
 
