@@ -14,6 +14,7 @@ from mechanics.time_loop import integrate
 from contract import paper
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
+from studies.verification.dynamics_stability import STUDY as STABILITY, SWING_TOL, swing_time
 
 PENDULUM = paper.PENDULUM
 
@@ -151,25 +152,9 @@ def test_stiff_pendulum_follows_the_rigid_compound_pendulum():
         assert theta == pytest.approx(sol.sol(h["t"])[0], abs=2e-4), h
 
 
-# the near-rigid pendulum: every law constant x 2e4 (C10 = 1.1e10 Pa), 16 x HB2n-12, dt 1 ms
-NEAR_RIGID = 2e4
-# Swing-time tolerance, stated before the runs: the time discretisation of a second-order method,
-# (omega dt)^2 = 4.2e-5 at dt = 1 ms (omega^2 = 3 g / (2 L)), plus the flexure under the swing's
-# transverse load rho A g cos(theta) (1 - 3 s / (2 L)) (self-equilibrated about the pin, |M| <=
-# 0.03 q L^2), a deflection of ~0.004 q L^3 / EI = 3e-6 of L, rounded up
-SWING_TOL = 1e-4
-
-
-def crossing_time(rec: dict) -> float:
-    """The first time the tip reaches x = 0 (the vertical), by a cubic through the four outputs
-    around the crossing (the outputs' own interpolation error is (ω Δt)^4, negligible)."""
-    t = np.array([h["t"] for h in rec["tip_history"]])
-    x = np.array([h["x"] for h in rec["tip_history"]])
-    i = int(np.nonzero(x <= 0)[0][0])
-    k = slice(max(i - 2, 0), i + 2)
-    p = np.polynomial.Polynomial.fit(t[k], x[k], 3)
-    roots = [r.real for r in p.roots() if abs(r.imag) < 1e-12 and t[i - 1] <= r.real <= t[i]]
-    return roots[0]
+# the near-rigid pendulum of the stability study (every law constant x 2e4, C10 = 1.1e10 Pa); its
+# swing-time reading and tolerance (SWING_TOL) are the study's, derived there before the runs
+NEAR_RIGID = STABILITY["grid"]["stiffer"]
 
 
 def test_the_rigid_swing_time_is_the_compound_pendulum_s():
@@ -207,7 +192,7 @@ def test_arnold_bruls_holds_the_near_rigid_pendulum_that_chung_hulbert_heats(rho
     e = np.array([x["total"] for x in rec["energy"]])
     assert (e - e[0]).max() <= 1e-12
     T = rigid_swing_time(PENDULUM["length"], PENDULUM["height"], paper.GRAVITY)
-    assert crossing_time(rec) == pytest.approx(T, rel=SWING_TOL)
+    assert swing_time(rec) == pytest.approx(T, rel=SWING_TOL)
 
 
 def test_arnold_bruls_at_rho_inf_one_is_newmarks_average_acceleration():
