@@ -6,6 +6,14 @@ from contract.paper import cantilever_scene, element_count
 from ..engine.case import Case, make_case
 
 
+def fem_table(backend: str, **keys) -> dict:
+    """A scene's [fem] table for ``backend``: ``keys`` and the backend's name, left out for
+    the default backend (:data:`reference_fem.backends.DEFAULT`), as the scenes have it."""
+    from reference_fem.backends import DEFAULT as DEFAULT_BACKEND
+
+    return dict(keys) | ({} if backend == DEFAULT_BACKEND else {"backend": backend})
+
+
 def count_for(grid: dict, element: str) -> int:
     """The element count of ``element`` for grids with ``counts = "paper"`` (the paper's
     Table 3 counts, :func:`contract.paper.element_count`) or a table {element: count}."""

@@ -103,6 +103,7 @@ from contract import paper
 from .closed_forms import (MATTIASSON_1981, MATTIASSON_1981_DIGITS, elastica_end_moment, elastica_tip_load,
                            plane_stress_bending, plane_stress_curvature, rivlin_bending, simple_shear_stress,
                            uniaxial_stretch)
+from ..common.grid import fem_table
 from ..engine.case import make_case
 from ..engine.solvers import Solver, register_solver
 from ..engine.report import Section, Table
@@ -190,9 +191,7 @@ def tension_scene(grid: dict, law: str, form: str, solver: str) -> dict:
     d = {"name": f"bench-tension-{law}-{form}-{solver}", "beam": dict(STRIP), "material": m,
          "supports": {"left": "slide"}, "loads": {"tip_force": [F, 0.0]}, "analysis": {"kind": "static"}}
     if solver in grid["codes"]:
-        d["fem"] = {"model": form, "cells_length": 8, "cells_height": 2}
-        if solver != "dolfinx":
-            d["fem"]["backend"] = solver
+        d["fem"] = fem_table(solver, model=form, cells_length=8, cells_height=2)
     else:
         d["ancf"] = {"element": solver, "elements": grid["tension_elements"]}
     return d
@@ -309,9 +308,7 @@ def bending_scene(grid: dict, law: str, form: str, x: float, lengths: int, solve
          "analysis": {"kind": "static", "load_steps": max(20, math.ceil(2 * x * lengths))}}
     if solver in grid["codes"]:
         n = grid["bending_cells_per_h"]
-        d["fem"] = {"model": form, "cells_length": n * lengths, "cells_height": n}
-        if solver != "dolfinx":
-            d["fem"]["backend"] = solver
+        d["fem"] = fem_table(solver, model=form, cells_length=n * lengths, cells_height=n)
     else:
         d["ancf"] = {"element": solver, "elements": grid["bending_elements_per_h"] * lengths}
     return d

@@ -51,8 +51,8 @@ from contract import paper
 
 from ..engine.case import make_case
 from ..engine.report import Section, Table
-from .closed_forms import rigid_swing_time
-from .dynamics_stability import SWING_TOL, swing_time
+from ..common.grid import fem_table
+from .dynamics_stability import SWING_TOL, energy_drift, rigid_swing_reference, swing_time
 
 STUDY = {
     "name": "dynamic-benchmarks",
@@ -75,23 +75,18 @@ STUDY = {
 }
 LAW = "neo-hookean"
 KAPPA = 5.0 / 6.0                 # Timoshenko's shear coefficient of a rectangle
-COWPER = 10 * 1.5 / (12 + 11 * 0.5)   # Cowper's (1966) at nu = 1/2: the coefficient's uncertainty
 
 
 # -- 1. the rigid pendulum ---------------------------------------------------------------------------
 
 def swing_scene(grid: dict, solver: str) -> dict:
     """The near-rigid pendulum for ``solver`` (an element or a continuum code)."""
-    law = paper.PENDULUM_LAW
-    fem = None
-    if solver in _codes(grid):
-        fem = {"cells_height": grid["swing_cells_height"]} | ({} if solver == "dolfinx" else {"backend": solver})
-    d = paper.pendulum_scene(law, "plane-stress", grid["swing_dt"], None if fem else solver,
-                             None if fem else grid["swing_elements"], t_end=grid["swing_t_end"],
-                             every=grid["swing_every"], integrator="newmark", rho_inf=1.0,
-                             stiffness_scale=grid["stiffer"], fem=fem,
-                             name=f"dyn-bench-rigid-swing-x{grid['stiffer']:g}-{solver}")
-    return d
+    fem = fem_table(solver, cells_height=grid["swing_cells_height"]) if solver in _codes(grid) else None
+    return paper.pendulum_scene(paper.PENDULUM_LAW, "plane-stress", grid["swing_dt"], None if fem else solver,
+                                None if fem else grid["swing_elements"], t_end=grid["swing_t_end"],
+                                every=grid["swing_every"], integrator="newmark", rho_inf=1.0,
+                                stiffness_scale=grid["stiffer"], fem=fem,
+                                name=f"dyn-bench-rigid-swing-x{grid['stiffer']:g}-{solver}")
 
 
 # -- 2. the clamped beam's first frequency -----------------------------------------------------------
@@ -164,9 +159,7 @@ def frequency_scene(grid: dict, ratio: float, solver: str) -> dict:
                       "rho_inf": 1.0, "output_times": times}}
     if solver in _codes(grid):
         n = grid["cells_per_h"]
-        d["fem"] = {"model": "plane-stress", "cells_length": int(n * ratio), "cells_height": n}
-        if solver != "dolfinx":
-            d["fem"]["backend"] = solver
+        d["fem"] = fem_table(solver, model="plane-stress", cells_length=int(n * ratio), cells_height=n)
     else:
         d["ancf"] = {"element": solver, "elements": int(grid["elements_per_h"] * ratio)}
     return d
@@ -221,12 +214,9 @@ def dg_elements(grid: dict) -> list[str]:
 
 
 def energy_change(rec: dict) -> float | None:
-    """max |E(t) - E(0)| (J) over the outputs and, where the record keeps it, every step's peak."""
-    e = [x["total"] for x in rec.get("energy") or [] if x.get("total") is not None]
-    if rec.get("status") != "converged" or not e:
-        return None
-    rise = (rec.get("energy_peak") or {}).get("rise")
-    return max([abs(x - e[0]) for x in e] + ([rise] if rise is not None else []))
+    """max |E(t) - E(0)| (J) of a converged run, over the outputs and every step's peak where the
+    record keeps it (:func:`.dynamics_stability.energy_drift`)."""
+    return energy_drift(rec)[0] if rec.get("status") == "converged" else None
 
 
 # -- the cases and the report ------------------------------------------------------------------------
@@ -286,8 +276,7 @@ def _verdict(err: float | None, tol: float, rec: dict | None) -> str:
 def rows(ctx) -> list[list]:
     g = ctx.study.grid
     recs = {r["scene"]["name"]: r for r in ctx.records()}
-    b = paper.PENDULUM
-    T = rigid_swing_time(b["length"], b["height"], paper.GRAVITY)
+    T = rigid_swing_reference()
     out = []
     for s in _solvers(g):
         rec = recs.get(swing_scene(g, s)["name"])
@@ -330,8 +319,8 @@ def report(ctx) -> Section:
     sec.table(ctx, Table("dynamic_benchmarks", ["case", "solver", "quantity", "reference", "measured",
                                                 "relative error", "tolerance", "verdict"], table,
                          {3: ".6g", 4: ".6g", 5: "+.2e", 6: ".2e"}),
-              "Every (case, solver): reference, measured value, relative error, the tolerance derived before the "
-              "runs, and the verdict.")
+              "Every (case, solver): reference, measured value, relative error, the tolerance (derived as said "
+              "above) and the verdict.")
     met = sum(1 for r in table if r[-1] == "meets")
     sec.text = f"- {met} of {len(table)} (case, solver) pairs meet their reference." + "".join(
         f"\n- {r[0]}, {r[1]}: **{r[-1]}**" + (f" ({r[5]:+.2e} against {r[6]:.1e})" if r[5] is not None else

@@ -6,7 +6,7 @@ and the same with each element of ``elements`` (the lock-free ones), one change 
 ``penalty_factors`` in each of ``penalty_formulations``; ``long_t_end`` s of motion;
 ``many_elements`` elements; every law constant times ``softer``; every law constant times
 ``stiffer`` (the near-rigid pendulum, also timed against the rigid compound pendulum's swing to
-the vertical, :func:`swing_verdicts`); a step ``larger_step`` times the base step. Each with every
+the vertical, :func:`swing_rows`); a step ``larger_step`` times the base step. Each with every
 integrator of ``integrators`` that ANCF admits for the case (rho_inf applies to the methods whose
 coefficients depend on it, the two forms of generalized-alpha: for the others those rows are the
 base run).
@@ -166,14 +166,19 @@ def swing_time(rec: dict) -> float | None:
     return float(roots[0]) if roots else None
 
 
+def rigid_swing_reference() -> float:
+    """The paper's pendulum as a rigid bar: its time (s) from the horizontal to the vertical
+    (:func:`.closed_forms.rigid_swing_time`)."""
+    from .closed_forms import rigid_swing_time
+
+    b = paper.PENDULUM
+    return rigid_swing_time(b["length"], b["height"], paper.GRAVITY)
+
+
 def swing_rows(rows: list[dict]) -> list[list]:
     """[case, integrator, status, swing time, closed form, relative error, verdict] of the
     near-rigid rows (:data:`SWING_TOL`)."""
-    from contract import paper as _paper
-    from .closed_forms import rigid_swing_time
-
-    b = _paper.PENDULUM
-    T = rigid_swing_time(b["length"], b["height"], _paper.GRAVITY)
+    T = rigid_swing_reference()
     out = []
     for x in rows:
         if x["group"] != "stiffer" or x["same_as_base"]:
