@@ -63,7 +63,10 @@ def _run(args) -> int:
     print(f"output: {out}")
     t0 = time.perf_counter()
     times = run_studies(args.names, out, args.tiny, args.force, args.executor, args.workers,
-                        progress=not args.no_progress, catalog_path=args.catalog, timeout_s=args.timeout)
+                        progress=not args.no_progress, catalog_path=args.catalog, timeout_s=args.timeout,
+                        dry=args.dry_run)
+    if args.dry_run:
+        return 0
     print("\ntime per study:")
     for k, v in times.items():
         print(f"  {k:15s} {v:8.1f} s")
@@ -181,7 +184,8 @@ def _card(args) -> int:
 
     out = resolve_out(args.out, args.tiny)
     names = [e for n in args.names for e in (PAPER_ELEMENTS if n == "paper" else (n,))]
-    for path in run_cards(names, out, args.tiny, args.imports, args.workers, not args.no_progress, args.force):
+    for path in run_cards(names, out, args.tiny, args.imports, args.workers, not args.no_progress, args.force,
+                          dry=args.dry_run):
         print(f"card: {path}")
     return 0
 
@@ -208,6 +212,8 @@ def parser() -> argparse.ArgumentParser:
                    help="default: mpi under mpiexec, else a local process pool")
     r.add_argument("--workers", type=int, default=2, help="pool size (default 2)")
     r.add_argument("--no-progress", action="store_true")
+    r.add_argument("--dry-run", action="store_true",
+                   help="say per study how many cases would be reused and how many computed; run nothing")
     r.add_argument("--timeout", type=float, default=None,
                    help="seconds per solver run before it is stopped and recorded as failed (default: the "
                         f"study's grid key timeout_s, else {DEFAULT_TIMEOUT_S:g})")
@@ -248,6 +254,9 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--force", action="store_true", help="recompute the cards' runs and checks")
     c.add_argument("--workers", type=int, default=2)
     c.add_argument("--no-progress", action="store_true")
+    c.add_argument("--dry-run", action="store_true",
+                   help="say per card how many runs would be reused and computed and whether its checks are "
+                        "current; run nothing")
     x = sub.add_parser("external", help="run studies' ANCF cases on an external solver declared in a TOML file")
     x.add_argument("declaration", help="the solver's declaration (TOML)")
     x.add_argument("names", nargs="+", metavar="NAME", help="studies whose ANCF cases it runs")

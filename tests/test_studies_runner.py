@@ -16,7 +16,7 @@ import pytest
 from studies.engine import solvers
 from studies.engine.case import make_case
 from studies.common.grid import cantilever_case
-from studies.engine.scheduler import run_cases
+from studies.engine.scheduler import dry_run, run_cases
 from studies.engine.store import RecordStore
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -60,6 +60,10 @@ def test_second_run_reuses_every_record_and_a_changed_case_alone_runs(tmp_path):
     assert (second.computed, second.reused) == (0, 3)
     assert store.path.read_text() == before
     changed = small_cases(counts=(2, 3, 5))
+    dry = dry_run("t", changed, store)
+    assert (dry.cases, dry.computed, dry.reused) == (3, 1, 2)
+    assert store.path.read_text() == before                      # a dry run writes nothing
+    assert dry_run("t", changed, store, force=True).computed == 3
     third = run_cases("t", changed, store, executor="serial", progress=False)
     assert (third.computed, third.reused) == (1, 2)
     assert set(store.read()) == {c.id for c in changed}  # compacted to the current list

@@ -41,24 +41,32 @@ import json
 from pathlib import Path
 
 from ..engine.audit import register_prebuild
-from ..engine.scheduler import run_cases
+from ..engine.scheduler import dry_run, run_cases
 from ..engine.store import store_for
 from ..engine.verify import register_case_source
 from .card_cases import (GRID, LAWS, PAPER_ELEMENTS, SLENDER, SLENDERNESS, SLENDERNESS_TINY, TINY,  # noqa: F401
-                         beam_theory, cases, checks_path, checks_record, checks_source, clamp_probe,
+                         beam_theory, cases, checks_current, checks_path, checks_record, checks_source, clamp_probe,
                          element_imports, formulations_of, grid_for, import_modules, measure_checks,
                          section_model, slender_scene, slender_strains, slenderness_scene, slug)
 
 
 def run_cards(elements: list[str], out: Path, tiny: bool = False, imports=(), workers: int = 2,
-              progress: bool = True, force: bool = False, log=print) -> list[Path]:
-    """Runs (or reuses) every named element's cases and checks, then renders every card."""
+              progress: bool = True, force: bool = False, log=print, dry: bool = False) -> list[Path]:
+    """Runs (or reuses) every named element's cases and checks, then renders every card.
+    ``dry``: say per card how many runs would be reused and computed and whether its checks
+    record is current; run and render nothing."""
     from ancf.elements import get_element
     from .card_report import render
 
     import_modules(imports)
     for el in elements:
         get_element(el)                                  # an unknown name fails here, with the list
+    if dry:
+        for el in elements:
+            s = dry_run(f"card-{el}", cases(el, tiny), store_for(out, f"card-{slug(el)}"), force)
+            log(f"card {el}: {s.cases} cases, {s.reused} reused, {s.computed} to compute, checks "
+                f"{'current' if checks_current(el, out, tiny) and not force else 'to measure'} (dry run)")
+        return []
     for el in elements:
         cs = cases(el, tiny)
         s = run_cases(f"card-{el}", cs, store_for(out, f"card-{slug(el)}"), None, workers,

@@ -283,17 +283,30 @@ def checks_path(out: Path, element: str) -> Path:
     return Path(out) / "data" / f"card-{slug(element)}-checks.json"
 
 
-def checks_record(element: str, out: Path, tiny: bool = False, force: bool = False) -> dict:
-    """The stored parts 1 to 3, measured again when missing, forced, or when the element's
-    definition or ancf's sources changed."""
+def _current_checks(element: str, out: Path, tiny: bool) -> dict | None:
+    """The stored checks record if it was measured for today's element definition and code."""
     from ancf.elements import get_element
 
     path = checks_path(out, element)
-    if path.exists() and not force:
-        rec = json.loads(path.read_text())
-        if (rec.get("definition"), rec.get("source"), rec.get("tiny")) == (
-                repr(get_element(element)), checks_source(), tiny):
-            return rec
+    if not path.exists():
+        return None
+    rec = json.loads(path.read_text())
+    same = (rec.get("definition"), rec.get("source"), rec.get("tiny")) == (
+        repr(get_element(element)), checks_source(), tiny)
+    return rec if same else None
+
+
+def checks_current(element: str, out: Path, tiny: bool = False) -> bool:
+    """Is the element's stored checks record of today's definition and code?"""
+    return _current_checks(element, out, tiny) is not None
+
+
+def checks_record(element: str, out: Path, tiny: bool = False, force: bool = False) -> dict:
+    """The stored parts 1 to 3, measured again when missing, forced, or when the element's
+    definition or ancf's sources changed."""
+    path = checks_path(out, element)
+    if not force and (rec := _current_checks(element, out, tiny)) is not None:
+        return rec
     rec = measure_checks(element, tiny)
     rec = {"element": rec.pop("element"), "definition": rec.pop("definition"), "source": checks_source(), **rec}
     path.parent.mkdir(parents=True, exist_ok=True)

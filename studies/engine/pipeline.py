@@ -26,11 +26,13 @@ def resolve_out(out: str | None, tiny: bool) -> Path:
 
 def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = False,
                 executor: str | None = None, workers: int = 2, progress: bool = True,
-                log=print, catalog_path: Path = CASES_TOML, timeout_s: float | None = None) -> dict[str, float]:
+                log=print, catalog_path: Path = CASES_TOML, timeout_s: float | None = None,
+                dry: bool = False) -> dict[str, float]:
     """Run the named studies (``["all"]``: every one but the ``full`` ones outside tiny
     mode; ``["full"]``: the ``full`` ones) and their needs into ``out``,
-    then rebuild the reports; return {study: seconds}."""
-    from .scheduler import run_cases
+    then rebuild the reports; return {study: seconds}. ``dry``: say per study how many
+    cases would be reused and how many run, and run nothing (no report is rebuilt)."""
+    from .scheduler import dry_run, run_cases
     from .store import store_for
 
     for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
@@ -41,14 +43,22 @@ def run_studies(names: list[str], out: Path, tiny: bool = False, force: bool = F
     times = {}
     for study in with_needs(catalog, explicit):
         cases = study.cases()
+        limit = timeout_s or study.grid.get("timeout_s") or DEFAULT_TIMEOUT_S
+        if dry:
+            s = dry_run(study.name, cases, store_for(out, study.name), force and study.name in explicit, limit)
+            log(f"{study.name}: {s.cases} cases, {s.reused} reused, {s.computed} to compute (dry run)")
+            times[study.name] = 0.0
+            continue
         s = run_cases(study.name, cases, store_for(out, study.name), executor, workers,
                       force=force and study.name in explicit, progress=progress,
-                      timeout_s=timeout_s or study.grid.get("timeout_s") or DEFAULT_TIMEOUT_S)
+                      timeout_s=limit)
         times[study.name] = s.seconds
         log(f"{study.name}: {s.cases} cases, {s.reused} reused, {s.computed} computed, "
             f"{s.failed} failed, {s.seconds:.1f} s")
         for f in s.failures[:20]:
             log(f"  failed: {f}")
+    if dry:
+        return times
     t0 = time.perf_counter()
     from . import stamp
     if stamp.current(out):

@@ -197,6 +197,15 @@ def pending(cases: Sequence[Case], store: RecordStore, force: bool = False,
     return [c for c in cases if c.id not in have or stale(have[c.id])]
 
 
+def dry_run(study: str, cases: Iterable[Case], store: RecordStore, force: bool = False,
+            timeout_s: float | None = DEFAULT_TIMEOUT_S) -> RunSummary:
+    """What :func:`run_cases` would do, run nothing: ``computed`` counts the cases it would
+    run (no record of today's code, or a transient one), ``reused`` the rest."""
+    cases = list(dict.fromkeys(cases))
+    todo = pending(cases, store, force, timeout_s)
+    return RunSummary(study, cases=len(cases), reused=len(cases) - len(todo), computed=len(todo))
+
+
 def run_cases(study: str, cases: Iterable[Case], store: RecordStore, executor: str | None = None,
               workers: int = DEFAULT_WORKERS, force: bool = False, progress: bool = True,
               timeout_s: float | None = DEFAULT_TIMEOUT_S) -> RunSummary:
