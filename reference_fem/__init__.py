@@ -22,7 +22,8 @@ Modules, one concept each. Shared by every backend (no dolfinx):
 The DOLFINx backend, :mod:`.dolfinx_backend` (the only place dolfinx is imported):
 ``laws`` (the laws in UFL), ``models`` (continuum models as strategies), ``meshing``
 (gmsh), ``problem`` (scene -> spaces, law, model, supports, loads; the static problem),
-``dynamic_problem`` (the forms of one time step), ``fem`` (every DOLFINx call),
+``dynamic_problem`` (the forms of one time step), ``fem`` (every DOLFINx call: the
+discretisation, the end face's terms, the nonlinear system, forms as numbers),
 ``krylov`` (the iterative solver's PETSc side).
 
 The FElupe backend, :mod:`.felupe_backend` (``[fem] backend = "felupe"``): ``laws`` (each

@@ -1,7 +1,9 @@
 """The DOLFINx backend of the continuum reference (DOLFINx 0.5, gmsh meshes): the only
 code that imports dolfinx, ufl, petsc4py or gmsh.
 
-- :mod:`.fem`: every DOLFINx call (meshes, spaces, the nonlinear system, point values);
+- :mod:`.fem`: every DOLFINx call, a package of four: ``discretisation`` (meshes, spaces),
+  ``end_face`` (the face's first moment, the hinge), ``nonlinear_system`` (Newton's
+  system), ``forms`` (forms as numbers, point values);
 - :mod:`.meshing`: the structured gmsh meshes of the beam;
 - :mod:`.krylov`: the iterative solver's PETSc side;
 - :mod:`.laws`: the laws in UFL and the invariants they see;

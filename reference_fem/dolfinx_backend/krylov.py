@@ -1,8 +1,8 @@
 """The iterative Newton solver's PETSc side (``[fem] linear_solver = "iterative"``): its
 default options, the rigid-body modes, and :class:`ALPreconditioner`. Only petsc4py: the
 DOLFINx calls it needs (index sets, the degree-1 interpolation, the pressure mass) stay
-in :mod:`reference_fem.dolfinx_backend.fem`, which builds and drives it
-(:class:`~reference_fem.dolfinx_backend.fem.NonlinearSystem`). Measurements:
+in :mod:`reference_fem.dolfinx_backend.fem.nonlinear_system`, which builds and drives it
+(:class:`~reference_fem.dolfinx_backend.fem.nonlinear_system.NonlinearSystem`). Measurements:
 ``notes/iterative-fieldsplit.md`` and README, "A 100-million-unknown reference on a
 cluster"."""
 from __future__ import annotations
