@@ -17,8 +17,8 @@ where it comes from:
 
 [3, 2] is not adopted: the rank tests reject it at l_e / h = 10, where mu_min is 0.04 and
 the finite-strain ratio 0.23 (``reports/cards/HB2n-20xyp.md``). Which strain the three
-points relieve, the membrane stretch C_xx, is the next example's finding
-(``experiments/assumed_membrane.py``).
+points relieve, the membrane stretch C_xx, is the finding of the assumed-strain
+prototype (``tests/oracles/assumed_membrane.py``, the tests' oracle).
 
     .venv/bin/python experiments/along_rule.py
 """

@@ -1,4 +1,4 @@
-"""experiments/assumed_membrane.py: the prototype that finds which strain the three points
+"""tests/oracles/assumed_membrane.py: the prototype that finds which strain the three points
 along the beam relieve. It is checked against the harness, then its finding is held: on 4
 elements of HB2n-20xyp, an assumed membrane stretch C_xx removes most of the slender
 pendulum's error. An assumed thickness stretch C_yy, the mode for which the rank tests
@@ -7,8 +7,9 @@ import pytest
 
 from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
-from experiments.assumed_membrane import ELEMENT, AssumedStrain, pendulum_error
 from studies.peers.work_precision import error, scene_dict
+
+from .oracles.assumed_membrane import ELEMENT, AssumedStrain, pendulum_error
 
 
 def harness_error(n: int, dt: float = 2.5e-3, element: str = ELEMENT) -> float:

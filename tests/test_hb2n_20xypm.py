@@ -1,6 +1,6 @@
 """The built-in HB2n-20xypm (ancf/elements.py): HB2n-20xyp with an assumed membrane stretch,
 C_xx from three Gauss points along the beam (ancf/assumed.py), the cure for the membrane
-locking of the slender pendulum's coarse meshes that experiments/assumed_membrane.py found.
+locking of the slender pendulum's coarse meshes that the prototype tests/oracles/assumed_membrane.py found.
 
 Its compiled kernel against the numpy reference, and both against the energy, are held for
 every element by tests/test_beam.py. Here: the sampling's algebra, the element against the
@@ -16,9 +16,9 @@ from ancf.checks import bent_state
 from ancf.elements import ElementSpec, get_element
 from ancf.quadrature import gauss
 from contract.scene import scene_from_dict
-from experiments.assumed_membrane import AssumedStrain, pendulum_error
 from studies.peers.work_precision import scene_dict
 
+from .oracles.assumed_membrane import AssumedStrain, pendulum_error
 from .test_example_assumed_membrane import harness_error
 
 ELEMENT, BASE = "HB2n-20xypm", "HB2n-20xyp"

@@ -76,7 +76,7 @@ def test_3d_iterative_tip_is_the_direct_one(monkeypatch):
 
     monkeypatch.setattr(backend.NonlinearSystem, "newton_update", counted)
     it = run_scene(_scene({**COARSE_3D, "linear_solver": "iterative"}))
-    # the preconditioner's quality (measured 8 x 1 x 1: mean 38.8, max 44; notes/iterative-fieldsplit.md)
+    # the preconditioner's quality (measured 8 x 1 x 1: mean 38.8, max 44; experiments/iterative_fieldsplit.md)
     assert counts and max(counts) <= 60, counts
     assert it["status"] == "converged", it.get("reason")
     assert it["fem"]["linear_solver"] == "iterative" and "linear_solver" not in direct["fem"]

@@ -3,7 +3,7 @@ default options, the rigid-body modes, and :class:`ALPreconditioner`. Only petsc
 DOLFINx calls it needs (index sets, the degree-1 interpolation, the pressure mass) stay
 in :mod:`reference_fem.dolfinx_backend.fem.nonlinear_system`, which builds and drives it
 (:class:`~reference_fem.dolfinx_backend.fem.nonlinear_system.NonlinearSystem`). Measurements:
-``notes/iterative-fieldsplit.md`` and README, "A 100-million-unknown reference on a
+``experiments/iterative_fieldsplit.md`` and README, "A 100-million-unknown reference on a
 cluster"."""
 from __future__ import annotations
 
@@ -60,7 +60,7 @@ ITERATIVE_DEFAULTS = {
 # same mesh (P the interpolation matrix) as the coarse level, factored by MUMPS (1/8 of
 # the displacement unknowns, ~1/7 of the nonzeros per row). The coarse level may be
 # indefinite (Newton iterates off the equilibrium path: measured), so no CG there.
-# Scalable but weaker (measured, notes/iterative-fieldsplit.md): GMRES to 1e-3 with GAMG
+# Scalable but weaker (measured, experiments/iterative_fieldsplit.md): GMRES to 1e-3 with GAMG
 # on the coarse level, -fem_pmg_mg_coarse_ksp_type gmres -fem_pmg_mg_coarse_ksp_rtol 1e-3
 # -fem_pmg_mg_coarse_pc_type gamg -fem_pmg_mg_coarse_pc_gamg_square_graph 0
 # -fem_pmg_mg_coarse_pc_gamg_threshold 0.05 -fem_pmg_mg_coarse_mg_levels_ksp_max_it 4

@@ -2,7 +2,8 @@
 
 A prototype in numpy; the remedy it found is built in as ``ElementSpec.assumed``
 (ancf/assumed.py) and the element HB2n-20xypm, which tests/test_hb2n_20xypm.py holds
-equal to this prototype. HB2n-20xyp keeps its default rule ([4, 2]; [5, 2] from l_e / h =
+equal to this prototype (a test oracle, kept with the tests since: it is the second
+route the built-in element is checked against). HB2n-20xyp keeps its default rule ([4, 2]; [5, 2] from l_e / h =
 15). Chosen components of C = F^T F are taken from three points along the beam: sampled at
 the 3 Gauss points along x at each of the rule's 2 points across, and interpolated
 (quadratic Lagrange) to the rule's points along (4, or 5 from l_e / h = 15). Components:
@@ -21,7 +22,7 @@ tests, as they are (the shear is not: u_x's y-slope r_y is cubic along x). The r
 [3, 2] instead drops a thickness-stretch mode (experiments/along_rule.py). The script prints
 the slender pendulum's error and the paper's cantilever's tip under each choice.
 
-    .venv/bin/python experiments/assumed_membrane.py
+    .venv/bin/python -m tests.oracles.assumed_membrane
 """
 from __future__ import annotations
 
