@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from studies.design import accuracy_cost as ac
+from studies.peers import precision_rules as rules, records
 from studies.engine.report import MAX_SERIES, series
 
 REPORTS = Path(__file__).resolve().parents[1] / "reports"
@@ -87,7 +88,7 @@ def test_the_pendulum_lead_figure_colours_at_most_its_share_of_tied_leaders():
 def test_the_peer_lead_figures_read_and_their_fronts_name_the_tables_cheapest_runs():
     from studies.peers import precision_report as pr
 
-    recs = pr.read(PEERS)
+    recs = records.read(PEERS)
     for scene in pr.scenes_of(recs):
         rs = [r for r in recs if r.get("scene", pr.SCENE) == scene]
         assert problems(pr.make_figure(rs, scene)) == []
@@ -98,6 +99,6 @@ def test_the_peer_lead_figures_read_and_their_fronts_name_the_tables_cheapest_ru
         for a in pr.ACCURACIES:
             for solver in ("ancf", "exudyn"):
                 first = [p for k, f in fr.items() if k[0] == solver for p in f if p["settled"] <= a]
-                each = [pr.cheapest(g, s, e, a) for (s, e), g in runs.items() if s == solver]
+                each = [rules.cheapest(g, s, e, a) for (s, e), g in runs.items() if s == solver]
                 best = min((b for b in each if b), key=lambda b: b["time_s"], default=None)
                 assert (min(first, key=lambda p: p["time"])["run"] is best) if best else not first

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from studies.peers import compare
+from studies.peers import compare, precision_rules as rules, records, step_cost_report as scr
 
 TIMES = (0.1, 0.2, 0.3, 0.4, 0.5)
 
@@ -82,8 +82,8 @@ def test_work_precision_error_is_zero_on_the_reference_and_the_report_picks_the_
                 "status": "converged", "time_s": t, "error": e}
     recs = [rec("ancf", "HB2n-12", 8, 0.02, 0.02), rec("ancf", "HB2n-12", 32, 0.2, 0.005),
             rec("ancf", "HB2n-16", 32, 0.1, 0.009), rec("exudyn", "ANCFCable2D", 8, 0.01, 0.006)]
-    assert pr.cheapest(recs, "ancf", None, 0.01)["element"] == "HB2n-16"
-    assert pr.cheapest(recs, "exudyn", None, 0.001) is None
+    assert rules.cheapest(recs, "ancf", None, 0.01)["element"] == "HB2n-16"
+    assert rules.cheapest(recs, "exudyn", None, 0.001) is None
     text = pr.report(recs, tmp_path)
     assert "| 1 % | HB2n-16 x 32, dt 1 ms | 0.1000 | 0.900 | 8 elements, dt 1 ms | 0.0100 | 0.600 | 10.00 |" in text
     assert (tmp_path / "peers_work_precision.png").exists()
@@ -147,8 +147,8 @@ def test_the_cables_cheapest_run_is_taken_over_both_its_newtons_and_named():
                 "newton_iterations": 50}
     recs = [rec("ancf", "HB2n-16", 8, 0.01, 0.005), rec("exudyn", "ANCFCable2D", 4, 0.02, 0.004),
             rec("exudyn", "ANCFCable2D-linear", 4, 0.008, 0.006)]
-    assert pr.cheapest(recs, "exudyn", None, 0.01)["element"] == "ANCFCable2D-linear"
-    assert pr.cheapest(recs, "exudyn", None, 0.005)["element"] == "ANCFCable2D"       # linear misses 0.5 %
+    assert rules.cheapest(recs, "exudyn", None, 0.01)["element"] == "ANCFCable2D-linear"
+    assert rules.cheapest(recs, "exudyn", None, 0.005)["element"] == "ANCFCable2D"       # linear misses 0.5 %
     text = pr.report_markdown(recs)
     assert "| 1 % | HB2n-16 x 8, dt 10 ms | 0.0100 | 0.500 | 4 elements, linear, dt 10 ms | 0.0080 | 0.600 | 1.25 |" in text
     assert "| | cable: cable x 4, linear, dt 10 ms | 50 | 50 | 1.00 |" in text
@@ -195,13 +195,13 @@ def test_work_precision_retimes_the_deciding_points_in_alternating_rounds(tmp_pa
         return {"scene": "pendulum", "solver": solver, "element": element, "elements": n, "dt": 1e-3,
                 "rho_inf": 0.5, "status": "converged", "time_s": t, "time_runs_s": [t], "error": e}
     recs = [rec("ancf", "HB2n-16", 8, 0.01, 0.0005), rec("exudyn", "ANCFCable2D", 8, 0.03, 0.0005)]
-    path = tmp_path / "data" / "peers" / f"{wp.NAME}.jsonl"
+    path = records.points_path(tmp_path)
     path.parent.mkdir(parents=True)
     a = SimpleNamespace(scene="pendulum", rounds=3, repeats=5, rho_inf=0.5, peer_python=None, force=False)
     rounds = wp.retime(recs, a, path)
     assert calls == ["exudyn", "ancf"] * 9                    # 3 accuracies x 3 rounds, alternating
     assert [len(r["rounds"]) for r in rounds] == [3, 3, 3]
-    text = pr.report_markdown(recs, pr.read(pr.rounds_path(path)))
+    text = pr.report_markdown(recs, records.read(records.rounds_path(path)))
     assert "| 0.1 % | HB2n-16 x 8, dt 1 ms | 0.0100 | 0.050 | 8 elements, dt 1 ms | 0.0300 | 0.050 | 0.33 | " \
            "0.33-0.33 | 0.25 (0.50, 0.20, 0.25) |" in text
     assert wp.retime(recs, a, path) == rounds and len(calls) == 18      # kept: the same cheapest pair
@@ -221,8 +221,8 @@ def test_work_precision_does_not_count_accuracy_by_cancellation():
                 "status": "converged", "time_s": t, "error": e}
     recs = [rec(5e-3, 0.0005, 0.01), rec(2.5e-3, 0.0013, 0.02), rec(1.25e-3, 0.0009, 0.04)]
     # 5 ms reaches 0.1 % only by luck (the 2.5 ms step loses it); 1.25 ms is the first that holds
-    assert pr.cheapest(recs, "exudyn", None, 0.001)["dt"] == 1.25e-3
-    assert pr.cheapest(recs, "exudyn", None, 0.002)["dt"] == 5e-3
+    assert rules.cheapest(recs, "exudyn", None, 0.001)["dt"] == 1.25e-3
+    assert rules.cheapest(recs, "exudyn", None, 0.002)["dt"] == 5e-3
 
 
 def test_the_fairness_rule_refuses_a_cancellation_by_mesh_or_by_step_on_both_sides():
@@ -243,23 +243,23 @@ def test_the_fairness_rule_refuses_a_cancellation_by_mesh_or_by_step_on_both_sid
                                          (8, 10): 0.0135, (16, 10): 0.0135, (8, 5): 0.004, (16, 5): 0.003,
                                          (8, 2.5): 0.001, (16, 2.5): 0.001})
         me = next(r for r in by_mesh if (r["elements"], r["dt"]) == (4, 1e-2))
-        assert [(q["elements"], q["dt"]) for q in pr.finer(me, by_mesh)] == [(4, 1e-2), (4, 5e-3), (4, 2.5e-3),
+        assert [(q["elements"], q["dt"]) for q in rules.finer(me, by_mesh)] == [(4, 1e-2), (4, 5e-3), (4, 2.5e-3),
                                                                              (8, 1e-2), (16, 1e-2)]
-        assert not pr.holds(me, by_mesh, 0.01)
-        best = pr.cheapest(by_mesh, solver, None, 0.01)            # the settled one: 4 x 5 ms
-        assert (best["elements"], best["dt"]) == (4, 5e-3) and pr.holds(best, by_mesh, 0.01)
+        assert not rules.holds(me, by_mesh, 0.01)
+        best = rules.cheapest(by_mesh, solver, None, 0.01)            # the settled one: 4 x 5 ms
+        assert (best["elements"], best["dt"]) == (4, 5e-3) and rules.holds(best, by_mesh, 0.01)
         # 8 x 5 ms reaches 0.3 % while its finer step on the same mesh does not
         by_step = grid(solver, element, {(8, 5): 0.002, (8, 2.5): 0.004, (16, 5): 0.002, (16, 2.5): 0.001})
-        assert not pr.holds(by_step[0], by_step, 0.003) and pr.holds(by_step[0], by_step, 0.005)
-        assert (pr.cheapest(by_step, solver, None, 0.003)["elements"], pr.cheapest(by_step, solver, None, 0.003)["dt"]) \
+        assert not rules.holds(by_step[0], by_step, 0.003) and rules.holds(by_step[0], by_step, 0.005)
+        assert (rules.cheapest(by_step, solver, None, 0.003)["elements"], rules.cheapest(by_step, solver, None, 0.003)["dt"]) \
             == (16, 5e-3)
         # a finer mesh at the same step that failed refuses it too
         failed = grid(solver, element, {(4, 10): 0.005, (4, 5): 0.004, (8, 10): None, (8, 5): 0.003})
-        assert not pr.holds(failed[0], failed, 0.01)
-        assert pr.cheapest(failed, solver, None, 0.01)["dt"] == 5e-3
+        assert not rules.holds(failed[0], failed, 0.01)
+        assert rules.cheapest(failed, solver, None, 0.01)["dt"] == 5e-3
         # another element's or setting's runs are not its refinements
         other = grid(solver, element + "x", {(8, 10): 0.05})
-        assert pr.holds(best, by_mesh + other, 0.01)
+        assert rules.holds(best, by_mesh + other, 0.01)
 
 
 def test_the_thick_floors_set_our_cable_beside_the_shear_deformable_elements():
@@ -401,7 +401,7 @@ def test_work_precision_anatomy_splits_the_time_and_judges_the_target_by_the_dec
            "grid's medians |" in text
     assert anatomy.verdict(0.002, 0.6, ours, cable) == "-"                       # no target there
     assert "ours 1.40 % (8 elements); the cable's 0.05 % (4 elements)." in text     # the failed 8 x 10 ms is passed by
-    rounds = [{"scene": "pendulum", "accuracy": 0.001, **pr.round_pair(ours, cable), "repeats": 5,
+    rounds = [{"scene": "pendulum", "accuracy": 0.001, **rules.round_pair(ours, cable), "repeats": 5,
                "rounds": [{"exudyn_s": 0.02, "ours_s": 0.008}, {"exudyn_s": 0.02, "ours_s": 0.012},
                           {"exudyn_s": 0.02, "ours_s": 0.009}]}]
     assert "| 0.1 % | ours: HB2n-16 x 8, dt 5 ms | 100 | 300 | 3.00 | 40.0 | 120 | met (0.450 <= 0.5), by the rounds' " \
@@ -470,7 +470,7 @@ def test_a_run_whose_tip_leaves_the_pendulum_is_diverged_whatever_its_solver_say
     for bad in ((1e9, 2e12), (float("nan"), 0.0), (2.1 * LENGTH, 0.0)):
         r = wp.score(rec(sane[:4] + [bad]))
         assert r["status"] == "diverged" and r["error"] is None and "from the pin" in r["reason"]
-        assert pr.cheapest([r], "exudyn", None, 1.0) is None
+        assert rules.cheapest([r], "exudyn", None, 1.0) is None
     assert wp.score(rec(sane[:4] + [(1.9 * LENGTH, 0.0)]))["status"] == "converged"     # far off, but in reach
 
 
@@ -597,8 +597,8 @@ def test_a_missed_target_is_measured_by_mode_and_by_the_parts_of_a_step(monkeypa
     assert [c["accuracy"] for c in costs] == [0.01, 0.003, 0.001]
     c = costs[0]
     assert c["ours"]["settings"] == {"newton_rtol": 1e-3} and len(c["rounds"]) == 3
-    assert sc.mode_ratios(c)["chord, rtol 1e-3"] == pytest.approx(0.0010 / 0.0018)
-    assert sc.linear_estimate(c) == pytest.approx((0.0010 - 100 * 2.5e-6) / 0.0018)
+    assert scr.mode_ratios(c)["chord, rtol 1e-3"] == pytest.approx(0.0010 / 0.0018)
+    assert scr.linear_estimate(c) == pytest.approx((0.0010 - 100 * 2.5e-6) / 0.0018)
     text = pr.report_markdown(recs, [], costs[:1])
     assert "| chord, rtol 1e-3 | 0.556 | 100 | 100 |" in text and "| modified, rtol 1e-3 | 0.944 | 100 | 100 |" in text
     assert "the rounds' median would be 0.417 (<= 0.5; an estimate from the timed parts, not a run)" in text
@@ -608,16 +608,16 @@ def test_a_missed_target_is_measured_by_mode_and_by_the_parts_of_a_step(monkeypa
     other = [rec("ancf", "HC2n-8 (rtol 1e-3)", 8, 5e-3, 0.0005, 0.0012), cable]
     assert "Why the 1 % target" not in pr.report_markdown(other, [], costs[:1])      # drawn for its own pair only
     two = dict(c, split={**c["split"], "run": {**c["split"]["run"], "newton_iterations": 142}})
-    assert sc.linear_estimate(two) is None                    # not one iteration per step: no estimate
+    assert scr.linear_estimate(two) is None                    # not one iteration per step: no estimate
     # the linear mode's run within the target in time: said not to count where the grid's run of
     # it in that mode is refused by the two-way rule (a finer mesh at its step failed), with why
     lin = [rec("ancf", "HC2n-8 (linear)", n, 5e-3, 0.0005, 0.0008) for n in (4, 8, 16, 32)]
     lin.append(dict(rec("ancf", "HC2n-8 (linear)", 64, 5e-3, None, None), status="failed",
                     reason="step below dt_min: det F <= 0"))
-    said = "\n".join(sc.lines(costs[:1], recs + lin))
+    said = "\n".join(scr.lines(costs[:1], recs + lin))
     assert "The linear mode's run meets the target in time (0.611)" not in said     # 0.0011 / 0.0018 > 0.5
     cheap = dict(c, rounds=[{**r, "modes": {**r["modes"], "linear": {**r["modes"]["linear"], "time_s": 0.0008}}}
                             for r in c["rounds"]])
-    said = "\n".join(sc.lines([cheap], recs + lin))
+    said = "\n".join(scr.lines([cheap], recs + lin))
     assert "does not count at 1 %" in said and "64 elements at 5 ms failed (step below dt_min: det F <= 0)" in said
-    assert "does not count" not in "\n".join(sc.lines([cheap], recs + lin[:-1]))     # every finer run reaches it
+    assert "does not count" not in "\n".join(scr.lines([cheap], recs + lin[:-1]))     # every finer run reaches it

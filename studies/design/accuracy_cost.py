@@ -719,7 +719,7 @@ PEER_RECORDS = ("peers", "peers-work-precision.jsonl")
 
 
 def two_way_finer(sel: list[dict]):
-    """The peer report's refinement (:func:`studies.peers.precision_report.finer`): the same
+    """The peer report's refinement (:func:`studies.peers.precision_rules.finer`): the same
     element, its mesh at every step no larger, or its step on every mesh at least as fine."""
     return lambda p: [q for q in sel if q["element"] == p["element"]
                       and ((q["n"] == p["n"] and q["dt"] <= p["dt"]) or (q["dt"] == p["dt"] and q["n"] >= p["n"]))]
@@ -742,7 +742,7 @@ def peer_points(ctx) -> list[dict]:
     """The peer report's runs of ours on its `pendulum` scene (the paper's pendulum) as
     points (element label with its setting, n, dt, solve time, error); [] without its records."""
     from ..peers.precision_grid import SCENE
-    from ..peers.precision_report import read
+    from ..peers.records import read
 
     recs = read(ctx.out / "data" / PEER_RECORDS[0] / PEER_RECORDS[1])
     return [{"element": r["element"], "n": r["elements"], "dt": r["dt"], "time": r["time_s"], "error": r["error"],

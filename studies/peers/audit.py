@@ -5,21 +5,20 @@ by line, with the data of the work-precision figures (each scene's lead figure a
 full cloud; registered as a rule of :mod:`studies.engine.audit`)."""
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 from ..engine.audit import AuditResult, compare_text, register_rule
 from ..engine.report import FIGURE_DATA
+from .compare import peers_markdown
+from .exudyn_published import RECORD as PUBLISHED, read_record
+from .precision_report import figure_csv, figure_name, report_markdown, scenes_of
+from .records import COSTS, read, read_costs, rounds_path
 
 
 def _peer_markdown(kind: str, path: Path) -> str:
-    import json
-
     if kind == "compare":          # with the published checks' section where their record is beside it
-        from .compare import peers_markdown
-        from .exudyn_published import RECORD as PUBLISHED, read_record
         return peers_markdown(json.loads(path.read_text()), read_record(path.with_name(PUBLISHED.name)))
-    from .precision_report import read, report_markdown, rounds_path
-    from .step_cost import RECORD as COSTS, read_record as read_costs
     return report_markdown(read(path), read(rounds_path(path)), read_costs(path.with_name(COSTS)))
 
 
@@ -44,7 +43,6 @@ def audit_peers(reports: Path, res: AuditResult) -> set[str]:
         res.checked.append(name)
         res.problems += compare_text(str(reports / name), _peer_markdown(kind, rec), (reports / name).read_text())
         if kind == "work_precision":
-            from .precision_report import figure_csv, figure_name, read, scenes_of
             recs = read(rec)
             for scene in scenes_of(recs):
                 for every in (False, True):        # the lead figure and the full cloud

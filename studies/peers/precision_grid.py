@@ -58,3 +58,12 @@ def cable_mode(element: str) -> str:
     mode = CABLE_SETTINGS.get(element, element)
     return "" if mode == "modified" else f", {mode}"
 
+
+# The step cost's settings (studies.peers.step_cost times a missed row's deciding run under
+# each, the report draws them): the compiled loop's Newtons (contract.scene.NEWTON) at the
+# loosest tolerance a scene accepts, and the default: label -> [analysis] settings
+MODES = {"chord, rtol 1e-3": {"newton": "chord", "newton_rtol": 1e-3},
+         "full, rtol 1e-3": {"newton": "full", "newton_rtol": 1e-3},
+         "modified, rtol 1e-3": {"newton": "modified", "newton_rtol": 1e-3},
+         "chord, default rtol": {"newton": "chord"},
+         "linear": {"newton": "linear"}}

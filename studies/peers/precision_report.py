@@ -1,88 +1,32 @@
 """The work-precision report: ``reports/peers_work_precision.md`` and one figure per scene,
 drawn from the bench's records alone (``data/peers/peers-work-precision.jsonl`` and the
 deciding points' re-timings beside it; :mod:`studies.peers.work_precision` writes them, the
-audit redraws from them). Which runs count for an accuracy (:func:`holds`, the two-way
-fairness rule over :func:`finer` steps and meshes), the cheapest
-that do (:func:`cheapest`), the models' floors (:func:`floors`), the ratio that decides a
-row (:func:`deciding_ratio`: the rounds' median where they were re-timed)."""
+audit redraws from them; :mod:`studies.peers.records` reads them). Each row names the
+cheapest runs that count for its accuracy, by the rules of :mod:`studies.peers.precision_rules`,
+and its deciding ratio; beside the rows, the models' floors (:func:`floors`) and, where a
+target is missed, its measurements (:mod:`studies.peers.step_cost_report`)."""
 from __future__ import annotations
 
+import csv
+import io
 import itertools
-import json
 import statistics
 from pathlib import Path
 
+from ancf.elements import ELEMENTS
+
+from ..engine.report import (draw_front, draw_targets, element_color, figure_data, front, legend_outside,
+                             target_handle)
 from .anatomy import anatomy_lines, reach_lines, step_error_lines
 from .precision_grid import ACCURACIES, MIN_REPEATS, NAME, SCENE, SCENES, cable_mode, our_element
-
-
-def read(path: Path) -> list[dict]:
-    return [json.loads(ln) for ln in path.read_text().splitlines() if ln.strip()] if path.exists() else []
-
-
-def rounds_path(path: Path) -> Path:
-    """The deciding points' re-timings, beside the points' records."""
-    return path.with_name(f"{NAME}-rounds.jsonl")
-
-
-def round_pair(o: dict, p: dict) -> dict:
-    """The (ours, cable's) points a rounds record re-times, as it stores them."""
-    return {k: {"element": r["element"], "elements": r["elements"], "dt": r["dt"]} for k, r in (("ours", o), ("exudyn", p))}
-
-
-def rounds_of(rounds: list[dict], scene: str, accuracy: float, o: dict, p: dict) -> dict | None:
-    """The rounds record of ``scene`` and ``accuracy`` that re-timed exactly these two points."""
-    pts = round_pair(o, p)
-    return next((r for r in rounds if r["scene"] == scene and r["accuracy"] == accuracy
-                 and {k: r[k] for k in pts} == pts), None)
-
-
-def round_ratios(r: dict | None) -> list[float | None]:
-    """Each round's ours / cable's (None where a side has no time)."""
-    return [x["ours_s"] / x["exudyn_s"] if x["ours_s"] and x["exudyn_s"] else None for x in (r or {}).get("rounds", [])]
-
-
-def deciding_ratio(o: dict | None, p: dict | None, rr: dict | None) -> tuple:
-    """(ratio, source) of a row with our and the cable's cheapest runs o, p and their rounds
-    record rr: ours / cable's by the median of the rounds ('rounds') where they were
-    re-timed, else by the grid's medians ('grid'); (None, None) without both runs."""
-    if not (o and p):
-        return None, None
-    x = [r for r in round_ratios(rr) if r is not None]
-    return (statistics.median(x), "rounds") if x else (o["time_s"] / p["time_s"], "grid")
+from .precision_rules import cheapest, deciding_ratio, finer, round_pair, round_ratios, rounds_of
+from .step_cost_report import lines as cost_lines
 
 
 def rounds_text(r: dict | None) -> str:
     """'median (each round's ratio)' of a rounds record, or '-'."""
     rr = [x for x in round_ratios(r) if x is not None]
     return f"{statistics.median(rr):.2f} ({', '.join(f'{x:.2f}' for x in rr)})" if rr else "-"
-
-
-def finer(r: dict, recs: list[dict]) -> list[dict]:
-    """The grid's runs that refine run ``r`` one way at a time (its own record among them):
-    the same solver and element, and either its mesh at every step no larger than its step,
-    or its step on every mesh at least as fine as its mesh."""
-    return [q for q in recs if (q["solver"], q["element"]) == (r["solver"], r["element"])
-            and ((q["elements"] == r["elements"] and q["dt"] <= r["dt"])
-                 or (q["dt"] == r["dt"] and q["elements"] >= r["elements"]))]
-
-
-def holds(r: dict, recs: list[dict], accuracy: float) -> bool:
-    """The two-way fairness rule: does run ``r`` reach ``accuracy``, and does every run of
-    the grid that refines it one way (:func:`finer`: every finer step of its mesh, every
-    finer mesh at its step) reach it too? A coarse step's error can cancel the mesh's
-    (numerical dissipation against stiffness), and a coarse mesh's the step's: such a run is
-    accurate by luck, and a finer step or a finer mesh would lose it. A finer run that
-    failed or diverged reaches nothing, so it refuses ``r`` too. The same rule for both
-    sides."""
-    return all(q["error"] is not None and q["error"] <= accuracy for q in finer(r, recs))
-
-
-def cheapest(recs: list[dict], solver: str, element: str | None, accuracy: float) -> dict | None:
-    """The fastest run of ``solver`` (and ``element``) that :func:`holds` ``accuracy``."""
-    ok = [r for r in recs if r["solver"] == solver and (element is None or r["element"] == element)
-          and r["time_s"] and holds(r, recs, accuracy)]
-    return min(ok, key=lambda r: r["time_s"]) if ok else None
 
 
 def floors(recs: list[dict]) -> dict[tuple, dict]:
@@ -103,8 +47,6 @@ def floors(recs: list[dict]) -> dict[tuple, dict]:
 def is_cable(element: str) -> bool | None:
     """Is our run's element (a label, :func:`our_element`) a centre-line cable (no section
     field: no shear, no thickness change)? None: not a registered element here."""
-    from ancf.elements import ELEMENTS
-
     name = our_element(element)[0]
     return ELEMENTS[name].cable if name in ELEMENTS else None
 
@@ -227,7 +169,6 @@ def scene_markdown(recs: list[dict], scene: str, rounds: list[dict] = (), costs:
     current = [c for c in costs if any(a == c["accuracy"] and o and p and round_pair(o, p) == pair(c)
                                        for a, o, p, _, _ in rows)]
     if current:
-        from .step_cost import lines as cost_lines
         lines += [""] + cost_lines(current, recs)[:-1]
     fl = floors(recs)
     if fl:
@@ -299,11 +240,6 @@ def figure(recs: list[dict], path: Path, scene: str = SCENE, every: bool = False
 
 
 def _csv(fig) -> str:
-    import csv
-    import io
-
-    from ..engine.report import figure_data
-
     buf = io.StringIO()
     w = csv.writer(buf)
     w.writerow(["panel", "title", "x label", "y label", "label", "marker", "filled", "x", "y"])
@@ -335,8 +271,6 @@ def settled_fronts(recs: list[dict]) -> dict[tuple[str, str], list[dict]]:
     registered element's runs (every Newton setting of ours, both modes of the cable) those no
     cheaper one beats (:func:`studies.engine.report.front`): the first point of a front within
     an accuracy is the element's cheapest run that :func:`holds` it."""
-    from ..engine.report import front
-
     pts, runs = [], {}
     for r in recs:                  # finer(r, ...) looks among r's own solver and element only
         runs.setdefault((r["solver"], r["element"]), []).append(r)
@@ -360,8 +294,6 @@ def make_figure(recs: list[dict], scene: str = SCENE):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-
-    from ..engine.report import draw_front, draw_targets, element_color, legend_outside, target_handle
 
     fr = settled_fronts(recs)
     fig, ax = plt.subplots(figsize=(5.6, 4.2), layout="constrained")
@@ -395,8 +327,6 @@ def make_all_figure(recs: list[dict], scene: str = SCENE):
     matplotlib.use("Agg")
     import matplotlib.lines
     import matplotlib.pyplot as plt
-
-    from ..engine.report import draw_targets, legend_outside, target_handle
 
     els = list(dict.fromkeys(r["element"] for r in recs if r["solver"] == "ancf"))
     cables = list(dict.fromkeys(r["element"] for r in recs if r["solver"] == "exudyn"))

@@ -64,10 +64,12 @@ import time
 from pathlib import Path
 
 from .compare import PEER_PYTHON, peer
-from .precision_grid import (ACCURACIES, CABLE_SETTINGS, COUNTS, ELEMENTS, ENERGY_GUARD, MIN_REPEATS, NAME,
+from .precision_grid import (ACCURACIES, CABLE_SETTINGS, COUNTS, ELEMENTS, ENERGY_GUARD, MIN_REPEATS,
                              OUR_SETTINGS, SCENE, SCENES, STEPS_PER_OUTPUT, our_element)
 from . import step_cost
-from .precision_report import cheapest, read, report, round_pair, round_ratios, rounds_of, rounds_path
+from .precision_report import report
+from .precision_rules import cheapest, round_pair, round_ratios, rounds_of
+from .records import costs_path, points_path, read, read_costs, rounds_path, write_costs
 
 ROOT = Path(__file__).resolve().parents[2]
 REACH = 2.0     # a pinned pendulum's tip stays within about L (1 + its stretch) of the pin: 2 L is out of it
@@ -150,7 +152,7 @@ def error(tips: list[dict] | None, scene: str = SCENE) -> float | None:
 
 
 def run(a) -> list[dict]:
-    path = a.out / "data" / "peers" / f"{NAME}.jsonl"
+    path = points_path(a.out)
     path.parent.mkdir(parents=True, exist_ok=True)
     if a.force and path.exists():                  # redo this scene's points, keep the others'
         keep = [r for r in read(path) if r.get("scene", SCENE) != a.scene]
@@ -287,12 +289,12 @@ def main(argv=None) -> int:
     a.element = a.element or list(ELEMENTS)
     for m in a.imports:
         importlib.import_module(m)
-    path = a.out / "data" / "peers" / f"{NAME}.jsonl"
+    path = points_path(a.out)
     recs = rescore(path) if a.rescore else read(path) if a.report_only else run(a)
     busy = not (a.rescore or a.report_only) and a.rounds > 0
     rounds = retime(recs, a, path) if busy else read(rounds_path(path))
-    costs = (step_cost.write(step_cost.record_path(a.out), a.scene, step_cost.measure(recs, rounds, a.scene, a))
-             if busy else step_cost.read_record(step_cost.record_path(a.out)))
+    costs = (write_costs(costs_path(a.out), a.scene, step_cost.measure(recs, rounds, a.scene, a))
+             if busy else read_costs(costs_path(a.out)))
     print(report(recs, a.out, rounds, costs))
     return 0
 
