@@ -67,7 +67,7 @@ CARD_IMPORTS = --import examples.transversely_cubic --import examples.cubic_slop
 study-full: study
 	$(PY) -m studies run full
 	$(PY) -m studies card $(CARDS) $(CARD_IMPORTS)
-	$(if $(filter 1,$(RANKS)),,$(MPIEXEC) -n $(RANKS)) $(PY) -m reference_fem gold --3d --out reports/data/solid3d
+	$(if $(filter 1,$(RANKS)),,$(MPIEXEC) -n $(RANKS)) $(PY) -m studies continuum gold --3d --out reports/data/solid3d
 	$(PY) -m studies audit
 
 # The five loops a user waits on, in a fresh clone of the committed tree (set-up, first

@@ -1,6 +1,10 @@
 """The paper's flexible pendulum (Example 2) as a continuum: scenes, step and mesh
 convergence, gold data for the ANCF comparison (no dolfinx imported at module level).
 
+Study code, driven by ``python -m studies continuum gold --pendulum | pendulum | report
+--pendulum`` (:mod:`studies.verification.continuum_gold`), whose package it belongs in; it
+stays here while :mod:`studies.peers.thick_reference` imports it from here.
+
 Pendulum: L = 350 mm, h = 5 mm, w = 7 mm, the paper's laws and densities (Table 2,
 :mod:`contract.paper`), gravity (0, -9.81) m/s^2, pinned at the centre of
 the left face, released from horizontal at rest, 0.5 s, output times 0, 0.1, ... 0.5 s.
@@ -185,8 +189,8 @@ def write_pendulum_gold(out_dir: Path, models=("plane-stress", "plane-strain"), 
                        "incompressible Taylor-Hood Q2/Q1), pinned at the centre of the left "
                        "face, released from horizontal at rest: position (m) of the free-end "
                        "centre point at t = 0, 0.1, ..., 0.5 s (pin at the origin, beam along "
-                       "+x at t = 0). Regenerate: python -m reference_fem gold --pendulum",
-        "generator": "python -m reference_fem gold --pendulum",
+                       "+x at t = 0). Regenerate: python -m studies continuum gold --pendulum",
+        "generator": "python -m studies continuum gold --pendulum",
         "dolfinx": VERSION, "units": "m, s, J",
         "integrator": {"name": "generalized-alpha", "rho_inf": GOLD_RHO_INF},
         "mesh": {"cells_height": GOLD_CELLS_HEIGHT, "aspect": GOLD_ASPECT}, "dt": GOLD_DT,

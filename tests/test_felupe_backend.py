@@ -13,9 +13,9 @@ from .conftest import tiered
 
 from contract.errors import SceneError
 from contract.scene import load_scene, scene_from_dict
-from reference_fem.gold_cantilever import VARIANTS, base_settings, cantilever
 from reference_fem.settings import FemSettings, fem_settings
 from reference_fem.simulation import run_scene
+from studies.verification.continuum_gold.cantilever import VARIANTS, base_settings, cantilever
 
 pytest.importorskip("felupe")
 

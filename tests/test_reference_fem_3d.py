@@ -10,8 +10,9 @@ import pytest
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
 from contract import paper
-from reference_fem.gold_cantilever import FILE_3D, REGRESSION_RTOL, base_settings, base_settings_3d, cantilever_3d
 from reference_fem.settings import fem_settings
+from studies.verification.continuum_gold.cantilever import (FILE_3D, REGRESSION_RTOL, base_settings, base_settings_3d,
+                                                            cantilever_3d)
 
 from .conftest import tiered
 
@@ -73,7 +74,7 @@ def test_3d_with_fixed_side_faces_is_the_2d_plane_strain_solution(law):
     agreement is only the Newton tolerance's, ~1e-10, once the load-path rule changes:
     1.1e-10 after the increments grew after 6 iterations instead of 4; the gold level
     itself is held by tests/test_reference_fem_cantilever.py within REGRESSION_RTOL.)"""
-    from reference_fem.gold_cantilever import base_settings, cantilever
+    from studies.verification.continuum_gold.cantilever import base_settings, cantilever
     from reference_fem.simulation import run_scene
 
     rec = run_scene(_scene(law, cells_length=16, cells_height=1, cells_width=1, side_faces="plane-strain"))

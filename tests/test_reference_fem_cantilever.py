@@ -11,7 +11,7 @@ from contract import paper
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
 from reference_fem.convergence import refinement_study, richardson
-from reference_fem.gold_cantilever import REGRESSION_RTOL, VARIANTS, base_settings, cantilever
+from studies.verification.continuum_gold.cantilever import REGRESSION_RTOL, VARIANTS, base_settings, cantilever
 
 pytestmark = pytest.mark.dolfinx
 

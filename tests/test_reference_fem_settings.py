@@ -1,6 +1,7 @@
 """The [fem] table of a scene: validation and resolution (no dolfinx needed)."""
 import json
 import math
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -10,9 +11,9 @@ import pytest
 from contract import paper
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
-from reference_fem.gold_cantilever import cantilever
 from reference_fem.simulation import check_static
 from reference_fem.settings import DEFAULT_ASPECT, DEFAULT_CELLS_HEIGHT, fem_settings
+from studies.verification.continuum_gold.cantilever import cantilever
 
 GOLD = Path(__file__).parent / "gold" / "fem_cantilever.json"
 
@@ -77,7 +78,7 @@ def test_paper_scenes_need_a_model():
 
 
 def test_refinement_studies_refuse_dynamic_scenes():
-    """`converge` is static only (the pendulum has `python -m reference_fem pendulum`)."""
+    """`converge` is static only (the pendulum has `python -m studies continuum pendulum`)."""
     d = paper.cantilever_scene("yeoh", "plane-stress")
     d["analysis"] = {"kind": "dynamic", "t_end": 0.5, "dt": 1e-3}
     with pytest.raises(SceneError, match=r"analysis\.kind.*static only"):
@@ -85,8 +86,9 @@ def test_refinement_studies_refuse_dynamic_scenes():
 
 
 def test_settings_and_run_modules_do_not_import_dolfinx():
-    code = ("import sys, reference_fem.settings, reference_fem.simulation, reference_fem.gold_cantilever, reference_fem.dolfinx_backend.models, "
-            "reference_fem.statics, reference_fem.convergence, reference_fem.stepper; "
+    code = ("import sys, reference_fem.settings, reference_fem.simulation, reference_fem.dolfinx_backend.models, "
+            "reference_fem.statics, reference_fem.convergence, reference_fem.stepper, "
+            "studies.verification.continuum_gold.cantilever; "
             "print('dolfinx' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
@@ -96,7 +98,9 @@ def test_gold_file_is_complete_and_consistent():
     """Readable without dolfinx: every law x model, finite values, a tolerance, and the
     Richardson value within the stated error of the finest level."""
     gold = json.loads(GOLD.read_text())
-    assert gold["dolfinx"] and gold["generator"].startswith("python -m reference_fem gold")
+    # the gold command, under its name then (reference_fem) or now (studies continuum)
+    assert gold["dolfinx"]
+    assert re.fullmatch(r"python -m (reference_fem|studies continuum) gold --levels \d+", gold["generator"])
     for law in ("neo-hookean", "mooney-rivlin", "yeoh"):
         for variant in ("plane-strain", "plane-strain-penalty", "plane-stress"):
             case = gold["cases"][f"{law}/{variant}"]

@@ -108,7 +108,7 @@ SOLID_LABEL = "3D beam (w = 7 mm)"
 
 def solid_references(path=GOLD_3D) -> dict[str, tuple[float, float]]:
     """{law: (ux, uy)} of the converged 3D beam at the paper's width (the Richardson
-    values of ``python -m reference_fem gold --3d``, tests/gold/fem_cantilever_3d.json,
+    values of ``python -m studies continuum gold --3d``, tests/gold/fem_cantilever_3d.json,
     with the meshes and versions that made them), or {} without that file."""
     if not Path(path).exists():
         return {}

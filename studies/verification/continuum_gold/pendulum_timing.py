@@ -1,6 +1,6 @@
 """The continuum pendulum the reports use on both backends: wall time and tips.
 
-    python -m reference_fem.bench_pendulum [--laws L ...] [--models M ...] [--t-end T]
+    python -m studies.verification.continuum_gold.pendulum_timing [--laws L ...] [--models M ...] [--t-end T]
 
 Each gold base scene (:mod:`reference_fem.gold_pendulum`: 140 x 4 Q2 or Q2/Q1 cells,
 dt = 1 ms, generalized-alpha rho_inf = 0.8, 0.5 s) is run once by DOLFINx and once by
@@ -19,17 +19,16 @@ import time
 
 import numpy as np
 
-from .gold_pendulum import LAWS, pendulum_dict
-
-from .backends import BACKENDS
+from reference_fem.backends import BACKENDS
+from reference_fem.gold_pendulum import LAWS, pendulum_dict
 
 
 def run(law: str, model: str, backend: str, t_end: float | None = None) -> dict:
     """The gold base scene of (law, model) on ``backend``: its record and per-step times."""
     from contract.scene import scene_from_dict
 
-    from .settings import fem_settings
-    from .simulation import run_scene
+    from reference_fem.settings import fem_settings
+    from reference_fem.simulation import run_scene
 
     kw = {} if t_end is None else {"t_end": t_end}
     scene = scene_from_dict(pendulum_dict(law, model, **kw))
@@ -44,7 +43,7 @@ def run(law: str, model: str, backend: str, t_end: float | None = None) -> dict:
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m reference_fem.bench_pendulum", description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m studies.verification.continuum_gold.pendulum_timing", description=__doc__.split("\n\n")[0])
     ap.add_argument("--laws", nargs="+", default=list(LAWS), choices=LAWS)
     ap.add_argument("--models", nargs="+", default=["plane-stress", "plane-strain"],
                     choices=["plane-stress", "plane-strain"])

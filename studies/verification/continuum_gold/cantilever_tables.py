@@ -1,6 +1,6 @@
 """Tables for reports/reference_fem.md, from the gold file only (never a solver call).
 
-``python -m reference_fem report [GOLD.json]`` prints markdown: the converged tips
+``python -m studies continuum report [GOLD.json]`` prints markdown: the converged tips
 against the paper's ABAQUS column, plane strain against plane stress, and the cost of
 each reference at 1 % and 0.1 % tip accuracy (static error ||u - u_ref|| / ||u_ref||
 over (ux, uy), u_ref the Richardson value).

@@ -1,6 +1,6 @@
 """Gold data: the paper's static cantilever, converged, for tests without dolfinx.
 
-``python -m reference_fem gold`` writes ``tests/gold/fem_cantilever.json``: for each
+``python -m studies continuum gold`` writes ``tests/gold/fem_cantilever.json``: for each
 law x continuum model (plane strain mixed = exactly incompressible, plane strain
 penalty = the ANCF ``plane-strain`` energy with alpha = 1000 MPa, plane stress) the
 refinement sequence, the observed order, the Richardson value and its error
@@ -21,8 +21,8 @@ from pathlib import Path
 from contract import paper
 from contract.scene import Scene, scene_from_dict
 
-from .convergence import refinement_study
-from .settings import FemSettings, default_quadrature_degree
+from reference_fem.convergence import refinement_study
+from reference_fem.settings import FemSettings, default_quadrature_degree
 
 FILE = "fem_cantilever.json"
 LAWS = ("neo-hookean", "mooney-rivlin", "yeoh")
@@ -66,7 +66,7 @@ def gold_case(law: str, variant: str, levels: int, progress=None) -> dict:
 
 
 def write_gold(out_dir: Path, levels: int = 5, progress=None) -> Path:
-    from .dolfinx_backend.fem import VERSION
+    from reference_fem.dolfinx_backend.fem import VERSION
 
     cases = {}
     for law in LAWS:
@@ -81,8 +81,8 @@ def write_gold(out_dir: Path, levels: int = 5, progress=None) -> Path:
     doc = {
         "description": "Static cantilever of the paper (Table 3) as a 2D continuum: tip "
                        "(free-end centre point) displacement in m, Richardson-extrapolated "
-                       "over uniform mesh refinement. Regenerate: python -m reference_fem gold",
-        "generator": "python -m reference_fem gold --levels %d" % levels,
+                       "over uniform mesh refinement. Regenerate: python -m studies continuum gold",
+        "generator": "python -m studies continuum gold --levels %d" % levels,
         "dolfinx": VERSION, "units": "m", "laws": list(LAWS), "variants": list(VARIANTS),
         "comparison": __doc__.split("How to compare")[1].strip(),
         "cases": cases,
@@ -137,7 +137,7 @@ def gold_case_3d(law: str, levels: int, progress=None) -> dict:
 def write_gold_3d(out_dir: Path, levels: int = 3, laws=LAWS, progress=None) -> Path:
     """tests/gold/fem_cantilever_3d.json: the three laws, Richardson over ``levels``
     graded levels (16 x 1 x 1 ... ). Cases already in the file for other laws are kept."""
-    from .dolfinx_backend.fem import VERSION
+    from reference_fem.dolfinx_backend.fem import VERSION
 
     out_dir = Path(out_dir)
     path = out_dir / FILE_3D
@@ -153,8 +153,8 @@ def write_gold_3d(out_dir: Path, levels: int = 3, laws=LAWS, progress=None) -> P
         "description": "Static cantilever of the paper (Table 3) as the real 3D beam (160 x 5 x 7 mm, "
                        "clamped face, gravity), exactly incompressible (Q2/Q1 hexahedra): tip (centre "
                        "of the free end face) displacement in m, Richardson-extrapolated over graded "
-                       "nested meshes. Regenerate: python -m reference_fem gold --3d",
-        "generator": "python -m reference_fem gold --3d --levels %d" % levels,
+                       "nested meshes. Regenerate: python -m studies continuum gold --3d",
+        "generator": "python -m studies continuum gold --3d --levels %d" % levels,
         "dolfinx": VERSION, "units": "m", "laws": sorted(k.split("/")[0] for k in cases),
         "comparison": __doc__.split("How to compare")[1].strip()
         + " In 3D the error estimate caps the order at 1 (the clamp's singular edges).",
