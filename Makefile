@@ -96,10 +96,10 @@ PEER_ELEMENTS = --element HB2n-12 --element HB2n-16 --element HB2n-20xyp --eleme
 # never in .venv): the same pendulum side by side, Exudyn against its own published numbers,
 # and the work-precision diagrams of two pendulums (reports/peers*.md)
 bench-peers: setup
-	bash tools/setup_peers.sh && $(PY) -m studies.peers.compare --report
-	$(PY) -m studies.peers.exudyn_published --report && $(PY) -m studies.peers.compare --report-only
-	$(PY) -m studies.peers.work_precision --scene pendulum $(PEER_ELEMENTS)
-	$(PY) -m studies.peers.work_precision --scene thick $(PEER_ELEMENTS)
+	bash tools/setup_peers.sh && $(PY) -m studies peers compare --report
+	$(PY) -m studies peers published --report && $(PY) -m studies peers compare --report-only
+	$(PY) -m studies peers work-precision --scene pendulum $(PEER_ELEMENTS)
+	$(PY) -m studies peers work-precision --scene thick $(PEER_ELEMENTS)
 
 # Exudyn through the external-solver protocol (studies/peers/exudyn.toml, in .venv-peers):
 # the benchmark suite's cases it takes, its records in reports/external/data and its

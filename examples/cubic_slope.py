@@ -8,7 +8,7 @@ per element and a coarse mesh is too stiff in bending (8 elements: pendulum tip 
 off, natural frequencies +0.9 / +3.5 / +8 %). A cubic r_y removes that constraint.
 
     .venv/bin/python -m studies card HB2n-20xy --import examples.cubic_slope
-    .venv/bin/python -m studies.peers.work_precision --import examples.cubic_slope --element HB2n-20xy
+    .venv/bin/python -m studies peers work-precision --import examples.cubic_slope --element HB2n-20xy
 
 Default rules, chosen by the rank tests of ancf.rank (eigenvalue test at u = 0 and the
 finite-strain test, as for the package's elements): [4, 2] for l_e / h >= 1 (mu_min 0.37 at

@@ -29,6 +29,9 @@
   does not declare skipped with the reason; records in ``DIR/data/<study>@<solver>.jsonl``;
 - ``check-record FILE [FILE ...]``: a record checked against the schema
   (:mod:`contract.record_schema`), each problem naming its key; exits 1 if any;
+- ``peers compare | published | work-precision | step-cost | thick-reference``: the
+  pendulum beside Exudyn's ANCF cable, in ``.venv-peers`` (:mod:`studies.peers.cli`;
+  ``make bench-peers``);
 - ``continuum gold | pendulum | report``: the continuum's gold files (tests/gold/fem_*.json),
   the pendulum's convergence check and the gold files' tables
   (:mod:`studies.verification.continuum_gold.cli`).
@@ -47,6 +50,7 @@ from contract.console import command
 from .engine.catalog import CASES_TOML, get_study, load_catalog
 from .engine.worker import DEFAULT_TIMEOUT_S
 from .engine.pipeline import build_reports, resolve_out, run_studies
+from .peers import cli as peers
 from .verification.continuum_gold import cli as continuum
 
 def _list(args) -> int:
@@ -269,6 +273,7 @@ def parser() -> argparse.ArgumentParser:
     cr = sub.add_parser("check-record", help="check record files against the record schema, naming each bad key")
     cr.add_argument("files", nargs="+", metavar="FILE")
     continuum.add_commands(sub)
+    peers.add_commands(sub)
     for sp in (ls, r, rp, au):
         sp.add_argument("--catalog", type=Path, default=CASES_TOML,
                         help="a TOML file of study tables to run instead of the studies declared in their modules "
@@ -304,7 +309,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     run = {"list": _list, "run": _run, "report": _report, "gold": _gold, "diff": _diff, "card": _card,
            "audit": _audit, "verify": _verify, "external": _external, "check-record": _check_record,
-           "continuum": continuum.run}[args.command]
+           "continuum": continuum.run, "peers": peers.run}[args.command]
     return command("studies", lambda: run(args), errors=(ValueError, ImportError),
                    interrupt_note=" (every finished record is kept; a rerun does the rest)")
 

@@ -584,7 +584,7 @@ def test_a_missed_target_is_measured_by_mode_and_by_the_parts_of_a_step(monkeypa
     recs = [ours, cable]
     times = {"chord, rtol 1e-3": 0.0010, "full, rtol 1e-3": 0.0012, "modified, rtol 1e-3": 0.0017,
              "chord, default rtol": 0.0017, "linear": 0.0011}
-    monkeypatch.setattr(wp, "exudyn", lambda *args: {"time_s": 0.0018})
+    monkeypatch.setattr(sc, "exudyn", lambda *args: {"time_s": 0.0018})
     monkeypatch.setattr(sc, "run_mode", lambda el, n, dt, rho, rep, scene, st: {
         "status": "converged", "time_s": times[next(k for k, v in sc.MODES.items() if v == st)],
         "newton_iterations": 100 if st.get("newton_rtol") else 361, "steps": 100})

@@ -3,7 +3,7 @@
 # A separate venv WITHOUT system site packages: Exudyn and its numpy come from PyPI
 # and must never touch `.venv`, whose numpy is Debian's (dolfinx is built against it).
 # Both are pinned, so that a rerun gets the same peer: the peer reports' records and the
-# checks against Exudyn's published numbers (studies/peers/exudyn_published.py) name this
+# checks against Exudyn's published numbers (studies/peers/exudyn_published.py, run by studies/peers/exudyn_static.py) name this
 # version. A venv holding other versions is brought to the pins.
 set -euo pipefail
 cd "$(dirname "$0")/.."

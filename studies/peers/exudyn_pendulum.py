@@ -5,7 +5,7 @@
 Imports only exudyn, numpy and the standard library (not ``ancf``): this file runs in the
 separate venv that ``tools/setup_peers.sh`` creates, never in ``.venv``. Its builders are the
 peer's one set-up of the cable, shared with the checks against Exudyn's published numbers
-(``exudyn_published.py``): :func:`add_cable` (the elements, gravity, the first node's support,
+(``exudyn_static.py``, for ``exudyn_published.py``): :func:`add_cable` (the elements, gravity, the first node's support,
 a tip force), :func:`common_settings`, :func:`static_settings` and :func:`dynamic_settings`.
 
 The model: 32 (``--elements``) ObjectANCFCable2D elements (Euler-Bernoulli, linear elastic, 2 nodes with

@@ -1,7 +1,6 @@
 """Our Exudyn set-up against Exudyn's own published numbers for its ANCF cable.
 
-    .venv/bin/python -m studies.peers.exudyn_published [--report]        (the checks; Exudyn runs in .venv-peers)
-    .venv-peers/bin/python studies/peers/exudyn_published.py --peer      (the peer side alone: JSON on the last line)
+    .venv/bin/python -m studies peers published [--report]        (the checks; Exudyn runs in .venv-peers)
 
 Before the pendulum comparison (:mod:`studies.peers.compare`) says anything about Exudyn's
 cable, the cable as we set it up must give the numbers Exudyn's author published for it.
@@ -30,18 +29,19 @@ neither Examples, TestModels nor docs: see :data:`INSTALLED`). Tolerances are de
 the published material before any run (:data:`MINI_TOL`, :data:`ROW_TOL`, the converged
 check's in :func:`cases`), each with its reason in the case.
 
-Module-level imports: the standard library only, as this file also runs in ``.venv-peers``
-(``--peer``), where it imports ``exudyn_pendulum`` beside it.
+The peer side, which runs in ``.venv-peers``, is the script :data:`PEER_SCRIPT`
+(``exudyn_static.py``): it is given :func:`cases` as JSON and prints its runs as JSON.
 """
 from __future__ import annotations
 
-import argparse
 import json
-import sys
 from pathlib import Path
+
+from .venv import PEER_PYTHON, run_peer_script
 
 ROOT = Path(__file__).resolve().parents[2]
 RECORD = ROOT / "reports" / "data" / "peers" / "peers-published.json"
+PEER_SCRIPT = Path(__file__).with_name("exudyn_static.py")      # the peer side, run in .venv-peers
 
 # -- the published material ---------------------------------------------------------------
 REPO = "jgerstmayr/EXUDYN"
@@ -186,63 +186,10 @@ def cases() -> list[dict]:
     return out
 
 
-# -- the peer side (runs in .venv-peers) --------------------------------------------------
-def solve(exu, case: dict) -> dict:
-    """One case built by the pendulum's builder and solved by SolveStatic: the free end's
-    displacement {'ux', 'uy'} (GetNodeOutput Displacement of the last node: the example's
-    last node's ODE2 coordinates) and the static solver's counters."""
-    import exudyn_pendulum as pendulum
-
-    m = case["model"]
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    support = {"pin": pendulum.PIN, "clamp": pendulum.CLAMP}[m["support"]]
-    nodes = pendulum.add_cable(mbs, m["length"], m["elements"], EA=m["EA"], EI=m["EI"], rhoA=m["rhoA"],
-                               gravity=m["gravity"], support=support, tip_force=m["tip_force"])
-    mbs.Assemble()
-    s = pendulum.static_settings(exu, case["static"]["relative_tolerance"], case["static"]["absolute_tolerance"])
-    second = case.get("second_solve", False)   # as the example's author: SolveStatic again from the result
-    try:
-        mbs.SolveStatic(s, updateInitialValues=second)       # raises exudyn.SolverError when it fails
-        solver = mbs.sys["staticSolver"]
-        u = mbs.GetNodeOutput(nodes[-1], exu.OutputVariableType.Displacement)
-        again = {}
-        if second:
-            mbs.SolveStatic(s)
-            u2 = mbs.GetNodeOutput(nodes[-1], exu.OutputVariableType.Displacement)
-            again = {"ux2": float(u2[0]), "uy2": float(u2[1]),
-                     "newtonSteps2": int(mbs.sys["staticSolver"].it.newtonStepsCount)}
-    except Exception as e:                     # the record says so, and its checks fail
-        return {"status": "failed", "reason": f"{type(e).__name__}: {e}"[:300]}
-    return {"status": "converged", "ux": float(u[0]), "uy": float(u[1]), **again,
-            "newtonSteps": int(solver.it.newtonStepsCount), "newtonJacobians": int(solver.it.newtonJacobiCount),
-            "residual_N": float(solver.conv.residual), "linearSolver": str(s.linearSolver.solverType),
-            "relativeTolerance": s.staticSolver.newton.relativeTolerance,
-            "absoluteTolerance": s.staticSolver.newton.absoluteTolerance,
-            "numberOfLoadSteps": int(s.staticSolver.numberOfLoadSteps),
-            "adaptiveStep": bool(s.staticSolver.adaptiveStep)}
-
-
-def peer_main(module: str) -> int:
-    import platform
-
-    sys.exudynFast = module == "fast"
-    import exudyn as exu
-    import numpy
-
-    runs = {c["name"]: solve(exu, c) for c in cases()}
-    print(json.dumps({"status": "converged", "exudyn": exu.__version__, "numpy": numpy.__version__,
-                      "module": exu.__dict__.get("_compiledModuleName", "?"), "python": platform.python_version(),
-                      "runs": runs}))
-    return 0
-
-
 # -- our side (.venv): run, compare, report -----------------------------------------------
 def run_peer(python: Path | None = None, module: str = "fast") -> dict:
-    """The peer side in .venv-peers (``--peer``), its JSON."""
-    from .venv import PEER_PYTHON, run_peer_script
-
-    return run_peer_script(Path(__file__), ["--peer", "--module", module], python or PEER_PYTHON)
+    """The peer side in .venv-peers (:data:`PEER_SCRIPT`, given :func:`cases`), its JSON."""
+    return run_peer_script(PEER_SCRIPT, ["--module", module, "--cases", json.dumps(cases())], python or PEER_PYTHON)
 
 
 def evaluate(peer: dict) -> list[dict]:
@@ -298,7 +245,7 @@ def published_markdown(rec: dict) -> str:
     checks = rec["checks"]
     n_ok = sum(k["agrees"] for k in checks)
     lines = ["## Exudyn against its own published numbers", "",
-             f"Generated by `python -m studies.peers.exudyn_published --report` from "
+             f"Generated by `python -m studies peers published --report` from "
              f"`data/peers/{RECORD.name}`. Each case is built with the pendulum's own cable set-up "
              "(`exudyn_pendulum.add_cable`: ObjectANCFCable2D, gravity by `LoadMassProportional`, the first node "
              "held by `CoordinateConstraint`s, a tip `Force`; `static_settings`: EigenSparse, one thread, the "
@@ -342,27 +289,3 @@ def published_markdown(rec: dict) -> str:
 
 def read_record(path: Path = RECORD) -> dict | None:
     return json.loads(path.read_text()) if path.exists() else None
-
-
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m studies.peers.exudyn_published", description=__doc__.splitlines()[0])
-    ap.add_argument("--peer", action="store_true", help="the peer side: run the cases here (in .venv-peers) and "
-                    "print their results as JSON")
-    ap.add_argument("--module", choices=("fast", "regular"), default="fast",
-                    help="Exudyn's compiled module (default fast, as the pendulum comparison)")
-    ap.add_argument("--peer-python", type=Path, default=None)
-    ap.add_argument("--report", action="store_true", help=f"write the record {RECORD.relative_to(ROOT)} "
-                    "(`python -m studies.peers.compare --report-only` then redraws reports/peers.md with its section)")
-    a = ap.parse_args(argv)
-    if a.peer:
-        return peer_main(a.module)
-    rec = record(run_peer(a.peer_python, a.module))
-    print(published_markdown(rec))
-    if a.report:
-        RECORD.parent.mkdir(parents=True, exist_ok=True)
-        RECORD.write_text(json.dumps(rec, indent=1))
-    return 0 if all(k["agrees"] for k in rec["checks"]) else 1
-
-
-if __name__ == "__main__":
-    sys.exit(main())

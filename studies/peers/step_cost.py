@@ -22,39 +22,33 @@ Nothing here changes a run's settings: the modes are scene settings with the sam
 (det F at every assembly, the energies at the outputs); the split reads the compiled
 loop's own functions.
 
-    .venv/bin/python -m studies.peers.work_precision ...     # runs it after the rounds
-    .venv/bin/python -m studies.peers.step_cost [--scene pendulum] [--rounds 5] [--repeats 5] [--calls 20000]
+    .venv/bin/python -m studies peers work-precision ...     # runs it after the rounds
+    .venv/bin/python -m studies peers step-cost [--scene pendulum] [--rounds 5] [--repeats 5] [--calls 20000]
 """
 from __future__ import annotations
 
-import os
-
-for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_v, "1")                 # one thread, before numpy loads
-
-import argparse
 import statistics
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
+from numba import njit
+
+from ancf.build import build_integrator, external_loads, resolve
+from ancf.compiled_steps import I_MASS_SPLIT, _correct, _factorise, _mass, _residual, step
+from ancf.element_kernels import element_assemble, element_work
+from ancf.simulation import run_scene
+from contract.scene import scene_from_dict
+from mechanics import alpha_family
 
 from .anatomy import TARGET, TARGET_ACCURACIES
-from .compare import PEER_PYTHON
-from .precision_grid import MODES, SCENE, SCENES, our_element
+from .precision_grid import MODES, SCENE, our_element
 from .precision_rules import cheapest, deciding_ratio, rounds_of
-from .records import costs_path, points_path, read, rounds_path, write_costs
+from .work_precision import exudyn, scene_dict
 
-ROOT = Path(__file__).resolve().parents[2]
 PARTS = ("step", "force_and_tangent", "factorise_and_solve", "verifying_residual")
 
 
 def _scene(element: str, n: int, dt: float, rho_inf: float, scene: str, settings: dict):
-    from contract.scene import scene_from_dict
-
-    from .work_precision import scene_dict
-
     d = scene_dict(our_element(element)[0], n, dt, rho_inf, scene)
     d["analysis"].update(settings)
     return scene_from_dict(d)
@@ -63,8 +57,6 @@ def _scene(element: str, n: int, dt: float, rho_inf: float, scene: str, settings
 def run_mode(element: str, n: int, dt: float, rho_inf: float, repeats: int, scene: str, settings: dict) -> dict:
     """Our run of a point with these [analysis] settings: the median of ``repeats`` warm
     runs' solve times (one untimed warm-up), its Newton iterations and status."""
-    from ancf.simulation import run_scene
-
     sc = _scene(element, n, dt, rho_inf, scene, settings)
     recs = [run_scene(sc)[0] for _ in range(repeats + 1)][1:]
     last = recs[-1]
@@ -76,11 +68,6 @@ def run_mode(element: str, n: int, dt: float, rho_inf: float, repeats: int, scen
 
 def _kernels():
     """The compiled timing loops (compiled on first use, cached in memory)."""
-    from numba import njit
-
-    from ancf.compiled_steps import _correct, _factorise, _mass, _residual, step
-    from ancf.element_kernels import element_assemble, element_work
-
     @njit
     def steps(N, dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, coef, inewton, fnewton, u_n, v_n, a_n, h,
               S, fstate, counters):
@@ -140,12 +127,6 @@ def split(element: str, n: int, dt: float, rho_inf: float, scene: str, settings:
     state (``step``), the force and tangent there (``force_and_tangent``), the step
     matrix's factorisation and one solve (``factorise_and_solve``), and the force and
     residual at the corrected state (``verifying_residual``)."""
-    from ancf.build import build_integrator, external_loads, resolve
-    from ancf.compiled_steps import I_MASS_SPLIT
-    from mechanics import alpha_family
-
-    from ancf.simulation import run_scene
-
     p = resolve(_scene(element, n, dt, rho_inf, scene, settings))
     rec, (model, res) = run_scene(p)
     M = model.mass_matrix()
@@ -187,8 +168,6 @@ def split(element: str, n: int, dt: float, rho_inf: float, scene: str, settings:
 
 def measure(recs: list[dict], rounds: list[dict], scene: str, a) -> list[dict]:
     """The rows of ``scene`` whose target the rounds miss, measured (module doc)."""
-    from .work_precision import exudyn
-
     mine = [r for r in recs if r.get("scene", SCENE) == scene]
     out = []
     for acc in TARGET_ACCURACIES:
@@ -218,23 +197,3 @@ def measure(recs: list[dict], rounds: list[dict], scene: str, a) -> list[dict]:
             f"{k} {statistics.median(x['modes'][k]['time_s'] / x['exudyn_s'] for x in rows):.3f}" for k in MODES)
             + "; split (us): " + ", ".join(f"{k} {1e6 * v:.2f}" for k, v in sp["seconds_per_call"].items()), flush=True)
     return out
-
-
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m studies.peers.step_cost", description=__doc__.splitlines()[0])
-    ap.add_argument("--scene", choices=sorted(SCENES), default=SCENE)
-    ap.add_argument("--rounds", type=int, default=5)
-    ap.add_argument("--repeats", type=int, default=5)
-    ap.add_argument("--calls", type=int, default=20000)
-    ap.add_argument("--rho-inf", type=float, default=0.5)
-    ap.add_argument("--peer-python", type=Path, default=PEER_PYTHON)
-    ap.add_argument("--out", type=Path, default=ROOT / "reports")
-    a = ap.parse_args(argv)
-    path = points_path(a.out)
-    recs, rounds = read(path), read(rounds_path(path))
-    write_costs(costs_path(a.out), a.scene, measure(recs, rounds, a.scene, a))
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -67,7 +67,7 @@ def lines(recs: list[dict], grid: list[dict] | None = None) -> list[str]:
         run = sp["run"]
         est = linear_estimate(rec)
         acc = f"{100 * rec['accuracy']:g} %"
-        out += [f"Why the {acc} target is missed, measured (data/peers/{COSTS}, `python -m studies.peers.step_cost`): "
+        out += [f"Why the {acc} target is missed, measured (data/peers/{COSTS}, `python -m studies peers step-cost`): "
                 f"our deciding run ({o['element']} x {o['elements']}, dt {o['dt'] * 1e3:g} ms) under each Newton the "
                 f"compiled loop offers, timed in {len(rec['rounds'])} rounds of {rec['repeats']} runs beside the "
                 f"cable's ({p['elements']} elements{', linear' if p['element'].endswith('-linear') else ''}, dt "

@@ -4,7 +4,7 @@ rest, 0.5 s) with a thick cross-section, h = 20 mm (L / h = 17.5), where transve
 and the cross-section's own deformation are no longer negligible and the cable's
 Euler-Bernoulli, linear-elastic physics differs from the continuum's.
 
-    .venv/bin/python -m studies.peers.thick_reference [--cells-height 8] [--dt 1e-3]
+    .venv/bin/python -m studies peers thick-reference [--cells-height 8] [--dt 1e-3]
         [--reuse FILE ...]
 
 The DOLFINx plane-stress model of ``reference_fem`` (the one that produced
@@ -29,15 +29,15 @@ The file also keeps runs on c / 4 and c / 2 cells across (pins of 10 and 5 mm at
 with the others, the pin-size sweep of :func:`pin_references`. It keeps every run, the
 changes, r, which rule applied and e(t):
 ``reports/data/peers/thick-pendulum-reference.json``. ``--reuse`` takes runs (same
-scene, cells and dt) from earlier files of this script instead of recomputing them.
+scene, cells and dt) from earlier files of this command instead of recomputing them.
 """
 from __future__ import annotations
 
-import argparse
 import json
-import sys
 import time
 from pathlib import Path
+
+from reference_fem.gold_pendulum import differences, pendulum_dict, run_case
 
 ROOT = Path(__file__).resolve().parents[2]
 HEIGHT = 0.020                                       # m
@@ -48,8 +48,6 @@ LENGTH = 0.350                                       # m
 
 
 def scene(dt: float, cells_height: int, aspect: float = 2.0, rho_inf: float = 0.8) -> dict:
-    from reference_fem.gold_pendulum import pendulum_dict
-
     d = pendulum_dict(LAW, MODEL, dt, cells_height, aspect, rho_inf=rho_inf)
     d["beam"]["height"] = HEIGHT
     d["name"] = f"pendulum-thick-h{HEIGHT * 1e3:g}mm-{LAW}-{MODEL}-fem"
@@ -61,8 +59,6 @@ def _key(run: dict) -> tuple[int, float]:
 
 
 def compute(dt: float, cells_height: int, aspect: float = 2.0, reuse: list[Path] = ()) -> dict:
-    from reference_fem.gold_pendulum import differences, run_case
-
     have = {}
     for f in reuse:
         for r in json.loads(Path(f).read_text())["runs"].values():
@@ -90,7 +86,7 @@ def compute(dt: float, cells_height: int, aspect: float = 2.0, reuse: list[Path]
     d_h = differences(runs["middle"], fine)
     d_h0 = differences(runs["coarse"], runs["middle"])
     out = {"description": __doc__.split("\n\n")[0].replace("\n", " "),
-           "generator": "python -m studies.peers.thick_reference", "units": "m, s",
+           "generator": "python -m studies peers thick-reference", "units": "m, s",
            "law": LAW, "continuum_model": MODEL, "height_m": HEIGHT, "dt": dt,
            "mesh": {"cells_height": 4 * c, "aspect": aspect}, "scene": scene(dt, 4 * c, aspect),
            "status": fine["status"], "runs": runs}
@@ -139,26 +135,3 @@ def error_estimate(path: Path = PATH) -> float | None:
     if not Path(path).exists():
         return None
     return json.loads(Path(path).read_text()).get("max_error_estimate_m")
-
-
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m studies.peers.thick_reference", description=__doc__.splitlines()[0])
-    ap.add_argument("--cells-height", type=int, default=8)
-    ap.add_argument("--aspect", type=float, default=2.0)
-    ap.add_argument("--dt", type=float, default=1e-3)
-    ap.add_argument("--out", type=Path, default=PATH)
-    ap.add_argument("--reuse", type=Path, nargs="*", default=[], help="earlier files of this script whose runs "
-                    "(same cells and dt) are taken instead of recomputed")
-    a = ap.parse_args(argv)
-    doc = compute(a.dt, a.cells_height, a.aspect, a.reuse)
-    a.out.parent.mkdir(parents=True, exist_ok=True)
-    a.out.write_text(json.dumps(doc, indent=1) + "\n")
-    print(doc.get("rule"))
-    if doc.get("error_estimate_m"):
-        print("max error estimate %.4f mm = %.4f %% of L" % (1e3 * doc["max_error_estimate_m"],
-                                                             100 * doc["max_error_estimate_m"] / 0.35))
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

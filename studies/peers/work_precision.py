@@ -1,7 +1,7 @@
 """Who is cheaper at equal accuracy: our pendulum and Exudyn's ANCF cable pendulum on one
 work-precision diagram, timed side by side in one run (``make bench-peers``, issue 10).
 
-    .venv/bin/python -m studies.peers.work_precision [--scene pendulum|thick] [--counts 2 4 8 16 32 64]
+    .venv/bin/python -m studies peers work-precision [--scene pendulum|thick] [--counts 2 4 8 16 32 64]
         [--element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-20xypm --element HB2n-40p --element HB2n-60p
          --element HC2n-8] [--import MODULE] [--rho-inf 0.5] [--repeats 5]
         [--out reports]
@@ -49,29 +49,24 @@ the current references).
 """
 from __future__ import annotations
 
-import os
-
-for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_v, "1")                 # one thread, before numpy loads
-
-import argparse
-import importlib
 import json
 import math
+import os
 import statistics
-import sys
 import time
 from pathlib import Path
 
-from .compare import PEER_PYTHON, peer
-from .precision_grid import (ACCURACIES, CABLE_SETTINGS, COUNTS, ELEMENTS, ENERGY_GUARD, MIN_REPEATS,
-                             OUR_SETTINGS, SCENE, SCENES, STEPS_PER_OUTPUT, our_element)
-from . import step_cost
-from .precision_report import report
-from .precision_rules import cheapest, round_pair, round_ratios, rounds_of
-from .records import costs_path, points_path, read, read_costs, rounds_path, write_costs
+from ancf.simulation import run_scene
+from contract.scene import scene_from_dict
 
-ROOT = Path(__file__).resolve().parents[2]
+from ..common.pendulum_cases import LENGTH, continuum_pendulum, pendulum_dict, tip_errors
+from . import thick_reference
+from .compare import peer
+from .precision_grid import ACCURACIES, CABLE_SETTINGS, ENERGY_GUARD, OUR_SETTINGS, SCENE, SCENES, our_element
+from .precision_rules import cheapest, round_pair, round_ratios, rounds_of
+from .records import points_path, read, rounds_path
+from .thick_reference import pin_references
+
 REACH = 2.0     # a pinned pendulum's tip stays within about L (1 + its stretch) of the pin: 2 L is out of it
 
 
@@ -83,8 +78,6 @@ def scene_dict(element: str, n: int, dt: float, rho_inf: float, scene: str = SCE
     """Our run of a point: the scene's plane-stress Yeoh pendulum on n elements, without
     the energy guard (Exudyn's run has none: :data:`ENERGY_GUARD`); ``element`` is a label
     of :func:`our_element` (an element, and the settings its suffix names)."""
-    from ..common.pendulum_cases import pendulum_dict
-
     name, settings = our_element(element)
     d = pendulum_dict(name, n, "plane-stress", dt, rho_inf=rho_inf)
     d["beam"]["height"] = SCENES[scene]["height"]
@@ -94,9 +87,6 @@ def scene_dict(element: str, n: int, dt: float, rho_inf: float, scene: str = SCE
 
 
 def ours(element: str, n: int, dt: float, rho_inf: float, repeats: int, scene: str = SCENE) -> dict:
-    from ancf.simulation import run_scene
-    from contract.scene import scene_from_dict
-
     sc = scene_from_dict(scene_dict(element, n, dt, rho_inf, scene))
     recs = [run_scene(sc)[0] for _ in range(repeats + 1)][1:]     # one untimed warm-up
     last = recs[-1]
@@ -127,9 +117,6 @@ def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path, scene:
 def reference(scene: str = SCENE) -> tuple[dict | None, float | None]:
     """The scene's continuum reference: ({t: (x, y)} or None, its largest error estimate / L
     or None)."""
-    from ..common.pendulum_cases import LENGTH, continuum_pendulum
-    from . import thick_reference
-
     if scene == "thick":
         tips = thick_reference.reference()
         est = thick_reference.error_estimate()
@@ -142,8 +129,6 @@ def reference(scene: str = SCENE) -> tuple[dict | None, float | None]:
 def error(tips: list[dict] | None, scene: str = SCENE) -> float | None:
     """max over the output times after 0 of |r - r_ref| / L against the scene's continuum
     plane-stress Yeoh pendulum; None without tips or reference."""
-    from ..common.pendulum_cases import tip_errors
-
     ref = reference(scene)[0]
     if not tips or ref is None:
         return None
@@ -217,9 +202,6 @@ def retime(recs: list[dict], a, path: Path) -> list[dict]:
 def errors_by_pin(tips: list[dict] | None, scene: str) -> dict[str, float] | None:
     """Thick scene: {pin size in mm: the error against the continuum with that pin}
     (:func:`studies.peers.thick_reference.pin_references`); None for other scenes."""
-    from ..common.pendulum_cases import tip_errors
-    from .thick_reference import pin_references
-
     if scene != "thick" or not tips:
         return None
     t = {round(h["t"], 9): (h["x"], h["y"]) for h in tips}
@@ -230,8 +212,6 @@ def left(tips: list[dict] | None) -> float | None:
     """The tip's largest distance from the pin over the outputs, / L, where it is more than
     :data:`REACH` (or not finite): the run has left the pendulum whatever its solver says.
     None: it has not."""
-    from ..common.pendulum_cases import LENGTH
-
     d = [math.hypot(h["x"], h["y"]) / LENGTH for h in tips or []]
     worst = max(d, key=lambda x: x if math.isfinite(x) else math.inf, default=None)
     return worst if worst is not None and not worst <= REACH else None
@@ -260,44 +240,3 @@ def rescore(path: Path) -> list[dict]:
     recs = [score(r) for r in read(path)]
     path.write_text("".join(json.dumps(r) + "\n" for r in recs))
     return recs
-
-
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m studies.peers.work_precision", description=__doc__.splitlines()[0])
-    ap.add_argument("--scene", choices=sorted(SCENES), default=SCENE, help="pendulum (h = 5 mm, default) or thick "
-                    "(h = 20 mm)")
-    ap.add_argument("--counts", type=int, nargs="+", default=list(COUNTS))
-    ap.add_argument("--element", action="append", help="our element (repeatable; default: ELEMENTS)")
-    ap.add_argument("--rho-inf", type=float, default=0.5, help="generalized-alpha spectral radius (default 0.5, "
-                    "Table 4's)")
-    ap.add_argument("--steps-per-output", type=int, nargs="+", default=list(STEPS_PER_OUTPUT),
-                    help="the step ladder: dt = 0.1 s / k for each k (default 10 20 40 80 160 320)")
-    ap.add_argument("--repeats", type=int, default=MIN_REPEATS, help=f"timed warm runs per point (default {MIN_REPEATS})")
-    ap.add_argument("--peer-python", type=Path, default=PEER_PYTHON)
-    ap.add_argument("--out", type=Path, default=ROOT / "reports")
-    ap.add_argument("--import", dest="imports", action="append", default=[],
-                    help="a module that registers a user's element (repeatable)")
-    ap.add_argument("--rounds", type=int, default=7, help="re-time each accuracy's two cheapest points "
-                    "alternately in this many rounds after the grid (default %(default)s; 0: none)")
-    ap.add_argument("--calls", type=int, default=20000, help="calls per compiled timing loop of the step split "
-                    "(studies.peers.step_cost, after the rounds, for each row whose target they miss)")
-    ap.add_argument("--force", action="store_true", help="redo every point (and the rounds)")
-    ap.add_argument("--report-only", action="store_true", help="redraw the table and figure from the records")
-    ap.add_argument("--rescore", action="store_true", help="recompute every record's error from its tip history "
-                    "against its scene's current reference (no solver runs), then redraw")
-    a = ap.parse_args(argv)
-    a.element = a.element or list(ELEMENTS)
-    for m in a.imports:
-        importlib.import_module(m)
-    path = points_path(a.out)
-    recs = rescore(path) if a.rescore else read(path) if a.report_only else run(a)
-    busy = not (a.rescore or a.report_only) and a.rounds > 0
-    rounds = retime(recs, a, path) if busy else read(rounds_path(path))
-    costs = (write_costs(costs_path(a.out), a.scene, step_cost.measure(recs, rounds, a.scene, a))
-             if busy else read_costs(costs_path(a.out)))
-    print(report(recs, a.out, rounds, costs))
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
