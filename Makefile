@@ -74,19 +74,19 @@ study-full: study
 # run, make test, verify, make study cold and with every record reused; about 25 min):
 # reports/data/loops.json, quoted in README.md
 loops: setup
-	$(PY) -m studies.loops
+	$(PY) -m studies loops
 
 # timings of the paper's cells (Table 3, the pendulum of Table 4) and of the compiled kernels
 # (reports/kernels.md)
 bench: setup
-	$(PY) -m studies.design.bench table3
-	$(PY) -m studies.design.bench pendulum
-	$(PY) -m studies.design.bench kernels
+	$(PY) -m studies bench table3
+	$(PY) -m studies bench pendulum
+	$(PY) -m studies bench kernels
 
 # the penalty sweep: every element x law x penalised formulation x mesh from 10 to 1e5 C10
 # (reports/penalty.md)
 bench-penalty: setup
-	$(PY) -m studies.design.bench penalty
+	$(PY) -m studies bench penalty
 
 # the elements of the work-precision diagram: the paper's two, the lock-free ones and the
 # hyperelastic cable HC2n-8 (studies.peers.precision_grid.ELEMENTS)

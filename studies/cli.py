@@ -32,6 +32,13 @@
 - ``peers compare | published | work-precision | step-cost | thick-reference``: the
   pendulum beside Exudyn's ANCF cable, in ``.venv-peers`` (:mod:`studies.peers.cli`;
   ``make bench-peers``);
+- ``bench [table3 | penalty | pendulum | kernels | all]``: timings of the paper's cells, the
+  penalty sweep, the Table 4 grid and the compiled kernels (:mod:`studies.design.bench`;
+  ``make bench``, ``make bench-penalty``);
+- ``loops [--keep DIR]``: the five loops a user waits on, in a fresh clone
+  (:mod:`studies.loops`; ``make loops``);
+- ``slenderness-gold [--laws L ...] [--out FILE]``: the continuum references of the cards'
+  slenderness sweep, tests/gold/fem_slenderness.json (:mod:`studies.verification.slenderness_gold`);
 - ``continuum gold | pendulum | report``: the continuum's gold files (tests/gold/fem_*.json),
   the pendulum's convergence check and the gold files' tables
   (:mod:`studies.verification.continuum_gold.cli`).
@@ -50,7 +57,10 @@ from contract.console import command
 from .engine.catalog import CASES_TOML, get_study, load_catalog
 from .engine.worker import DEFAULT_TIMEOUT_S
 from .engine.pipeline import build_reports, resolve_out, run_studies
+from . import loops
+from .design import bench
 from .peers import cli as peers
+from .verification import slenderness_gold
 from .verification.continuum_gold import cli as continuum
 
 def _list(args) -> int:
@@ -274,6 +284,9 @@ def parser() -> argparse.ArgumentParser:
     cr.add_argument("files", nargs="+", metavar="FILE")
     continuum.add_commands(sub)
     peers.add_commands(sub)
+    bench.add_commands(sub)
+    loops.add_commands(sub)
+    slenderness_gold.add_commands(sub)
     for sp in (ls, r, rp, au):
         sp.add_argument("--catalog", type=Path, default=CASES_TOML,
                         help="a TOML file of study tables to run instead of the studies declared in their modules "
@@ -309,7 +322,8 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     run = {"list": _list, "run": _run, "report": _report, "gold": _gold, "diff": _diff, "card": _card,
            "audit": _audit, "verify": _verify, "external": _external, "check-record": _check_record,
-           "continuum": continuum.run, "peers": peers.run}[args.command]
+           "continuum": continuum.run, "peers": peers.run,
+           "bench": bench.command, "loops": loops.command, "slenderness-gold": slenderness_gold.command}[args.command]
     return command("studies", lambda: run(args), errors=(ValueError, ImportError),
                    interrupt_note=" (every finished record is kept; a rerun does the rest)")
 

@@ -1,6 +1,6 @@
 """The five loops a user waits on, measured in a fresh clone: ``make loops``.
 
-``python -m studies.loops [--keep DIR]`` clones the committed tree (``git clone``) into a
+``python -m studies loops [--keep DIR]`` clones the committed tree (``git clone``) into a
 new directory and there, in order:
 
 1. **set-up**: ``make setup`` (the venv, the editable install, the compiled code: ``ancf
@@ -21,16 +21,16 @@ README quotes (:mod:`studies.engine.readme`: ``studies audit`` checks the quote,
 """
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import re
 import shutil
 import subprocess
-import sys
 import tempfile
 import time
 from pathlib import Path
+
+from .engine.readme import refresh
 
 ROOT = Path(__file__).resolve().parents[1]
 RECORD = ROOT / "reports" / "data" / "loops.json"
@@ -123,10 +123,15 @@ def record_problems(record: Path = RECORD, page: Path = PAGE) -> list[str]:
     return []
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m studies.loops", description=__doc__.splitlines()[0])
-    ap.add_argument("--keep", type=Path, help="clone into this (new) directory and keep it")
-    a = ap.parse_args(argv)
+def add_commands(sub) -> None:
+    """The ``loops`` command on the sub-parsers of ``python -m studies`` (``make loops``)."""
+    p = sub.add_parser("loops", help="the five loops a user waits on, measured in a fresh clone (make loops)")
+    p.add_argument("--keep", type=Path, help="clone into this (new) directory and keep it")
+
+
+def command(a) -> int:
+    """The ``loops`` command: measure in a fresh clone, write the record and its page, refresh
+    the README's quote."""
     clone = a.keep or Path(tempfile.mkdtemp(prefix="loops-")) / "clone"
     subprocess.run(["git", "clone", "--quiet", str(ROOT), str(clone)], check=True)
     try:
@@ -134,14 +139,9 @@ def main(argv=None) -> int:
     finally:
         if not a.keep:
             shutil.rmtree(clone.parent, ignore_errors=True)
-    from .engine.readme import refresh
-
     RECORD.write_text(json.dumps(rec, indent=1) + "\n")
     PAGE.write_text(markdown(rec))
     refresh()
     print(markdown(rec))
     return 0
 
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -583,7 +583,7 @@ def _sweep(recs, cards: Path, name: str, tiny: bool) -> list[str]:
              + ", ".join(f"{x:g}" for x in grid["ratios"]) + ", its gravity scaled by (32 / (L/h))^2 so that the load "
              "parameter q L^3 / EI is the paper's at every L / h (the same large deflection; strains and kappa h "
              "grow as h / L), against the converged continuum (tests/gold/fem_slenderness.json: Q2 cells halved 4 "
-             "or 5 times, Richardson value; `python -m studies.verification.slenderness_gold`). Error |u - u_ref| / |u_ref| of the "
+             "or 5 times, Richardson value; `python -m studies slenderness-gold`). Error |u - u_ref| / |u_ref| of the "
              f"tip at {max(grid['counts'])} elements (converged: the change from {min(grid['counts'])} elements "
              "beside it), the reference's own error estimate last.", ""]
     if not refs:

@@ -1,7 +1,7 @@
 """The continuum references of the cards' slenderness sweep (:data:`studies.design.card.SLENDERNESS`):
 the paper's cantilever at L / h = 140 ... 4 under the paper's load parameter, converged.
 
-``python -m studies.verification.slenderness_gold`` writes ``tests/gold/fem_slenderness.json`` (DOLFINx,
+``python -m studies slenderness-gold`` writes ``tests/gold/fem_slenderness.json`` (DOLFINx,
 plane stress, face clamp, Q2 quadrilaterals): for each law and L / h a refinement sequence
 from cells of aspect 2 (L / h / 2 x 1 cells), halved in both directions (5 levels up to
 L / h = 40, 4 beyond: the finest has 16 or 8 cells across h and at most 40 000 unknowns),
@@ -12,11 +12,13 @@ nothing here runs in a test.
 """
 from __future__ import annotations
 
-import argparse
 import json
-import sys
 import time
 from pathlib import Path
+
+from contract.scene import scene_from_dict
+from reference_fem.convergence import refinement_study
+from reference_fem.settings import FemSettings, default_quadrature_degree
 
 from ..design.card_cases import LAWS, SLENDERNESS, slenderness_scene
 
@@ -29,10 +31,6 @@ def levels_for(ratio: float) -> int:
 
 
 def gold_case(law: str, ratio: float, progress=None) -> dict:
-    from contract.scene import scene_from_dict
-    from reference_fem.convergence import refinement_study
-    from reference_fem.settings import FemSettings, default_quadrature_degree
-
     scene = scene_from_dict(slenderness_scene(law, ratio, fem={"model": "plane-stress"}))
     base = FemSettings("plane-stress", "exact", cells_length=max(1, round(ratio / 2)), cells_height=1,
                        cell="quadrilateral", degree=2, quadrature_degree=default_quadrature_degree(2))
@@ -43,7 +41,7 @@ def gold_case(law: str, ratio: float, progress=None) -> dict:
 
 
 def write_gold(path: Path = GOLD, laws=LAWS, ratios=SLENDERNESS["ratios"], log=print) -> Path:
-    from reference_fem.dolfinx_backend.fem import VERSION
+    from reference_fem.dolfinx_backend.fem import VERSION      # dolfinx, which the runs need anyway
 
     cases = {}
     for law in laws:
@@ -57,8 +55,8 @@ def write_gold(path: Path = GOLD, laws=LAWS, ratios=SLENDERNESS["ratios"], log=p
     doc = {"description": "The paper's cantilever (L = 160 mm, w = 7 mm, face clamp, plane stress) at L / h = "
                           "140 ... 4 under the paper's load parameter (gravity 9.81 (32 / (L/h))^2 m/s^2): the "
                           "tip (free-end centre) in m, Richardson-extrapolated over uniform refinement "
-                          "(reference_fem.convergence). Regenerate: python -m studies.verification.slenderness_gold",
-           "generator": "python -m studies.verification.slenderness_gold", "dolfinx": VERSION, "units": "m",
+                          "(reference_fem.convergence). Regenerate: python -m studies slenderness-gold",
+           "generator": "python -m studies slenderness-gold", "dolfinx": VERSION, "units": "m",
            "comparison": "a tip agrees with the continuum to |u - u_ref| / |u_ref|; the reference's own error "
                          "is error_estimate_m", "cases": cases}
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -83,14 +81,16 @@ def references(path: Path = GOLD) -> dict[tuple[str, float], dict]:
     return out
 
 
-def main(argv=None) -> int:
-    p = argparse.ArgumentParser(prog="python -m studies.verification.slenderness_gold")
+def add_commands(sub) -> None:
+    """The ``slenderness-gold`` command on the sub-parsers of ``python -m studies``."""
+    p = sub.add_parser("slenderness-gold", help="the continuum references of the cards' slenderness sweep "
+                                                "(DOLFINx): tests/gold/fem_slenderness.json")
     p.add_argument("--laws", nargs="*", default=list(LAWS))
     p.add_argument("--out", type=Path, default=GOLD)
-    a = p.parse_args(argv)
+
+
+def command(a) -> int:
+    """The ``slenderness-gold`` command: :func:`write_gold`."""
     write_gold(a.out, tuple(a.laws))
     return 0
 
-
-if __name__ == "__main__":
-    sys.exit(main())
