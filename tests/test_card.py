@@ -88,7 +88,7 @@ def test_the_shear_locking_verdict_and_its_signature():
     """The card's verdict (error growth with L/h at fixed n) against a second route: a
     locking element's error is a function of l_e / h alone (equal at equal l_e / h), a
     locking-free one's of n alone; LB2n-12's error does not fall under refinement."""
-    from studies.design.card_report import shear_locking
+    from studies.design.card_locking import shear_locking
 
     hb12 = [_probe("HB2n-12", r, n) for r, n in ((35, 8), (140, 8), (70, 16), (140, 32))]
     v = shear_locking(hb12)
@@ -127,7 +127,8 @@ def test_the_volumetric_locking_verdict_on_elements_that_lock_and_that_do_not():
     lock-free limit converges to the continuum (error falls at least 3x from n = 8 to 16:
     an order above 1.5 for a cubic element), LB2n-12's does not move (within 1 %)."""
     from studies.common.gold import gold_references
-    from studies.design.card_report import FEM_STATIC, volumetric_locking, volumetric_verdict
+    from studies.design.card_locking import volumetric_locking, volumetric_verdict
+    from studies.design.card_report import FEM_STATIC
 
     ref = gold_references(FEM_STATIC)[("neo-hookean", "plane-strain")]
     free = {n: volumetric_locking(_penalty_sweep("HB2n-40p", n), ref) for n in (8, 16)}
@@ -169,7 +170,7 @@ def test_strain_split_of_the_exact_bending_state():
 
 
 def test_the_probe_names_the_mechanism():
-    """The slender probe's strains name what its error is (studies.design.card_report.mechanism):
+    """The slender probe's strains name what its error is (studies.design.card_locking.mechanism):
     LB2n-12's section cannot contract (eps_yy / eps_xx = 0: Poisson locking in the plane,
     its -25 %); HB2n-12 at L/h = 140 on 8 elements carries 600 times Timoshenko's shear
     energy and holds eps_zz near 0 (-0.91): shear locking and Poisson locking out of the
@@ -179,7 +180,7 @@ def test_the_probe_names_the_mechanism():
     from ancf.simulation import run_scene
     from contract.scene import scene_from_dict
     from studies.design.card import slender_scene
-    from studies.design.card_report import mechanism
+    from studies.design.card_locking import mechanism
 
     def row(element, ratio, n):
         rec, (model, res) = run_scene(scene_from_dict(slender_scene(element, ratio, n)))
@@ -195,7 +196,7 @@ def test_the_clamp_sets_hb2n16s_order():
     face), not its interior's: with r_yy freed the same meshes converge at second order
     (measured 1.01 and 2.00); the card says so by rule."""
     from studies.design.card import clamp_probe
-    from studies.design.card_report import _clamp_lines, clamp_orders
+    from studies.design.card_locking import _clamp_lines, clamp_orders
 
     probe = clamp_probe("HB2n-16", {"slender": {"slenderness": (140.0,), "counts": (8, 16, 32)}})
     o = clamp_orders(probe)

@@ -43,7 +43,7 @@ def test_the_cable_runs_plane_stress_only_and_the_tables_say_why():
 
 
 def test_choose_names_the_cheapest_element_and_the_cables_slenderness_limit():
-    from studies.design.card_report import _crossing
+    from studies.design.card_cable import _crossing
 
     pts = [pt("HC2n-8", 8, 0.004, 0.002), pt("HC2n-8", 16, 0.004, 0.004),          # the cable: 0.4 % floor
            pt("HB2n-16", 16, 0.005, 0.01), pt("HB2n-16", 32, 0.0006, 0.02), pt("HB2n-16", 64, 0.0005, 0.04),

@@ -119,7 +119,7 @@ def absent(grid: dict) -> list[str]:
     (a cable: plane stress alone), one sentence each."""
     from ancf.checks import runs
     from ancf.elements import get_element
-    from .card_report import CABLE_NOT_RUN
+    from .card_cable import CABLE_NOT_RUN
 
     out = []
     for el in grid["elements"]:
@@ -467,7 +467,7 @@ def choose_rows(g: dict, pts: list[dict], pend: list[dict], sweeps: dict) -> lis
 
     def limit(law, formulation, acc) -> str:
         """The cables' cells: 'HC2n-8: 23.4' (the card's crossing), or why there is none."""
-        from .card_report import _crossing
+        from .card_cable import _crossing
         cells = []
         for el in cables:
             if not runs(el, formulation):
