@@ -90,7 +90,7 @@ def test_cheapest_does_not_rest_on_cancellation():
     """Issue 19: HB2n-16 q32 x 160 at 0.025 % with finer meshes at 0.065 / 0.086 % must
     not be 'cheapest at 0.05 %'; at 0.1 % it may; a warned or singular point never counts,
     nor a point whose finer mesh is not stable."""
-    from studies.design.accuracy_cost import cheapest, settled, settled_steps
+    from studies.design.accuracy_cost_points import cheapest, settled, settled_steps
 
     curve = [_pt(80, 0.0020), _pt(160, 0.00025), _pt(320, 0.00065), _pt(640, 0.00086)]
     assert cheapest(settled(curve, 0.0005), 0.0005) is None

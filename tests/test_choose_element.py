@@ -6,7 +6,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from studies.design import accuracy_cost as ac
+from studies.design import accuracy_cost as ac, choose_element as ce
 
 GRID = {"laws": ["yeoh"], "formulations": ["plane-strain", "plane-stress"], "elements": ["HB2n-16", "HC2n-8"],
         "accuracies": [0.01, 0.001]}
@@ -35,7 +35,7 @@ def test_the_cable_runs_plane_stress_only_and_the_tables_say_why():
     dyn = [n for n in names if n.startswith("pendulum-")]            # the ladder 8, 4 ms; no `paper` cable
     assert dyn == ["pendulum-yeoh-plane-stress-HC2n-8-8-dt0.008-generalized-alpha-rho0.5-t0.5",
                    "pendulum-yeoh-plane-stress-HC2n-8-8-dt0.004-generalized-alpha-rho0.5-t0.5"]
-    (why,) = ac.absent(g)
+    (why,) = ce.absent(g)
     assert why.startswith("HC2n-8 has no `plane-strain` cells: a cable integrates the law's incompressible uniaxial "
                           "energy over its section (free lateral faces), so plane stress alone")
     rules = {k: v for k, v in g.items() if k != "pendulum"}          # accuracy-cost-rules' grid has no pendulum
@@ -53,7 +53,7 @@ def test_choose_names_the_cheapest_element_and_the_cables_slenderness_limit():
                 pend("HB2n-16", 16, 5e-3, 0.002, 0.03), pend("HB2n-16", 16, 2.5e-3, 0.0002, 0.05),
                 pend("HB2n-12", 16, 1e-3, 0.008, 0.08, "paper")]
     sweep = [(140.0, 0.0004), (70.0, 0.0008), (32.0, 0.004), (16.0, 0.02), (8.0, 0.09)]
-    rows = ac.choose_rows(GRID, pts, pendulum, {("HC2n-8", "yeoh"): sweep})
+    rows = ce.choose_rows(GRID, pts, pendulum, {("HC2n-8", "yeoh"): sweep})
     by = {(r[0], r[1]): r for r in rows}
     strain1 = by[("cantilever, Yeoh, `plane-strain`", "1 %")]
     assert strain1[2:] == ["HB2n-16 qdef x 16", 0.01, pytest.approx(0.3), "", "32", "HC2n-8: - (plane stress only)"]
@@ -68,10 +68,10 @@ def test_choose_names_the_cheapest_element_and_the_cables_slenderness_limit():
     assert p01[2] == "HC2n-8 x 4, dt 2.5 ms"           # 4 x 5 ms is 0.3 % off: not within 0.1 %
     assert by[("pendulum, `paper`", "1 %")][2:] == ["HB2n-12 x 16, dt 1 ms", 0.08, pytest.approx(0.8), "", "70",
                                                     "HC2n-8: - (plane stress only)"]
-    assert ac.choose_rows(GRID, pts, [], {})[2][7] == "HC2n-8: no card records"
+    assert ce.choose_rows(GRID, pts, [], {})[2][7] == "HC2n-8: no card records"
     # within it at every L / h of the sweep, or beyond it already at the most slender
-    assert ac.choose_rows(GRID, pts, [], {("HC2n-8", "yeoh"): [(140.0, 0.02), (32.0, 0.05)]})[2][7] == "HC2n-8: < 140"
-    assert ac.choose_rows(GRID, pts, [], {("HC2n-8", "yeoh"): [(16.0, 1e-4), (4.0, 5e-4)]})[2][7] == "HC2n-8: > 4"
+    assert ce.choose_rows(GRID, pts, [], {("HC2n-8", "yeoh"): [(140.0, 0.02), (32.0, 0.05)]})[2][7] == "HC2n-8: < 140"
+    assert ce.choose_rows(GRID, pts, [], {("HC2n-8", "yeoh"): [(16.0, 1e-4), (4.0, 5e-4)]})[2][7] == "HC2n-8: > 4"
 
 
 def test_the_cables_slenderness_is_read_from_its_card_records_as_the_card_reads_them():
@@ -96,7 +96,7 @@ def test_the_cables_slenderness_is_read_from_its_card_records_as_the_card_reads_
         return {"status": "converged", "scene": s, "tip": {"ux": k * ux, "uy": k * uy}}
     ctx = SimpleNamespace(study=SimpleNamespace(grid={"elements": ["HB2n-16", "HC2n-8"]}), tiny=True,
                           record_for=record_for)
-    sw = ac.cable_slenderness(ctx)
+    sw = ce.cable_slenderness(ctx)
     assert set(asked) == {"card-HC2n-8"}
     assert sorted(sw) == [("HC2n-8", law) for law in ("mooney-rivlin", "neo-hookean", "yeoh")]
     got = dict(sw[("HC2n-8", "yeoh")])

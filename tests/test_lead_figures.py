@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from studies.design import accuracy_cost as ac
+from studies.design import accuracy_cost as ac, accuracy_cost_figures as acf, accuracy_cost_points as acp
 from studies.peers import precision_rules as rules, records
 from studies.engine.report import MAX_SERIES, series
 
@@ -36,7 +36,7 @@ def problems(fig) -> list[str]:
 
 
 def static_points() -> list[dict]:
-    """accuracy_cost_points.csv (every point of the static diagram) as :func:`ac.points` gives them."""
+    """accuracy_cost_points.csv (every point of the static diagram) as :func:`acp.points` gives them."""
     def num(v, scale=1.0):
         return float(v) * scale if v not in ("", None) else None
     return [{"law": r["law"], "model": r["model"], "solver": r["solver"], "config": r["configuration"],
@@ -61,27 +61,27 @@ def test_the_static_lead_figure_reads_and_its_fronts_name_the_tables_cheapest_ru
 
     pts = static_points()
     models = [MATCHING[f] for f in GRID["formulations"]]
-    assert problems(ac.lead_figure(GRID, pts, models)) == []
+    assert problems(acf.lead_figure(GRID, pts, models)) == []
     for law in GRID["laws"]:
         for m in models:
-            fr, _ = ac.static_fronts(GRID, pts, law, m)
+            fr, _ = acf.static_fronts(GRID, pts, law, m)
             sel = [p for p in pts if p["law"] == law and p["model"] == m and p["solver"] == "ancf"]
             for a in GRID["accuracies"]:
                 first = [p for f in fr.values() for p in f if p["settled"] <= a]
-                best = ac.cheapest(ac.settled(sel, a), a)
+                best = acp.cheapest(acp.settled(sel, a), a)
                 assert (min(first, key=lambda p: p["time"])["config"], min(p["time"] for p in first)) == \
                     (best["config"], best["time"]) if best else not first
 
 
 def test_the_pendulum_lead_figure_colours_at_most_its_share_of_tied_leaders():
     pts = tied_pendulum()
-    fr = ac.fronts(ac.with_settled(pts, ac.pendulum_finer(pts)))
-    assert len(ac.leaders(fr, GRID["accuracies"], 100)) == 10          # every element ties at every target
-    fig = ac.pendulum_lead_figure(GRID, pts)
+    fr = acp.fronts(acp.with_settled(pts, acp.pendulum_finer(pts)))
+    assert len(acp.leaders(fr, GRID["accuracies"], 100)) == 10          # every element ties at every target
+    fig = acf.pendulum_lead_figure(GRID, pts)
     assert [len(series(ax)) for ax in fig.axes] == [MAX_SERIES - 1]     # 6 leaders and one grey family
     assert problems(fig) == []
     # the full cloud is the secondary figure: every element and count
-    assert len(series(ac.pendulum_all_figure(GRID, pts).axes[0])) == 30
+    assert len(series(acf.pendulum_all_figure(GRID, pts).axes[0])) == 30
 
 
 @pytest.mark.skipif(not PEERS.exists(), reason="no peer records")

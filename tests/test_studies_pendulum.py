@@ -152,7 +152,7 @@ def test_stability_report_states_the_bound_first_and_shows_failures_honestly(tin
 
 
 def test_the_pendulum_work_precision_points_are_table4_rungs_against_the_continuum(tiny):
-    from studies.design.accuracy_cost import pendulum_points
+    from studies.design.accuracy_cost_points import pendulum_points
 
     out, cat = tiny
     if not pendulum.FEM_GOLD.exists():

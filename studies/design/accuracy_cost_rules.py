@@ -1,7 +1,7 @@
 """Accuracy against cost, the fixed rules: the paper's four elements with the quadrature
 rules [2, 2] (the paper's), [3, 2] and [5, 3] on the static cantilever, timed as the study
 accuracy-cost times the defaults. Its records are drawn in accuracy-cost's diagram and
-tables beside the defaults (:func:`studies.design.accuracy_cost.points`); it has no report of its
+tables beside the defaults (:func:`studies.design.accuracy_cost_points.points`); it has no report of its
 own. Heavy (a rule that misses modes takes thousands of Newton iterations at 640
 elements), so ``make study-full`` runs it.
 """
