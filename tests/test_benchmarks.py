@@ -1,5 +1,5 @@
-"""The benchmark suite (studies/verification/benchmarks.py): its closed forms against published values,
-and a tiny subset of its cases run through both solvers (the full suite: make study)."""
+"""The benchmark suite (studies/verification/benchmarks.py and its benchmark_* modules): its closed
+forms against published values, and a tiny subset of its cases run through both solvers (the full suite: make study)."""
 import math
 
 import pytest
@@ -46,7 +46,8 @@ def _run(d: dict) -> dict:
 def test_homogeneous_tension_is_the_closed_form_in_both_solvers(solver):
     """The tiny subset of the tension benchmark: Yeoh in plane stress, the stretch of the
     closed form within the benchmark's tolerance (100 x Newton's)."""
-    from studies.verification.benchmarks import NEWTON_TOL, STUDY, tension_reference, tension_scene
+    from studies.verification.benchmark_scenes import NEWTON_TOL, tension_reference, tension_scene
+    from studies.verification.benchmarks import STUDY
 
     g = dict(STUDY["grid"])
     rec = _run(tension_scene(g, "yeoh", "plane-stress", solver))
@@ -58,7 +59,8 @@ def test_homogeneous_tension_is_the_closed_form_in_both_solvers(solver):
 def test_the_elastica_is_the_slender_limit_of_a_lock_free_element():
     """HB2n-40p at L/h = 50 and 100, alpha = 1: within the benchmark's tolerance, and the
     distance falls as (h/L)^2 (a ratio near 4 from 50 to 100)."""
-    from studies.verification.benchmarks import STUDY, elastica_scene, elastica_tolerance
+    from studies.verification.benchmark_scenes import elastica_scene, elastica_tolerance
+    from studies.verification.benchmarks import STUDY
 
     g = dict(STUDY["grid"])
     u, v, _ = elastica_tip_load(1.0)
@@ -78,7 +80,8 @@ def test_pure_bending_is_rivlins_flexure_in_both_solvers(solver, form, x):
     """The tiny subset of the bending benchmark: the curvature from two lengths (8 h and 16 h,
     the couple's end zone cancelling) within the benchmark's tolerance of the exact flexure
     (Rivlin's in plane strain, the plane-stress two-point problem otherwise)."""
-    from studies.verification.benchmarks import STUDY, bending_reference, bending_scene, bending_tolerance
+    from studies.verification.benchmark_scenes import bending_reference, bending_scene, bending_tolerance
+    from studies.verification.benchmarks import STUDY
 
     g = dict(STUDY["grid"])
     theta = [_run(bending_scene(g, "neo-hookean", form, x, n, solver))["tip"]["rotation"] for n in (8, 16)]
@@ -91,7 +94,8 @@ def test_pure_bending_is_rivlins_flexure_in_both_solvers(solver, form, x):
 def test_a_lock_free_element_rolls_up_on_the_exact_bendings_arc():
     """HB2n-40p, a full roll-up (phi = 2 pi) at L/h = 50: the tip within the arc benchmark's
     tolerance (twice the exact plane-stress bending's own departure from Euler's arc)."""
-    from studies.verification.benchmarks import NEWTON_TOL, STUDY, arc_departure, arc_scene
+    from studies.verification.benchmark_scenes import NEWTON_TOL, arc_departure, arc_scene
+    from studies.verification.benchmarks import STUDY
     from studies.verification.closed_forms import elastica_end_moment
 
     g = dict(STUDY["grid"])
@@ -116,7 +120,8 @@ def test_every_benchmark_miss_names_its_cause():
     names no miss without a cause."""
     import csv
 
-    from studies.verification.benchmarks import CAUSES, _is_cable, cause_of
+    from studies.verification.benchmark_causes import CAUSES, cause_of
+    from studies.verification.benchmark_rows import _is_cable
 
     with open(REPORTS / "benchmarks.csv") as fh:
         fails = [r for r in csv.DictReader(fh) if r["verdict"] == "FAIL"]

@@ -481,16 +481,17 @@ def test_the_element_converges_to_its_own_limit_fast_on_the_cantilever():
 
 
 def test_the_slender_limit_is_the_elastica_and_eulers_arc_within_the_benchmarks_tolerances():
-    """The benchmark suite's slender cases (studies.verification.benchmarks, their tolerances fixed there:
+    """The benchmark suite's slender cases (studies.verification.benchmark_scenes, their tolerances fixed there:
     the elastica 2 (0.9 + alpha/12 + alpha^2/4) (h/L)^2; the arc twice the exact plane-stress
     bending's own departure from it, + 1e-6) on the cable, 32 elements, L / h = 50: the
     elastica under alpha = 5 (measured 1.8e-4 of L against 6.1e-3) and the full roll-up under
     an end couple, phi = 2 pi (5.3e-4 against 6.1e-3). The cable has no shear, so its
     distance is its stretch and its law's."""
-    from studies.verification import benchmarks as B
+    from studies.verification import benchmark_scenes as B
+    from studies.verification.benchmarks import STUDY
     from studies.verification.closed_forms import elastica_end_moment, elastica_tip_load
 
-    g, L = B.STUDY["grid"], B.SLENDER_BEAM["length"]
+    g, L = STUDY["grid"], B.SLENDER_BEAM["length"]
     rec, _ = run_scene(scene_from_dict(B.elastica_scene(g, 5.0, 50.0, CABLE)))
     u, v, _ = elastica_tip_load(5.0)
     assert math.hypot(rec["tip"]["ux"] / L + u, rec["tip"]["uy"] / L + v) < B.elastica_tolerance(5.0, 50.0)
