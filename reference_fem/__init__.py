@@ -14,8 +14,6 @@ Modules, one concept each. Shared by every backend (no dolfinx):
 - :mod:`.geometry`: where supports, the tip and the probes are, per model;
 - :mod:`.statics`: Newton and static load stepping; :mod:`.stepper`: the time stepper;
 - :mod:`.simulation`: scene -> record; :mod:`.convergence`: refinement and Richardson;
-- :mod:`.gold_pendulum`: the pendulum's gold data and tables (study code, still here: the
-  cantilever's gold and the commands are in :mod:`studies.verification.continuum_gold`);
 - :mod:`.cli`: ``python -m reference_fem run | converge``;
 - :mod:`.launch`: the ``mpiexec`` / ``srun`` command line of a run on N ranks.
 

@@ -12,8 +12,8 @@ from .conftest import tiered
 
 from contract import paper
 from contract.scene import scene_from_dict
-from reference_fem import gold_pendulum as pendulum
-from reference_fem.gold_pendulum import pendulum_dict
+from studies.verification.continuum_gold import pendulum
+from studies.verification.continuum_gold.pendulum import pendulum_dict
 from reference_fem.settings import fem_settings
 from reference_fem.simulation import run_dynamic, run_scene
 

@@ -15,8 +15,8 @@ from scipy.integrate import solve_ivp
 from contract import paper
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
-from reference_fem import gold_pendulum as pendulum
-from reference_fem.gold_pendulum import pendulum_dict
+from studies.verification.continuum_gold import pendulum
+from studies.verification.continuum_gold.pendulum import pendulum_dict
 
 GOLD_PATH = Path(__file__).parent / "gold" / "fem_pendulum.json"
 ROOT = Path(__file__).parent.parent

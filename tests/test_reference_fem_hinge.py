@@ -13,7 +13,7 @@ import pytest
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
 from reference_fem.convergence import richardson
-from reference_fem.gold_pendulum import pendulum_dict
+from studies.verification.continuum_gold.pendulum import pendulum_dict
 
 pytestmark = pytest.mark.dolfinx
 

@@ -8,7 +8,7 @@ Euler-Bernoulli, linear-elastic physics differs from the continuum's.
         [--reuse FILE ...]
 
 The DOLFINx plane-stress model of ``reference_fem`` (the one that produced
-tests/gold/fem_pendulum.json, see :mod:`reference_fem.gold_pendulum`: Q2 cells of aspect
+tests/gold/fem_pendulum.json, see :mod:`studies.verification.continuum_gold.pendulum`: Q2 cells of aspect
 2, generalized-alpha rho_inf = 0.8), run on three meshes, c, 2c and 4c cells across the
 height at dt, and on the middle mesh at dt / 2. d_dt: the middle mesh's change when dt is
 halved; d_h: the change from the middle to the finest mesh; r: the observed contraction
@@ -37,7 +37,7 @@ import json
 import time
 from pathlib import Path
 
-from reference_fem.gold_pendulum import differences, pendulum_dict, run_case
+from studies.verification.continuum_gold.pendulum import differences, pendulum_dict, run_case
 
 ROOT = Path(__file__).resolve().parents[2]
 HEIGHT = 0.020                                       # m

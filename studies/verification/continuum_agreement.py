@@ -16,7 +16,7 @@ computed by DOLFINx and by FElupe (``[fem] backend = "felupe"``, this study's ca
 - the pendulum (the continuum pendulums of tests/gold/fem_pendulum.json, every law in plane
   stress and exactly incompressible plane strain, on 140 x 4 Q2 cells): FElupe's on its own
   mesh (``pendulum_aspect``: 112 x 4 cells) with its own estimate by the gold's rule
-  (:func:`reference_fem.gold_pendulum.estimate_case`: runs at dt / 2 and on twice the cells,
+  (:func:`studies.verification.continuum_gold.pendulum.estimate_case`: runs at dt / 2 and on twice the cells,
   e(t) = 4/3 d_dt + 2 d_h), compared at t = 0.1 ... 0.5 s.
 
 The check: two converged values differ by no more than the sum of their error
@@ -122,7 +122,7 @@ def hard_load_scenes(hard: dict) -> list[tuple[str, str, dict, dict]]:
 
 def pendulum_scenes(law: str, model: str, aspect: float) -> tuple[dict, dict, dict]:
     """FElupe's three runs of a pendulum case (base, dt / 2, twice the cells), named apart."""
-    from reference_fem.gold_pendulum import convergence_scenes
+    from studies.verification.continuum_gold.pendulum import convergence_scenes
 
     out = []
     for d in convergence_scenes(law, model, aspect=aspect):
@@ -225,7 +225,7 @@ def pendulum_agreement(felupe_records: list[dict], grid: dict, gold=GOLD_PENDULU
     """Rows of the pendulum, one per (law, model): at every output time t > 0 the distance
     between DOLFINx's gold tip and FElupe's base run, and the bar e_DOLFINx(t) +
     e_FElupe(t); the row's worst time (largest distance / bar)."""
-    from reference_fem.gold_pendulum import estimate_case
+    from studies.verification.continuum_gold.pendulum import estimate_case
 
     if not gold.exists():
         return []

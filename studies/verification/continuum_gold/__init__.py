@@ -7,8 +7,8 @@ them, and the commands that make both (``python -m studies continuum``, :mod:`.c
 - :mod:`.cantilever_tables`: the cantilever gold file's tables (never a solver call);
 - :mod:`.pendulum_timing`: the pendulum gold's base scenes on both continuum codes, their
   wall times and tips;
-- the pendulum's gold (tests/gold/fem_pendulum.json: scenes, step and mesh convergence,
-  tables) is still :mod:`reference_fem.gold_pendulum`, which these modules import.
+- :mod:`.pendulum`: the pendulum's gold (tests/gold/fem_pendulum.json: scenes, step and mesh
+  convergence, tables).
 
 Study code, not the continuum solver: it drives :mod:`reference_fem` (scene -> record,
 refinement studies) and writes files, and reference_fem imports none of it.

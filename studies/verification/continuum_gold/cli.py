@@ -32,7 +32,7 @@ def _root_after_import() -> bool:
 
 def _gold(args) -> int:
     if args.pendulum:
-        from reference_fem.gold_pendulum import write_pendulum_gold
+        from studies.verification.continuum_gold.pendulum import write_pendulum_gold
 
         path = write_pendulum_gold(Path(args.out), tuple(args.models), workers=args.workers,
                                    progress=lambda m: print(m, flush=True))
@@ -54,7 +54,7 @@ def _gold(args) -> int:
 
 def _pendulum(args) -> int:
     from contract.record import sanitize
-    from reference_fem.gold_pendulum import convergence_case
+    from studies.verification.continuum_gold.pendulum import convergence_case
 
     case = convergence_case(args.law, args.model, args.dt, args.cells_height, args.aspect,
                             workers=args.workers, rho_inf=args.rho_inf, integrator=args.integrator)
@@ -77,7 +77,7 @@ def _pendulum(args) -> int:
 
 def _report(args) -> int:
     if args.pendulum:
-        from reference_fem.gold_pendulum import render as render_pendulum
+        from studies.verification.continuum_gold.pendulum import render as render_pendulum
 
         print(render_pendulum(Path(args.gold or "tests/gold/fem_pendulum.json")), end="")
         return 0

@@ -2,7 +2,7 @@
 
     python -m studies.verification.continuum_gold.pendulum_timing [--laws L ...] [--models M ...] [--t-end T]
 
-Each gold base scene (:mod:`reference_fem.gold_pendulum`: 140 x 4 Q2 or Q2/Q1 cells,
+Each gold base scene (:mod:`studies.verification.continuum_gold.pendulum`: 140 x 4 Q2 or Q2/Q1 cells,
 dt = 1 ms, generalized-alpha rho_inf = 0.8, 0.5 s) is run once by DOLFINx and once by
 FElupe on the same mesh with the same integrator; printed: the runs' wall times with the
 median and quartiles of the time per accepted step (the spread within a run), the Newton
@@ -20,7 +20,7 @@ import time
 import numpy as np
 
 from reference_fem.backends import BACKENDS
-from reference_fem.gold_pendulum import LAWS, pendulum_dict
+from studies.verification.continuum_gold.pendulum import LAWS, pendulum_dict
 
 
 def run(law: str, model: str, backend: str, t_end: float | None = None) -> dict:

@@ -2,8 +2,7 @@
 convergence, gold data for the ANCF comparison (no dolfinx imported at module level).
 
 Study code, driven by ``python -m studies continuum gold --pendulum | pendulum | report
---pendulum`` (:mod:`studies.verification.continuum_gold`), whose package it belongs in; it
-stays here while :mod:`studies.peers.thick_reference` imports it from here.
+--pendulum`` (:mod:`studies.verification.continuum_gold`).
 
 Pendulum: L = 350 mm, h = 5 mm, w = 7 mm, the paper's laws and densities (Table 2,
 :mod:`contract.paper`), gravity (0, -9.81) m/s^2, pinned at the centre of
@@ -82,8 +81,8 @@ def run_case(d: dict, energy_every_step: bool = False) -> dict:
     from contract.record import sanitize
     from contract.scene import scene_from_dict
 
-    from .simulation import run_scene, run_dynamic
-    from .settings import fem_settings
+    from reference_fem.simulation import run_dynamic, run_scene
+    from reference_fem.settings import fem_settings
 
     scene = scene_from_dict(d)
     if energy_every_step:
@@ -169,7 +168,7 @@ def estimate_case(law: str, model: str, base: dict, dt: float, r_base: dict, r_h
 
 def write_pendulum_gold(out_dir: Path, models=("plane-stress", "plane-strain"), workers: int = 2,
                         progress=None) -> Path:
-    from .dolfinx_backend.fem import VERSION
+    from reference_fem.dolfinx_backend.fem import VERSION
 
     out_dir = Path(out_dir)
     path = out_dir / FILE
