@@ -16,24 +16,18 @@ from contract.errors import SceneError
 from contract.scene import Scene, check_names
 from mechanics.laws import LAWS
 
-from .elements import ELEMENTS, ElementSpec, get_element
-from .formulations import FORMULATIONS, get_formulation
-from .integrators import INTEGRATORS
+from .core.spec import ElementSpec
+from .elements import ELEMENTS, get_element
+from .core.formulations import FORMULATIONS, get_formulation
+from .solvers.integrators import INTEGRATORS
 
 
 def refused_integrators(element: ElementSpec) -> dict[str, str]:
-    """{integrator: why the element cannot run it}: the one rule of which elements take
-    which integrator (the scene check, the models, the warm-up, ``ancf elements`` and the
-    studies ask it). The discrete gradient needs the invariants a and J quadratic in u at
-    every point: a cable's fibre stretch is not even polynomial, and an assumed strain's
-    det C_bar is quartic."""
-    if element.cable:
-        why = "a cable's fibre stretch is not quadratic in u"
-    elif element.assumed:
-        why = f"an assumed strain ({', '.join(element.assumed)}) makes det C quartic in u"
-    else:
-        return {}
-    return {"discrete-gradient": f"{why}: no exact discrete gradient here"}
+    """{integrator: why the element cannot run it}: its kinematics' rule
+    (:meth:`ancf.kinematics.family.Kinematics.refused_integrators`), the one place it is
+    written (the scene check, the models, the warm-up, ``ancf elements`` and the studies
+    ask it here)."""
+    return element.family.refused_integrators(element)
 
 
 def allowed_integrators(element: ElementSpec) -> list[str]:
@@ -79,15 +73,16 @@ def _singular(el: ElementSpec, le: float, h: float) -> bool:
 
 
 def _check_kinematics(scene: Scene) -> None:
-    """What an element's kinematics cannot run: a cable (``ElementSpec.formulations``)
-    integrates the law's uniaxial energy, with free lateral faces, so plane stress alone;
-    the integrators an element refuses (:func:`refused_integrators`)."""
+    """What an element's kinematics cannot run: the formulations it refuses
+    (:attr:`ancf.kinematics.family.Kinematics.formulations`: a cable integrates the law's
+    uniaxial energy, with free lateral faces, so plane stress alone); the integrators it
+    refuses (:func:`refused_integrators`)."""
     el = get_element(scene.ancf.element)
-    allowed = el.formulations
-    if allowed is not None and scene.material.formulation not in allowed:
+    family = el.family
+    if not family.runs(scene.material.formulation):
         raise SceneError(f"material.formulation: {scene.material.formulation!r} cannot run element {el.name} "
-                         f"({el.kinematics}: the section's fibres in uniaxial stress with free faces); "
-                         f"allowed for it: {', '.join(repr(f) for f in allowed)}")
+                         f"({el.kinematics}: {family.formulations_why}); "
+                         f"allowed for it: {', '.join(repr(f) for f in family.formulations)}")
     a = scene.analysis
     if a.kind == "dynamic" and a.newton == "linear" and INTEGRATORS[a.integrator].compiled != "alpha-family":
         family = sorted(i for i, c in INTEGRATORS.items() if c.compiled == "alpha-family")

@@ -2,7 +2,7 @@
 formulations, quadrature rules, supports and integrators. :func:`plan` checks a scene once
 (:func:`ancf.admission.check`: its names against ancf's registries, and what each element
 admits) and resolves it into a frozen :class:`Plan` (element, formulation, rule, estimate,
-warnings); the builders take it."""
+warnings); :func:`build` turns the plan into the run (:class:`Run`)."""
 from __future__ import annotations
 
 import math
@@ -15,19 +15,18 @@ from contract.capacity import Estimate, check_capacity
 from contract.scene import MaterialSpec, Scene
 
 from .admission import check  # noqa: F401  (ancf.build.check: the name callers know)
-from .integrators import INTEGRATORS
+from .solvers.integrators import INTEGRATORS
 from .elements import get_element
-from .formulations import get_formulation
+from .core.formulations import get_formulation
 from mechanics.laws import get_law
-from .material import Material
-from .mesh import Mesh, fixed_dofs
-from .beam import BeamModel
-from .elements import ElementSpec
-from .formulations import Formulation
-from .element_model import ElementModel
-from .couple import Loading, end_face
-from .quadrature import gauss
-from .rank import default_quadrature, rule_warnings
+from .core.material import Material
+from .core.mesh import Mesh
+from .core.spec import ElementSpec
+from .core.formulations import Formulation
+from .kinematics.model import ElementModel
+from .solvers.couple import Loading
+from .core.quadrature import gauss
+from .checks.rank import default_quadrature, rule_warnings
 
 
 # -- a scene resolved once ---------------------------------------------------------------
@@ -37,9 +36,8 @@ class Plan:
     """A checked scene resolved once into what the solver's steps take: the element, the
     formulation, the elastic rule (the scene's, or the element's default at this mesh's
     l_e / h), the memory and time estimate and the warnings (capacity's, the chosen rule's).
-    :func:`plan` makes it; every public function here takes a Plan or a scene (a scene is
-    resolved on the spot), and a run (:func:`ancf.simulation.run_scene`, ``ancf run``)
-    resolves its scene once and passes the plan on."""
+    :func:`plan` makes it, once per run; :func:`build` turns it into the run, and nothing
+    downstream takes a scene again."""
     scene: Scene
     element: ElementSpec
     formulation: Formulation
@@ -50,7 +48,7 @@ class Plan:
 
     @cached_property
     def rule_warnings(self) -> tuple[str, ...]:
-        """The rank tests' verdict on a rule the scene chose (:func:`ancf.rank.rule_warnings`),
+        """The rank tests' verdict on a rule the scene chose (:func:`ancf.checks.rank.rule_warnings`),
         run when first asked (a run's record), not by a check: they take half a second per
         element, rule and l_e / h."""
         if self.scene.ancf.quadrature is None:
@@ -74,11 +72,6 @@ def plan(scene: Scene) -> Plan:
     return Plan(scene, el, form, rule, aspect, est, tuple(check_capacity(est, "ancf")))
 
 
-def resolve(scene: Scene | Plan) -> Plan:
-    """A plan as it is, or a scene resolved (:func:`plan`)."""
-    return scene if isinstance(scene, Plan) else plan(scene)
-
-
 def _estimate(scene: Scene, el: ElementSpec, rule: tuple[int, int]) -> Estimate:
     """Unknowns, peak memory and time steps of the scene's ANCF run, without building it.
     Memory (8-byte floats): the band matrices (tangent, mass, step matrix and the band LU
@@ -97,14 +90,14 @@ def _estimate(scene: Scene, el: ElementSpec, rule: tuple[int, int]) -> Estimate:
     return Estimate(n, 8.0 * words, steps, "ancf.elements")
 
 
-def estimate(scene: Scene | Plan) -> Estimate:
-    """The run's unknowns, peak memory and time steps (:func:`_estimate`)."""
-    return resolve(scene).estimate
+def estimate(scene: Scene) -> Estimate:
+    """The run's unknowns, peak memory and time steps (:func:`_estimate`), from its plan."""
+    return plan(scene).estimate
 
 
-def capacity(scene: Scene | Plan) -> list[str]:
+def capacity(scene: Scene) -> list[str]:
     """Refuse a scene that cannot fit in this machine's memory (SceneError); warnings."""
-    return list(resolve(scene).capacity_warnings)
+    return list(plan(scene).capacity_warnings)
 
 
 def build_material(spec: MaterialSpec) -> Material:
@@ -112,61 +105,68 @@ def build_material(spec: MaterialSpec) -> Material:
                     dict(spec.constants), spec.penalty, spec.density)
 
 
-def aspect(scene: Scene | Plan) -> float:
-    """l_e / h of the scene's mesh."""
-    return resolve(scene).aspect
+# -- the plan turned into the run --------------------------------------------------------
+
+@dataclass
+class Run:
+    """What :func:`build` makes of a plan: the model, the dead load vectors by effect, the
+    effects the run simulates, and what advances it: the static ``loading`` (a static scene;
+    no mass matrix is made) or the mass matrix and the ``integrator`` (a dynamic one)."""
+    plan: Plan
+    model: ElementModel
+    loads: dict[str, np.ndarray]
+    effects: list[str]
+    loading: Loading | None = None
+    mass: object = None
+    integrator: object = None
 
 
-def quadrature(scene: Scene | Plan) -> tuple[int, int]:
-    """The elastic rule: the scene's, or the element's default for its formulation kind
-    and l_e / h (:func:`ancf.rank.default_quadrature`)."""
-    return resolve(scene).rule
+def build(p: Plan) -> Run:
+    """The one step from a plan to the run: model, loads, and the static loading or the mass
+    matrix and integrator (only what the scene calls for)."""
+    model = build_model(p)
+    loads = external_loads(model, p)
+    effects = model.elastic_effects + list(loads)
+    if p.scene.analysis.kind == "dynamic":
+        M = model.mass_matrix()
+        return Run(p, model, loads, effects + ["inertia"], mass=M, integrator=build_integrator(p, model, M, loads))
+    loading = static_loading(model, loads, p)
+    return Run(p, model, loads, effects + (["end_moment"] if loading.face is not None else []), loading=loading)
 
 
-def quadrature_warnings(scene: Scene | Plan) -> list[str]:
-    """The rank tests' verdict on a rule the scene chose (:func:`ancf.rank.rule_warnings`)."""
-    return list(resolve(scene).rule_warnings)
-
-
-def build_model(scene: Scene | Plan) -> ElementModel:
-    p = resolve(scene)
+def build_model(p: Plan) -> ElementModel:
     scene, s = p.scene, p.scene.ancf
     mesh = Mesh(p.element, s.elements, scene.beam.length, scene.beam.height, scene.beam.width)
     return model_for(mesh, build_material(scene.material), gauss(*p.rule),
-                     fixed_dofs(mesh, scene.supports.left, scene.supports.clamp))
+                     p.element.family.fixed_dofs(mesh, scene.supports.left, scene.supports.clamp))
 
 
-def external_loads(model: ElementModel, scene: Scene | Plan) -> dict[str, np.ndarray]:
+def external_loads(model: ElementModel, p: Plan) -> dict[str, np.ndarray]:
     """The dead load vectors Q (N) by effect: only the loads the scene names are built."""
-    scene = scene.scene if isinstance(scene, Plan) else scene
-    loads = {}
-    if scene.loads.gravity is not None:
-        loads["gravity"] = model.gravity_force(scene.loads.gravity)
-    if scene.loads.tip_force is not None:
-        loads["tip_force"] = model.tip_force(scene.loads.tip_force)
+    loads, named = {}, p.scene.loads
+    if named.gravity is not None:
+        loads["gravity"] = model.gravity_force(named.gravity)
+    if named.tip_force is not None:
+        loads["tip_force"] = model.tip_force(named.tip_force)
     return loads
 
 
-def static_loading(model: ElementModel, loads: dict[str, np.ndarray], scene: Scene | Plan) -> Loading:
-    """What a static solve balances (:class:`ancf.couple.Loading`): the sum of the dead
+def static_loading(model: ElementModel, loads: dict[str, np.ndarray], p: Plan) -> Loading:
+    """What a static solve balances (:class:`ancf.solvers.couple.Loading`): the sum of the dead
     load vectors and, if the scene names one, the end couple on the free end face."""
-    scene = scene.scene if isinstance(scene, Plan) else scene
     Q = sum(loads.values(), np.zeros(model.mesh.n_dof))
-    if scene.loads.end_moment is None:
+    if p.scene.loads.end_moment is None:
         return Loading(Q)
-    return Loading(Q, scene.loads.end_moment, end_face(model))
+    return Loading(Q, p.scene.loads.end_moment, model.mesh.element.family.end_face(model))
 
 
-def build_integrator(scene: Scene | Plan, model: ElementModel, M, loads: dict):
-    a = resolve(scene).scene.analysis
+def build_integrator(p: Plan, model: ElementModel, M, loads: dict):
+    a = p.scene.analysis
     return INTEGRATORS[a.integrator](model, M, loads, a.rho_inf, a.newton_rtol, a.max_iterations,
                                      newton=a.newton)
 
 
 def model_for(mesh: Mesh, material: Material, rule, fixed: np.ndarray) -> ElementModel:
-    """The model of the kinematics the mesh's element declares (``ElementSpec.kinematics``):
-    :class:`ancf.cable.CableModel` for a cable, :class:`ancf.beam.BeamModel` otherwise."""
-    if mesh.element.cable:
-        from .cable import CableModel
-        return CableModel(mesh, material, rule, fixed)
-    return BeamModel(mesh, material, rule, fixed)
+    """The model of the kinematics the mesh's element declares (``ElementSpec.kinematics``,
+    :meth:`ancf.kinematics.family.Kinematics.model`)."""
+    return mesh.element.family.model(mesh, material, rule, fixed)

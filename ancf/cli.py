@@ -106,17 +106,17 @@ def _warm(args) -> int:
 
 def _list(registry: dict) -> int:
     """One line per entry: its name and reference; an element's also what it refuses
-    (:func:`ancf.admission.refused_integrators`, ``ElementSpec.formulations``)."""
+    (:func:`ancf.admission.refused_integrators`, its kinematics' formulations)."""
     from .admission import refused_integrators
-    from .elements import ElementSpec
+    from .core.spec import ElementSpec
 
     for name, item in registry.items():
         line = f"{name:16s} {getattr(item, 'reference', '') or getattr(item, 'doc', '')}"
         if isinstance(item, ElementSpec):
             if refused := sorted(refused_integrators(item)):
                 line += f"  [refuses integrator {', '.join(refused)}]"
-            if item.formulations is not None:
-                line += f"  [formulation {', '.join(item.formulations)} only]"
+            if item.family.formulations is not None:
+                line += f"  [formulation {', '.join(item.family.formulations)} only]"
         print(line)
     return 0
 
@@ -154,7 +154,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "warm":
             return _warm(args)
         from .elements import ELEMENTS
-        from .formulations import FORMULATIONS
+        from .core.formulations import FORMULATIONS
         from mechanics.laws import LAWS
         return _list({"elements": ELEMENTS, "laws": LAWS, "formulations": FORMULATIONS}[args.command])
     return command("ancf", body)

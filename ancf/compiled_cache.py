@@ -2,9 +2,9 @@
 
 numba checks a cached function against the time stamp of its own file only. A compiled
 function that calls compiled code of another module (the step loop and the static loop
-inline :func:`ancf.kernels.assemble_fused`) is loaded from its cache after that other
+inline :func:`ancf.kinematics.section.kernels.assemble_fused`) is loaded from its cache after that other
 module has changed, and runs the old code. Measured: after an edit of
-``ancf/kernels.py`` the step loop kept running the old assembly until its cache files
+``ancf/kinematics/section/kernels.py`` the step loop kept running the old assembly until its cache files
 were removed (``tests/test_compiled_cache.py`` shows the same with two small modules).
 
 So :func:`configure` (called by ``ancf/__init__.py``, before any compiled function is

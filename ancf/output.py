@@ -12,23 +12,17 @@ from pathlib import Path
 
 import numpy as np
 
-from .beam import BeamModel
+from .kinematics.model import ElementModel
 
 
-def deformed_grid(model: BeamModel, u: np.ndarray, nx: int = 4, ny: int = 2):
+def deformed_grid(model: ElementModel, u: np.ndarray, nx: int = 4, ny: int = 2):
     """Points (n, 2) of the deformed beam on an (nx x ny)-cell grid per element, their
     displacements, and the quadrilateral connectivity (m, 4)."""
     m = model.mesh
     xi, eta = np.meshgrid(np.linspace(0, 1, nx + 1), np.linspace(-0.5, 0.5, ny + 1), indexing="ij")
-    if m.element.cable:                                      # the section drawn as r + Y n
-        pts = model.section_points(u, xi.ravel(), eta.ravel()).reshape(-1, 2)
-        disp = pts - model.section_points(np.zeros_like(u), xi.ravel(), eta.ravel()).reshape(-1, 2)
-    else:
-        N, _ = m.element.tabulate(xi.ravel(), eta.ravel(), m.element_length, m.height)
-        q = (m.reference + u)[m.element_dofs]                   # (ne, ns, 2)
-        q0 = m.reference[m.element_dofs]
-        pts = np.einsum("pa,eai->epi", N, q).reshape(-1, 2)
-        disp = pts - np.einsum("pa,eai->epi", N, q0).reshape(-1, 2)
+    family = m.element.family                                # the section as its kinematics draws it
+    pts = family.section_points(model, u, xi.ravel(), eta.ravel()).reshape(-1, 2)
+    disp = pts - family.section_points(model, np.zeros_like(u), xi.ravel(), eta.ravel()).reshape(-1, 2)
     k = np.arange((nx + 1) * (ny + 1)).reshape(nx + 1, ny + 1)
     cell = np.stack([k[:-1, :-1], k[1:, :-1], k[1:, 1:], k[:-1, 1:]], axis=-1).reshape(-1, 4)
     per = (nx + 1) * (ny + 1)
@@ -53,7 +47,7 @@ def _vtu(path: Path, pts, disp, cells) -> None:
         '</Piece></UnstructuredGrid></VTKFile>\n')
 
 
-def write_vtk(model: BeamModel, states, directory, name: str = "beam") -> Path:
+def write_vtk(model: ElementModel, states, directory, name: str = "beam") -> Path:
     """One .vtu per (t, u) in ``states`` and a .pvd collection; returns the .pvd path."""
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)

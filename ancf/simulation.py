@@ -10,8 +10,8 @@ from contract.record import new_record
 from contract.scene import Scene
 from mechanics.time_loop import energy_limit, integrate, record_keys
 
-from .build import Plan, build_integrator, build_model, external_loads, resolve, static_loading
-from .statics import relax, solve_static
+from .build import Plan, Run, build, plan
+from .solvers.statics import relax, solve_static
 
 
 # Below this many unknowns a run uses one BLAS thread: the band (b <= 15) leaves a thread
@@ -21,12 +21,12 @@ THREAD_VARS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
 
 
 def run_scene(scene: Scene | Plan, progress=None) -> tuple[dict, object]:
-    """Solve ``scene`` (or a :class:`ancf.build.Plan` of it: a scene is resolved here, once);
+    """Solve ``scene`` (or a :class:`ancf.build.Plan` of it: a scene is planned here, once);
     return (record, (model, solver result)). The record follows :mod:`contract.record`: SI
     units, nulls (never NaN) where a run failed. ``progress(t, result)``: called after every
     accepted time step (dynamics). A small scene runs with one BLAS thread unless the caller
     set a thread count (the ``ancf`` command and the study runner set one before numpy loads)."""
-    p = resolve(scene)
+    p = scene if isinstance(scene, Plan) else plan(scene)
     if any(v in os.environ for v in THREAD_VARS) or p.estimate.unknowns >= ONE_THREAD_BELOW:
         return _run_scene(p, progress)
     from threadpoolctl import threadpool_limits
@@ -41,14 +41,10 @@ def _run_scene(p: Plan, progress=None) -> tuple[dict, object]:
     if p.warnings:
         rec["warnings"] = p.warnings
     t0 = time.perf_counter()
-    model = build_model(p)
-    loads = external_loads(model, p)
-    effects = model.elastic_effects + list(loads)
+    run = build(p)
     if scene.analysis.kind == "dynamic":
-        return _run_dynamic(p, model, loads, effects + ["inertia"], rec, t0, progress)
-    loading = static_loading(model, loads, p)
-    if loading.face is not None:
-        effects.append("end_moment")
+        return _run_dynamic(run, rec, t0, progress)
+    model, loading, effects = run.model, run.loading, run.effects
     model.internal_force_and_tangent(np.zeros(model.mesh.n_dof))  # tabulate, warm caches
     rec["setup_s"] = time.perf_counter() - t0
     a = scene.analysis
@@ -76,19 +72,17 @@ def _run_scene(p: Plan, progress=None) -> tuple[dict, object]:
     return rec, (model, res)
 
 
-def _run_dynamic(p: Plan, model, loads: dict, effects: list[str], rec: dict, t0: float, progress=None):
-    scene = p.scene
+def _run_dynamic(run: Run, rec: dict, t0: float, progress=None):
+    scene, model, integrator = run.plan.scene, run.model, run.integrator
     a = scene.analysis
-    M = model.mass_matrix()
     u0 = np.zeros(model.mesh.n_dof)
-    rec.update(effects=sorted(effects), ndof=model.n_free)
+    rec.update(effects=sorted(run.effects), ndof=model.n_free)
     if not model.material.formulation.stress_free:
         relaxed = relax(model, a.newton_rtol, a.max_iterations, a.wall_time)
         if relaxed.u is None or relaxed.status != "converged":
             rec.update(status="failed", reason=f"relaxation: {relaxed.reason}")
             return rec, (model, None)
         u0 = relaxed.u
-    integrator = build_integrator(p, model, M, loads)
     integrator.warm(u0)  # load compiled code before the solve timer
     rec["setup_s"] = time.perf_counter() - t0
     limit = energy_limit(scene)

@@ -1,7 +1,7 @@
 """What a load and a support of a scene are, once, for every solver.
 
 A scene names its loads and supports (:mod:`contract.scene`); each solver applies them
-(ANCF: :mod:`ancf.beam`, :mod:`ancf.mesh`; the continuum: the backends of
+(ANCF: :mod:`ancf.kinematics.section.model`, :mod:`ancf.core.mesh`; the continuum: the backends of
 :mod:`reference_fem`), and each states here what it applies, so that the two models of a
 scene carry the same load on the same support:
 
@@ -19,16 +19,16 @@ scene carry the same load on the same support:
 
       d = int_face r(L, y) y dA / int_face y^2 dA,     theta = atan2(-d_x, d_y)
 
-  (:func:`face_rotation`; d = (0, 1) in the reference state, and for a face that stays
+  (:func:`mechanics.end_rotation.face_rotation`; d = (0, 1) in the reference state, and for a face that stays
   straight, d points along it). d is linear in the displacements, so the couple's force
   is M dtheta/dd . dd/du and its tangent M (dd/du)^T d2theta/dd2 (dd/du)
-  (:func:`rotation_derivatives`, a rank-2 term on the face's unknowns), in every solver:
+  (:func:`mechanics.end_rotation.rotation_derivatives`, a rank-2 term on the face's unknowns), in every solver:
   ANCF integrates d exactly over its section polynomial (for an element linear in y,
   d = r_y(L)); the continuum assembles d over its end facets. Unlike a dead linear
   traction, whose moment falls as M cos(theta) and can never turn the end past 90
   degrees, the couple keeps its moment at any rotation: a cantilever with
   M = 2 pi EI / L rolls up into a full circle. theta is continued along the load path
-  (:func:`continued`), so a rotation past pi is not folded back. Static scenes only;
+  (:func:`mechanics.end_rotation.continued`), so a rotation past pi is not folded back. Static scenes only;
 - **the supports** at x = 0 (:data:`SUPPORTS`): ``clamp`` fixes the end face (ANCF: r and
   every y-derivative kind of the first node, or with ``clamp = "all"`` every nodal
   coordinate; the continuum: every displacement component on the face); ``pin`` is the
@@ -53,8 +53,6 @@ first moment is n(L), so d = R90 r_x(L) (its length, the stretch, does not enter
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 SUPPORTS = {
@@ -74,27 +72,3 @@ def end_traction(tip_force, height: float, width: float) -> np.ndarray:
 def face_moment_weight(height: float) -> float:
     """1 / int y^2 dy over the face (1/m^3, per unit width): d = this x int r(L, y) y dy."""
     return 12.0 / height ** 3
-
-
-def face_rotation(d) -> float:
-    """theta (rad) of a face whose first moment is d, in (-pi, pi]: atan2(-d_x, d_y)."""
-    return math.atan2(-float(d[0]), float(d[1]))
-
-
-def continued(theta_before: float, d_before, d) -> float:
-    """theta at d, continued from (theta_before, d_before) by the turn from d_before to d
-    (less than pi in magnitude): a rotation past pi is not folded back."""
-    cross = float(d_before[0]) * float(d[1]) - float(d_before[1]) * float(d[0])
-    dot = float(d_before[0]) * float(d[0]) + float(d_before[1]) * float(d[1])
-    return theta_before + math.atan2(cross, dot)
-
-
-def rotation_derivatives(d) -> tuple[np.ndarray, np.ndarray]:
-    """(g, H): the gradient dtheta/dd (2,) and Hessian d2theta/dd2 (2, 2) of
-    theta = atan2(-d_x, d_y), at d != 0: g = (-d_y, d_x) / |d|^2,
-    H = [[2 d_x d_y, d_y^2 - d_x^2], [d_y^2 - d_x^2, -2 d_x d_y]] / |d|^4."""
-    dx, dy = float(d[0]), float(d[1])
-    r2 = dx * dx + dy * dy
-    g = np.array([-dy, dx]) / r2
-    H = np.array([[2 * dx * dy, dy * dy - dx * dx], [dy * dy - dx * dx, -2 * dx * dy]]) / (r2 * r2)
-    return g, H

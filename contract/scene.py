@@ -31,7 +31,7 @@ from .loads import SUPPORTS as _SUPPORT_MEANINGS
 SUPPORTS = tuple(_SUPPORT_MEANINGS)   # what each is: contract.loads.SUPPORTS
 CLAMPS = ("face", "all")
 ANALYSES = ("static", "dynamic")
-NEWTON = ("chord", "full", "modified", "linear")   # the compiled time loop's Newton (ancf.compiled_steps)
+NEWTON = ("chord", "full", "modified", "linear")   # the compiled time loop's Newton (ancf.solvers.compiled_steps)
 # Sane ranges: a tolerance outside them answers a different question (1e10 "converges"
 # at the first residual) or none (below round-off Newton never stops).
 NEWTON_RTOL = (1e-15, 1e-3)
@@ -158,7 +158,7 @@ class AncfSettings:
     element: str
     elements: int
     quadrature: tuple[int, int] | None = None  # Gauss points along x, across the thickness;
-                                               # None: the element's default (ancf.rank)
+                                               # None: the element's default (ancf.checks.rank)
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,7 @@ off, natural frequencies +0.9 / +3.5 / +8 %). A cubic r_y removes that constrain
     .venv/bin/python -m studies card HB2n-20xy --import examples.cubic_slope
     .venv/bin/python -m studies peers work-precision --import examples.cubic_slope --element HB2n-20xy
 
-Default rules, chosen by the rank tests of ancf.rank (eigenvalue test at u = 0 and the
+Default rules, chosen by the rank tests of ancf.checks.rank (eigenvalue test at u = 0 and the
 finite-strain test, as for the package's elements): [4, 2] for l_e / h >= 1 (mu_min 0.37 at
 l_e / h = 1, 0.99 at 10; [3, 2] fails at 10 with 0.04), [3, 3] below ([4, 2] fails at
 0.5 with 0.05; [3, 3] passes 0.9 ... 0.01 with >= 0.80), and [5, 2] from l_e / h = 15

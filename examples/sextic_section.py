@@ -54,7 +54,7 @@ l_e / h = 0.1 it drifts towards the {1, .., y^3} limit (1280 elements: Yeoh -0.0
 sextic section a plane-strain limit below 0.01 % in every law that holds under refinement;
 HB2n-60p stays the plane-strain element, this one the plane-stress one.
 
-Rules from the rank and finite-strain tests (:mod:`ancf.rank`; the pressure does not enter
+Rules from the rank and finite-strain tests (:mod:`ancf.checks.rank`; the pressure does not enter
 them): [6, 7] down to l_e/h = 0.05 (seen / true strain 0.34 to 0.54; [6, 6] fails
 everywhere, 0.21 at l_e/h = 1), [6, 8] below (0.49; [6, 7] gives 0.25 at 0.025), and [8, 7]
 from l_e/h = 15 (HB2n-40p's slender stretch family: [6, 7] 0.35 at 15, 0.15 at 35; [8, 7]

@@ -11,7 +11,7 @@ where it comes from:
    load, L / h = 70, assembled from the element's shape functions. Its tip deflection
    divided by Timoshenko's is the same under both rules, so the effect is not a
    small-strain shear or membrane locking;
-3. the rank test's softest modes under [3, 2] (``ancf.rank``): for each mode, mu (the
+3. the rank test's softest modes under [3, 2] (``ancf.checks.rank``): for each mode, mu (the
    energy [3, 2] sees against the exact rule's) and the shares of its exact energy that
    come from eps_xx, eps_yy (with the eps_xx eps_yy coupling) and shear.
 
@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ancf import rank
+from ancf.checks import rank
 from ancf.elements import get_element
 from ancf.quadrature import gauss
 from ancf.simulation import run_scene

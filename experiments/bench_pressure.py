@@ -7,7 +7,7 @@ hits both alike); printed: the median wall time of the solve (the record's wall_
 build included) and its spread (max - min) / median, and the two tips' difference. The
 Python path is the same code with BeamModel.compiled patched to False (statics.newton then
 runs newton_reference, whose force and tangent are the numpy band kernel plus
-ancf.pressure.ProjectedPenalty). Times are printed, never asserted.
+ancf.kinematics.section.pressure.ProjectedPenalty). Times are printed, never asserted.
 
     nice -n 10 .venv/bin/python -m experiments.bench_pressure [n ...] [--repeats 3] [--element HB2n-40p]
 """
@@ -19,7 +19,7 @@ import time
 
 import numpy as np
 
-from ancf.beam import BeamModel
+from ancf.kinematics.section.model import BeamModel
 from ancf.simulation import run_scene
 from contract import paper
 from contract.scene import scene_from_dict

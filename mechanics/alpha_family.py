@@ -5,8 +5,8 @@ Chung and Hulbert's method solves
     M a_(n+1-alpha_m) + f_int(u_(n+1-alpha_f)) = Q,  x_(n+1-alpha) = (1 - alpha) x_(n+1) + alpha x_n,
 
 with Newmark's relations between u, v and a (beta, gamma). Written once here and used by
-ANCF's Python steppers (:mod:`ancf.integrators`), its compiled step
-(:mod:`ancf.compiled_steps`, which compiles :func:`predict` and :func:`update` as they
+ANCF's Python steppers (:mod:`ancf.solvers.integrators`), its compiled step
+(:mod:`ancf.solvers.compiled_steps`, which compiles :func:`predict` and :func:`update` as they
 are) and the continuum's stepper (:mod:`reference_fem.stepper`). The functions are
 plain arithmetic, so they run on numpy arrays and, compiled by numba, on floats.
 """

@@ -5,11 +5,11 @@ iterate and return its norm) and ``newton_update()`` (solve for one increment, a
 return its size; an :class:`ArithmeticError` for a singular or failed solve). Used by
 the continuum's statics and time steps (:mod:`reference_fem.statics`,
 :mod:`reference_fem.stepper`), by ANCF's Python static Newton
-(:func:`ancf.statics.newton_reference`) and its Python generalized-alpha step
-(:class:`ancf.integrators.GeneralizedAlpha`). ANCF's compiled Newton loops are twins of
-these, tested equal: :func:`ancf.compiled_statics.newton` of the static one,
-:func:`ancf.compiled_steps.step` of the step; the discrete-gradient step
-(:class:`ancf.integrators.DiscreteGradient` and its twin ``compiled_steps.step_dg``) is
+(:func:`ancf.solvers.statics.newton_reference`) and its Python generalized-alpha step
+(:class:`ancf.solvers.integrators.GeneralizedAlpha`). ANCF's compiled Newton loops are twins of
+these, tested equal: :func:`ancf.solvers.compiled_statics.newton` of the static one,
+:func:`ancf.solvers.compiled_steps.step` of the step; the discrete-gradient step
+(:class:`ancf.solvers.integrators.DiscreteGradient` and its twin ``compiled_steps.step_dg``) is
 a kind of its own (its quasi-Newton stop and iteration count differ).
 """
 from __future__ import annotations

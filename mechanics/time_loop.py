@@ -26,7 +26,7 @@ every solver:
 
 A stepper may also offer ``advance(s, h, t_out, dt, budget, offset, energy_every,
 energy_max)``: many steps in compiled code by these same rules (ANCF's generalized-alpha
-family, :mod:`ancf.compiled_steps`, which compiles :func:`next_step` and
+family, :mod:`ancf.solvers.compiled_steps`, which compiles :func:`next_step` and
 :func:`after_acceptance` from here). :func:`integrate` then hands it every stretch up
 to the next output time and is entered back at the output time, at a rejected step
 (halved here, checked against ``dt_min``), at an energy growth, or after at most

@@ -7,13 +7,13 @@ The couple's potential is -t M theta(d), with d the end face's first moment
 
 linear in the unknowns w (G = [g_x, g_y], g_i = weight int_face v_i Y dA, assembled by the
 backend), theta = atan2(-d_x, d_y) and t the static load parameter. With (g, H) the
-gradient and Hessian of theta at d (:func:`contract.loads.rotation_derivatives`):
+gradient and Hessian of theta at d (:func:`mechanics.end_rotation.rotation_derivatives`):
 
     residual  R += G c,       c = -t M g        (R = dPi/dw)
     tangent   K += G C G^T,   C = -t M H        (rank 2)
 
 M is per unit width in the 2D problems (M / beam.width: the 2D energies are per unit
-width) and the full moment in 3D. theta is continued (:func:`contract.loads.continued`)
+width) and the full moment in 3D. theta is continued (:func:`mechanics.end_rotation.continued`)
 from one evaluation to the next (every Newton iterate): the system saves and restores
 ``branch`` (theta, d) with its state and resets it with the state, so a rotation past pi is
 not folded back and a rejected load increment does not leave its branch behind.
@@ -22,7 +22,7 @@ from __future__ import annotations
 
 from typing import Callable
 
-from contract.loads import continued, face_rotation, rotation_derivatives
+from mechanics.end_rotation import continued, face_rotation, rotation_derivatives
 
 
 class EndMoment:

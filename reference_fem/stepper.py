@@ -27,7 +27,7 @@ from mechanics.time_loop import Output, State, StepFailure, acceleration_error
 
 # Newton's correction test of a step: 1e-8 of the state or of the beam height (4 nm at
 # 0.35 m, against the 0.1 mm criterion). Deliberately 100 x tighter than ANCF's 1e-6
-# (ancf.integrators.Integrator.utol): the continuum is the reference the elements are
+# (ancf.solvers.integrators.Integrator.utol): the continuum is the reference the elements are
 # judged against, so its Newton error stays far below any element's; its Newton
 # iterations are few next to its assembly, so the confirming iteration costs little.
 UTOL = 1e-8

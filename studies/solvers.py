@@ -75,7 +75,7 @@ def _run_ancf_effects(scene: dict) -> dict:
     with ``effect_costs``."""
     import numpy as np
 
-    from ancf.build import build_model
+    from ancf.build import build_model, plan
     from ancf.simulation import run_scene
     from contract.scene import scene_from_dict
 
@@ -85,7 +85,7 @@ def _run_ancf_effects(scene: dict) -> dict:
         return rec
     u = res.u if res.u is not None else np.zeros(model.mesh.n_dof)
     costs = _paired(lambda: run_scene(sc), lambda: run_scene(sc)[1][0].mass_matrix())
-    costs["build_model"] = _median_spread(lambda: build_model(sc))
+    costs["build_model"] = _median_spread(lambda: build_model(plan(sc)))
     costs["tangent"] = _median_spread(lambda: model.internal_force_and_tangent(u))
     costs["mass_matrix"] = _median_spread(model.mass_matrix)
     if sc.loads.gravity is not None:

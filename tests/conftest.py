@@ -3,10 +3,10 @@ from typing import Callable
 import numpy as np
 import pytest
 
-from ancf.checks import law_constants, paper_material
+from ancf.checks.element import law_constants, paper_material
 from contract import paper
 from ancf.elements import ELEMENTS
-from ancf.formulations import FORMULATIONS
+from ancf.core.formulations import FORMULATIONS
 from mechanics.laws import LAWS
 
 
@@ -32,7 +32,7 @@ def rng():
 ALL_ELEMENTS = sorted(ELEMENTS)
 # the continuum-based elements (a cable, ElementSpec.kinematics = "cable", has no section
 # coordinates: tests of the face clamp, r_y and the like are theirs; tests/test_cable.py is its)
-CONTINUUM_ELEMENTS = sorted(n for n, e in ELEMENTS.items() if not e.cable)
+CONTINUUM_ELEMENTS = sorted(n for n, e in ELEMENTS.items() if e.kinematics != "cable")
 
 
 def contract_rule(element: str):

@@ -24,8 +24,8 @@ import pytest
 
 from ancf.admission import check, refused_integrators
 from ancf.elements import BUILTIN, ELEMENTS, get_element
-from ancf.formulations import FORMULATIONS
-from ancf.integrators import INTEGRATORS
+from ancf.core.formulations import FORMULATIONS
+from ancf.solvers.integrators import INTEGRATORS
 from ancf.simulation import run_scene
 from contract import paper
 from contract.errors import SceneError
@@ -153,7 +153,7 @@ def test_a_refused_integrator_is_named_with_the_allowed_ones(element):
 
 
 def test_the_rule_is_the_one_the_models_and_the_stability_study_ask():
-    from ancf.element_model import refuse_discrete_gradient
+    from ancf.kinematics.model import refuse_discrete_gradient
     from studies.verification.dynamics_stability import STUDY, offered
 
     user_elements()

@@ -1,20 +1,20 @@
 """Assembly contract tests over every element (and every law x formulation on one), the
-measurements of ancf.checks:
+measurements of ancf.checks.element:
 internal force = energy gradient, tangent = force gradient, rigid motions, mass and
 gravity integrate exactly, and only the effects a scene calls for are built."""
 import numpy as np
 import pytest
 
-from ancf import checks
-from ancf.checks import bent_state, rotate, small_model
-from ancf.beam import BeamModel
+from ancf.checks import element as checks
+from ancf.checks.element import bent_state, rotate, small_model
+from ancf.kinematics.section.model import BeamModel
 from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
 from contract import paper
 
 from .conftest import ALL_ELEMENTS, ALL_FORMULATIONS, ALL_LAWS
 
-# every element in every formulation it runs (a cable: plane stress, ancf.checks.runs)
+# every element in every formulation it runs (a cable: plane stress, ancf.checks.element.runs)
 CASES = [(el, "yeoh", f) for el in ALL_ELEMENTS for f in ALL_FORMULATIONS if checks.runs(el, f)] + \
         [("HB2n-12", law, f) for law in ALL_LAWS if law != "yeoh" for f in ALL_FORMULATIONS] + \
         [("HC2n-8", law, "plane-stress") for law in ALL_LAWS if law != "yeoh"]
@@ -118,9 +118,9 @@ def test_discrete_gradient_identity(element, law, form, rng):
     u0 = bent_state(model, rng, angle=0.2)
     u1 = bent_state(model, rng, angle=0.25)
     spec = model.mesh.element
-    if spec.assumed or spec.cable:
-        from ancf.compiled_steps import CompiledLoop
-        why = "a cable's fibre stretch" if spec.cable else "an assumed strain"
+    if spec.family.refused_integrators(spec):
+        from ancf.solvers.compiled_steps import CompiledLoop
+        why = "a cable's fibre stretch" if spec.kinematics == "cable" else "an assumed strain"
         with pytest.raises(ValueError, match=f"element {element}: {why}"):
             model.discrete_gradient_force_and_tangent(u0, u1)
         with pytest.raises(ValueError, match=f"element {element}: {why}"):
@@ -153,8 +153,8 @@ def test_compiled_strain_energy_matches_the_numpy_reference(element, law, form, 
     """strain_energy (the compiled kernel, pressure field included) equals the numpy
     reference strain_energy_numpy at a bent state, and an inverted state raises
     InadmissibleState on both (a cable: a bent arc shrunk 1000 times, where its inner
-    fibres' stretch is < 0: ancf.checks.inadmissible_state)."""
-    from ancf.beam import InadmissibleState
+    fibres' stretch is < 0: ancf.checks.element.inadmissible_state)."""
+    from ancf.kinematics.section.model import InadmissibleState
 
     model = make_model(element, law, form)
     u = bent_state(model, rng)
@@ -162,7 +162,7 @@ def test_compiled_strain_energy_matches_the_numpy_reference(element, law, form, 
     assert model.strain_energy(u) == pytest.approx(ref, rel=1e-12)
     inverted = np.zeros_like(u)                    # every vector coordinate mirrored in y: det F = -1
     inverted[1::2] = -2.0 * model.mesh.reference[1::2]
-    if model.mesh.element.cable:                   # (a cable's reference has no y; mirrored, it stays admissible)
+    if model.mesh.element.family.mirror_admissible:   # (a cable's reference has no y; mirrored, it stays admissible)
         inverted = checks.inadmissible_state(model)
     for energy in (model.strain_energy, model.strain_energy_numpy):
         with pytest.raises(InadmissibleState):
@@ -176,12 +176,12 @@ def test_fused_kernel_matches_the_numpy_reference(element, law, form, rng):
     kernels.element_terms (column storage, inside assemble_fused of the compiled steps
     and statics). This holds the third equal to the first, force and tangent; with an
     element pressure field (HB2n-40p, penalised) the reference includes
-    ancf.pressure.ProjectedPenalty, which the fused kernel reads as data. Called through
-    the loops' entry, ancf.element_kernels.element_assemble, which sends a cable to its own
-    kernel (ancf.cable_kernels; its reference is CableModel's numpy chain rule)."""
-    from ancf.bandsolve import col_matvec
-    from ancf.element_kernels import element_assemble as assemble_fused, element_work
-    from ancf.kernels import OK
+    ancf.kinematics.section.pressure.ProjectedPenalty, which the fused kernel reads as data. Called through
+    the loops' entry, ancf.kinematics.kernels.element_assemble, which sends a cable to its own
+    kernel (ancf.kinematics.cable.kernels; its reference is CableModel's numpy chain rule)."""
+    from ancf.core.bandsolve import col_matvec
+    from ancf.kinematics.kernels import element_assemble as assemble_fused, element_work
+    from ancf.kinematics.section.kernels import OK
 
     model = make_model(element, law, form)
     u = bent_state(model, rng)

@@ -1,4 +1,4 @@
-"""The hyperelastic ANCF cable HC2n-8 (ancf.cable): its section law, its contract, its
+"""The hyperelastic ANCF cable HC2n-8 (ancf.kinematics.cable.model): its section law, its contract, its
 supports and loads, its runs, and what its section model costs.
 
 Tolerances are derived in each docstring before the numbers they bound; measured values are
@@ -17,14 +17,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ancf import checks
-from ancf.build import model_for
+from ancf.checks import element as checks
+from ancf.build import model_for, plan
 from ancf.build import build_model, external_loads, static_loading
-from ancf.cable import section_moment
-from ancf.checks import bent_state, paper_material, small_model
+from ancf.kinematics.cable.model import section_moment
+from ancf.checks.element import bent_state, paper_material, small_model
 from ancf.elements import ElementSpec, get_element
-from ancf.mesh import Mesh, fixed_dofs
-from ancf.quadrature import gauss
+from ancf.core.mesh import Mesh
+from ancf.core.quadrature import gauss
 from ancf.simulation import run_scene
 from contract import paper
 from contract.errors import SceneError
@@ -52,8 +52,8 @@ def EI_per_width(law: str) -> float:
 
 def test_the_cable_is_registered_listed_and_declares_its_kinematics():
     spec = get_element(CABLE)
-    assert spec.cable and spec.kinematics == "cable" and spec.dof == 8
-    assert spec.kinds == ("r", "r_x") and spec.formulations == ("plane-stress",)
+    assert spec.kinematics == "cable" and spec.family.name == "cable" and spec.dof == 8
+    assert spec.kinds == ("r", "r_x") and spec.family.formulations == ("plane-stress",)
     p = subprocess.run([sys.executable, "-m", "ancf", "elements"], capture_output=True, text=True, cwd=ROOT)
     assert p.returncode == 0 and any(line.startswith(CABLE) for line in p.stdout.splitlines())
 
@@ -61,17 +61,17 @@ def test_the_cable_is_registered_listed_and_declares_its_kinematics():
 def test_a_cable_with_a_section_coordinate_is_refused():
     with pytest.raises(ValueError, match="a cable's basis and kinds are in x alone"):
         ElementSpec("bad-cable", ("1", "x", "y", "x*y"), (0.0, 1.0), ("r", "r_y"), kinematics="cable")
-    with pytest.raises(ValueError, match="kinematics 'shell'"):
+    with pytest.raises(ValueError, match="element bad: ancf.element.kinematics: unknown value 'shell'; allowed: 'cable', 'continuum'"):
         ElementSpec("bad", ("1", "x"), (0.0, 1.0), ("r",), kinematics="shell")
 
 
 def test_the_fibre_energy_is_the_laws_incompressible_uniaxial_energy():
-    """The tape of the fibre (ancf.tape.trace_uniaxial: the plane-stress W at F = diag(lambda,
+    """The tape of the fibre (ancf.core.tape.trace_uniaxial: the plane-stress W at F = diag(lambda,
     lambda^-1/2)) replayed compiled, against the independently typed nominal stress of
     studies.verification.closed_forms (P = 2 (lambda - lambda^-2)(W1 + W2 / lambda)): W_u' = P for every law,
     1e-12 relative (both explicit formulas: round-off); W_u(1) = 0, W_u'(1) = 0 and
     W_u''(1) = 3 mu (E of an incompressible solid), 1e-12."""
-    from ancf.tape import evaluate, trace_uniaxial
+    from ancf.core.tape import evaluate, trace_uniaxial
     from studies.verification.closed_forms import nominal_stress
 
     for law in LAWS:
@@ -144,7 +144,7 @@ def test_mass_and_gravity_are_the_closed_form_integrals():
 
 def test_the_axial_patch_test_and_uniaxial_tension_against_the_closed_form():
     """A uniform stretch is in the cable's space: (1) the free cable's force at r = (1.3 x, 0)
-    is P h w at the ends and zero elsewhere (ancf.checks.axial_patch: 1e-6 of P h w, its P by
+    is P h w at the ends and zero elsewhere (ancf.checks.element.axial_patch: 1e-6 of P h w, its P by
     central differences to ~1e-9); (2) a strip on ``slide`` under the end load F = P h w
     stretches to the closed-form lambda(P) of plane-stress uniaxial tension (Ogden;
     studies.verification.closed_forms.uniaxial_stretch), every law: Newton stops at 1e-8 of the load, so
@@ -170,10 +170,11 @@ def test_the_axial_patch_test_and_uniaxial_tension_against_the_closed_form():
 # -- the compiled loops ------------------------------------------------------------------------------
 
 def test_the_compiled_loops_run_the_cable_with_the_continuum_elements_specialisations():
-    """One element interface (ancf.element_kernels): after a continuum element's static and
+    """One element interface (ancf.kinematics.kernels): after a continuum element's static and
     dynamic runs, the cable's add no compiled specialisation of the static Newton or the
     step loop (the data have the same types; the kernel is chosen from them)."""
-    from ancf import compiled_statics, compiled_steps
+    from ancf.solvers import compiled_statics
+    from ancf.solvers import compiled_steps
     from studies.common.pendulum_cases import pendulum_dict
 
     def runs(element):
@@ -191,9 +192,9 @@ def test_the_loops_kernel_equals_the_numpy_reference_at_a_large_deformation(rng)
     """Force, tangent and energy of the loops' entry (element_assemble / element_energy, with
     alpha_f blending two states) against CableModel's numpy chain rule at the same blended
     state: round-off, 1e-12 of the largest term."""
-    from ancf.bandsolve import col_matvec
-    from ancf.element_kernels import element_assemble, element_energy, element_work
-    from ancf.kernels import OK, live_tape
+    from ancf.core.bandsolve import col_matvec
+    from ancf.kinematics.kernels import element_assemble, element_energy, element_work
+    from ancf.kinematics.section.kernels import OK, live_tape
 
     model = small_model(CABLE, "mooney-rivlin", "plane-stress", n=4)
     u, un = bent_state(model, rng, angle=2.5), bent_state(model, rng, angle=2.0)
@@ -221,11 +222,11 @@ def test_supports_fix_the_cables_coordinates():
     cable) fixes r and r_x's y-component, the direction; clamp = "all" both of r_x; the pin
     and the hinge fix r."""
     mesh = Mesh(get_element(CABLE), 3, 0.16, H, W)
-    assert list(fixed_dofs(mesh, "clamp", "face")) == [0, 1, 3]
-    assert list(fixed_dofs(mesh, "slide", None)) == [0, 1, 3]
-    assert list(fixed_dofs(mesh, "clamp", "all")) == [0, 1, 2, 3]
-    assert list(fixed_dofs(mesh, "pin", None)) == [0, 1]
-    assert list(fixed_dofs(mesh, "hinge", None)) == [0, 1]
+    assert list(mesh.element.family.fixed_dofs(mesh, "clamp", "face")) == [0, 1, 3]
+    assert list(mesh.element.family.fixed_dofs(mesh, "slide", None)) == [0, 1, 3]
+    assert list(mesh.element.family.fixed_dofs(mesh, "clamp", "all")) == [0, 1, 2, 3]
+    assert list(mesh.element.family.fixed_dofs(mesh, "pin", None)) == [0, 1]
+    assert list(mesh.element.family.fixed_dofs(mesh, "hinge", None)) == [0, 1]
 
 
 def _couple_scene(M=0.0, n=4, L=0.16, law="neo-hookean", tip=None):
@@ -245,8 +246,8 @@ def test_the_end_face_is_the_normal_of_r_x_and_the_couple_the_gradient_of_its_po
     of -M theta (step 1e-6: truncation ~1e-12, round-off ~1e-10: 1e-7), its stiffness against
     differences of the force (the same)."""
     s = _couple_scene(M=0.01)
-    model = build_model(s)
-    loading = static_loading(model, external_loads(model, s), s)
+    model = build_model(plan(s))
+    loading = static_loading(model, external_loads(model, plan(s)), plan(s))
     face = loading.face
     for phi in (0.3, 2.5, -3.0):
         w, _ = checks.rotate(model, np.zeros(model.mesh.n_dof), phi)
@@ -266,8 +267,8 @@ def test_the_end_load_does_the_work_of_the_uniform_traction_on_the_end_section()
     """The uniform dead traction F / (h w) on the end section r(L) + Y n does the work
     F . delta r(L) (int Y dY = 0): the load vector is F on the last node's r, zero elsewhere."""
     s = _couple_scene(tip=[0.3, -0.2])
-    model = build_model(s)
-    f = external_loads(model, s)["tip_force"]
+    model = build_model(plan(s))
+    f = external_loads(model, plan(s))["tip_force"]
     expect = np.zeros(model.mesh.n_dof)
     expect[model.mesh.dofs(model.mesh.n_nodes - 1, ("r",))] = [0.3, -0.2]
     np.testing.assert_allclose(f, expect, rtol=0, atol=1e-15)
@@ -300,7 +301,7 @@ def test_the_discrete_gradient_is_refused_naming_the_integrators_it_takes():
 # -- the section's bending moment --------------------------------------------------------------------
 
 def _element_moment(law: str, kh: float, elements: int = 8, lengths: int = 8):
-    """The couple M (N m) of the cable's section at kappa h (:func:`ancf.cable.section_moment`,
+    """The couple M (N m) of the cable's section at kappa h (:func:`ancf.kinematics.cable.model.section_moment`,
     64 points) applied to a strip of ``lengths`` h on ``slide``, and the curvature the element
     takes under it (tip rotation / L: uniform bending)."""
     mat = paper_material(law, "plane-stress")
@@ -356,7 +357,7 @@ def test_the_section_model_is_stiffer_than_the_exact_plane_stress_bending_by_0_2
 
 def test_keeping_eta_equal_to_Y_costs_a_third_of_the_section_models_error():
     """The cable keeps eta = Y (each fibre at its reference height). With the thickness change
-    of uniaxial stress, d eta / dY = lambda^-1/2 (:func:`ancf.cable.section_moment`,
+    of uniaxial stress, d eta / dY = lambda^-1/2 (:func:`ancf.kinematics.cable.model.section_moment`,
     thickness_change: an ODE per section), M / (EI kappa) = 1 - (kappa h)^2 / 24 for
     neo-Hookean against eta = Y's 1 + (kappa h)^2 / 30: eta = Y costs 0.075 (kappa h)^2 of M
     (measured 0.0750 at kappa h = 0.1 for neo-Hookean and Yeoh, 0.0949 Mooney-Rivlin), a third
@@ -399,9 +400,9 @@ def test_three_section_points_resolve_the_section_to_a_hundredth_of_the_models_e
 @pytest.mark.parametrize("rule,spurious", [((2, 3), 1), ((3, 1), 2), ((3, 2), 0), ((3, 3), 0)])
 def test_the_rank_tests_spurious_count_matches_the_cables_tangent(rule, spurious):
     """Zero eigenvalues of one free cable's Jacobi-scaled tangent at u = 0 (neo-Hookean) beyond
-    the rigid three, against ancf.rank's count on the fibre strain u_x' - y u_y'': 2 points
+    the rigid three, against ancf.checks.rank's count on the fibre strain u_x' - y u_y'': 2 points
     along leave the axial quadratic unseen, 1 across the bending (y = 0)."""
-    from ancf.rank import rank_test
+    from ancf.checks.rank import rank_test
 
     mat = paper_material("neo-hookean", "plane-stress")
     mesh = Mesh(get_element(CABLE), 1, H, H, W)
@@ -415,13 +416,13 @@ def test_the_rank_tests_spurious_count_matches_the_cables_tangent(rule, spurious
 
 
 def test_three_points_along_leave_the_membrane_stretch_between_them_unseen_and_the_default_keeps_them():
-    """The finite-strain test (ancf.rank.strain_test on the fibre strain lambda - 1) at the slender
+    """The finite-strain test (ancf.checks.rank.strain_test on the fibre strain lambda - 1) at the slender
     pendulum's l_e / h = 35: [3, 3] sees 9 % of the worst state's strain (a stretch between the
     points along), [5, 3] 93 % (measured 0.09 and 0.93: bounds 0.2 and 0.8). The default keeps
     [3, 3] at every l_e / h all the same: seeing that stretch is the cubic cable's membrane
     locking, coarse meshes 2-3 times further from the continuum with [5, 3] and the same
-    converged tip (ancf/elements.py, HC2n-8's note; the card's rank section)."""
-    from ancf.rank import ASPECTS, default_quadrature, strain_test
+    converged tip (ancf/elements/, HC2n-8's note; the card's rank section)."""
+    from ancf.checks.rank import ASPECTS, default_quadrature, strain_test
 
     assert strain_test(CABLE, (3, 3), 35.0)["ratio"] < 0.2 < 0.8 < strain_test(CABLE, (5, 3), 35.0)["ratio"]
     assert {default_quadrature(get_element(CABLE), False, a) for a in ASPECTS + (140.0,)} == {(3, 3)}

@@ -148,12 +148,12 @@ def test_the_volumetric_locking_verdict_on_elements_that_lock_and_that_do_not():
 
 
 def test_strain_split_of_the_exact_bending_state():
-    """ancf.checks.strain_split against closed form: pure bending of an incompressible
+    """ancf.checks.element.strain_split against closed form: pure bending of an incompressible
     plane-stress beam, u_x = -k x y, u_y = k x^2 / 2 + k y^2 / 4 (eps_xx = -k y,
     eps_yy = k y / 2, gamma = 0), set exactly in HB2n-16's nodal coordinates (its basis
     holds it): no shear energy and eps_yy / eps_xx = -1/2."""
     import numpy as np
-    from ancf.checks import small_model, strain_split
+    from ancf.checks.element import small_model, strain_split
 
     model = small_model("HB2n-16", "neo-hookean", "plane-stress", 3)
     m, k = model.mesh, 1e-4
@@ -176,7 +176,7 @@ def test_the_probe_names_the_mechanism():
     energy and holds eps_zz near 0 (-0.91): shear locking and Poisson locking out of the
     plane, whose -25 % is why its error saturates at LB2n-12's level; HB2n-16 shows
     neither (measured)."""
-    from ancf.checks import strain_split
+    from ancf.checks.element import strain_split
     from ancf.simulation import run_scene
     from contract.scene import scene_from_dict
     from studies.design.card import slender_scene

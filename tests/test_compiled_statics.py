@@ -1,15 +1,15 @@
-"""The compiled static Newton (ancf.compiled_statics) against the Python loop it replaces
-(ancf.statics.newton_reference): the same iterations, residuals and state, for every
+"""The compiled static Newton (ancf.solvers.compiled_statics) against the Python loop it replaces
+(ancf.solvers.statics.newton_reference): the same iterations, residuals and state, for every
 registered element, the three formulations, with and without the line search; the
 fallback to the pivoted LU when the unpivoted LDL^T meets a zero pivot."""
 import numpy as np
 import pytest
 
-from ancf import compiled_statics
-from ancf.build import build_model, external_loads
-from ancf.checks import runs
+from ancf.solvers import compiled_statics
+from ancf.build import build_model, external_loads, plan
+from ancf.checks.element import runs
 from ancf.elements import ELEMENTS
-from ancf.statics import newton, newton_reference
+from ancf.solvers.statics import newton, newton_reference
 from contract import paper
 from contract.scene import scene_from_dict
 
@@ -19,8 +19,8 @@ from .conftest import contract_rule
 def problem(element, form, law="mooney-rivlin", n=8, quadrature="contract"):
     quadrature = contract_rule(element) if quadrature == "contract" else quadrature
     s = scene_from_dict(paper.cantilever_scene(law, form, element, n, quadrature=quadrature, clamp="all"))
-    model = build_model(s)
-    f = sum(external_loads(model, s).values())
+    model = build_model(plan(s))
+    f = sum(external_loads(model, plan(s)).values())
     scale = np.linalg.norm(np.delete(f, model.fixed))
     return model, f, 1e-8 * scale
 
@@ -120,11 +120,11 @@ def test_residual_tolerance_respects_the_roundoff_floor():
     state (a floor 100 times the stall) nor leaves the tolerance unreachable; with it the
     whole load path converges (without it, the compiled loop's increments stalled and
     the path failed)."""
-    from ancf.statics import ROUNDOFF_FLOOR, solve_static
+    from ancf.solvers.statics import ROUNDOFF_FLOOR, solve_static
     from studies.design.card import slender_scene
     s = scene_from_dict(slender_scene("HB2n-12", 70, 8))
-    model = build_model(s)
-    f = sum(external_loads(model, s).values())
+    model = build_model(plan(s))
+    f = sum(external_loads(model, plan(s)).values())
     u0 = np.zeros(model.mesh.n_dof)
     floor = model.static_kernel.roundoff_floor(u0)
     free = np.ones(len(f), bool)
@@ -141,7 +141,7 @@ def test_residual_tolerance_respects_the_roundoff_floor():
 def test_roundoff_floor_numpy_branch_equals_the_compiled_one(element, form, monkeypatch):
     """BeamModel.roundoff_floor's numpy branch (a model the compiled loops cannot run) and
     the compiled one agree, with and without an element pressure field."""
-    from ancf.beam import BeamModel
+    from ancf.kinematics.section.model import BeamModel
     model, f, _ = problem(element, form)
     u = 1e-3 * np.sin(np.arange(model.mesh.n_dof))
     u[model.fixed] = 0.0
@@ -156,12 +156,12 @@ def test_slender_path_converges_above_the_floor(monkeypatch):
     loop's increments stall at the round-off and the path fails (the card's 7 slender
     cells failed so before the floor)."""
     import examples.transversely_cubic  # noqa: F401 (registers HB2n-20)
-    from ancf import statics
+    from ancf.solvers import statics
     from studies.design.card import slender_scene
     s = scene_from_dict(slender_scene("HB2n-20", 70, 8))
-    model = build_model(s)
-    f = sum(external_loads(model, s).values())
+    model = build_model(plan(s))
+    f = sum(external_loads(model, plan(s)).values())
     res = statics.solve_static(model, f)
     assert res.status == "converged" and res.newton_iterations < 30
     monkeypatch.setattr(statics, "ROUNDOFF_FLOOR", 0.0)
-    assert statics.solve_static(build_model(s), f).status == "failed"
+    assert statics.solve_static(build_model(plan(s)), f).status == "failed"

@@ -1,20 +1,20 @@
-"""The compiled time loop (ancf.compiled_steps) against the Python loop it replaces: the same
+"""The compiled time loop (ancf.solvers.compiled_steps) against the Python loop it replaces: the same
 steps, rejections and tips; the chord Newton default within 0.01 mm; Newmark's energy
 drift still O(dt^2) with it; a user-registered element and law through it; the fused
 kernel and the column-band LDL^T against the reference ones."""
 import numpy as np
 import pytest
 
-from ancf.banded import Banded
-from ancf.build import build_integrator, build_model, external_loads
-from ancf.dgkernel import assemble_dg, dg_scratch
-from ancf.bandsolve import (col_constrain, col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split, envelope,
+from ancf.core.banded import Banded
+from ancf.build import build_integrator, build_model, external_loads, plan
+from ancf.kinematics.section.dg_kernels import assemble_dg, dg_scratch
+from ancf.core.bandsolve import (col_constrain, col_ldlt, col_ldlt_solve, col_matvec, col_matvec_split, envelope,
                             same_component_only)
-from ancf.kernels import INADMISSIBLE, OK, assemble_fused, step_scratch, strain_energy_fused
-from ancf.checks import inadmissible_state
+from ancf.kinematics.section.kernels import INADMISSIBLE, OK, assemble_fused, step_scratch, strain_energy_fused
+from ancf.checks.element import inadmissible_state
 from ancf.elements import ELEMENTS
 from mechanics.laws import LAWS, Law, register_law
-from ancf.compiled_steps import column_band
+from ancf.solvers.compiled_steps import column_band
 from mechanics.time_loop import integrate
 from contract import paper
 from contract.errors import SceneError
@@ -36,8 +36,8 @@ def scene(n=8, t_end=0.1, dt=1e-3, law="yeoh", element="HB2n-12", material=None,
 
 
 def run(sc, compiled=True, energy_limit=1e-3, max_steps=None):
-    model = build_model(sc)
-    integ = build_integrator(sc, model, model.mass_matrix(), external_loads(model, sc))
+    model = build_model(plan(sc))
+    integ = build_integrator(plan(sc), model, model.mass_matrix(), external_loads(model, plan(sc)))
     a = sc.analysis
     return integrate(integ, np.zeros(model.mesh.n_dof), a.t_end, a.dt, a.output_times, a.dt_min,
                      energy_limit=energy_limit, max_steps=max_steps, compiled=compiled), integ
@@ -79,7 +79,7 @@ def test_full_newton_reproduces_the_python_loop_step_for_step(analysis):
 def test_a_pressure_element_steps_as_the_python_loop(integrator):
     """HB2n-40p in penalised plane strain (its pressure field in the compiled kernels as
     data): full Newton step for step as the Python loop, whose force, tangent and energy
-    come from ancf.pressure.ProjectedPenalty."""
+    come from ancf.kinematics.section.pressure.ProjectedPenalty."""
     sc = scene(n=4, t_end=0.05, element="HB2n-40p", material=paper.material_table("yeoh", "plane-strain"),
                newton="full", integrator=integrator)
     py, _ = run(sc, compiled=False)
@@ -129,14 +129,14 @@ def test_linear_newton_is_one_solve_per_step_as_accurate_as_the_step():
 
 
 def test_linear_newton_checks_the_state_and_refuses_what_it_cannot_run():
-    """The linear step's admissibility check (ancf.element_kernels.element_admissible) on the
+    """The linear step's admissibility check (ancf.kinematics.kernels.element_admissible) on the
     reference state and on a folded one, for a continuum-based element and a cable; the
     scene refuses a tolerance it would not use and an integrator that is not of the alpha
     family; the Python loop refuses to run it."""
-    from ancf.element_kernels import element_admissible, element_work
+    from ancf.kinematics.kernels import element_admissible, element_work
 
     for element in ("HB2n-12", "HC2n-8"):
-        model = build_model(scene(n=2, element=element))
+        model = build_model(plan(scene(n=2, element=element)))
         dN, w, dofs, ops, consts, pr, first = model.fused
         chunk, R, Fb, ab, Jb, ew = element_work(ops, dN, pr)
         u = np.zeros(model.mesh.n_dof)
@@ -152,7 +152,7 @@ def test_linear_newton_checks_the_state_and_refuses_what_it_cannot_run():
     with pytest.raises(SceneError, match=r"analysis\.tolerance: not used with analysis\.newton = 'linear'"):
         scene(newton="linear", tolerance=1e-4)
     with pytest.raises(SceneError, match=r"analysis\.newton: 'linear' .* 'discrete-gradient' runs full Newton"):
-        build_model(scene(newton="linear", integrator="discrete-gradient"))
+        build_model(plan(scene(newton="linear", integrator="discrete-gradient")))
     with pytest.raises(ValueError, match="newton 'linear'"):
         run(scene(newton="linear"), compiled=False)
 
@@ -207,13 +207,13 @@ def test_a_user_registered_element_and_law_run_through_the_compiled_loop(user_el
 
 @pytest.mark.parametrize("element", sorted(ELEMENTS))
 def test_fused_tangent_of_every_element_in_either_dof_numbering(element):
-    """The fused kernel (the loops' entry, ancf.element_kernels.element_assemble) gives the
+    """The fused kernel (the loops' entry, ancf.kinematics.kernels.element_assemble) gives the
     model's force and upper band for every registered element, with the mesh's numbering
     (each element's dofs contiguous: the kernel's direct scatter) and with the numbering
     reversed (dofs descending: its general scatter), which permutes f and K."""
-    from ancf.element_kernels import element_assemble as assemble_fused, element_work
+    from ancf.kinematics.kernels import element_assemble as assemble_fused, element_work
     sc = scene(material=paper.material_table("mooney-rivlin", "plane-stress"), element=element, n=3)
-    model = build_model(sc)
+    model = build_model(plan(sc))
     n, b = model.mesh.n_dof, model.mesh.bandwidth
     u, un = (1e-4 * np.random.default_rng(5).standard_normal(n) for _ in range(2))
     f_ref, K_ref = model.internal_force_and_tangent(0.6 * u + 0.4 * un)
@@ -246,7 +246,7 @@ def test_discrete_gradient_kernel_equals_the_model(element, law, form):
     BeamModel.discrete_gradient_force_and_tangent (numpy jets; with HB2n-40p's pressure
     field in the penalised forms, ProjectedPenalty.discrete_gradient_terms); the force's
     energy identity du . f_dg = U(u1) - U(u0) holds to round-off."""
-    model = build_model(scene(material=paper.material_table(law, form), element=element, n=4))
+    model = build_model(plan(scene(material=paper.material_table(law, form), element=element, n=4)))
     assert (model.pressure is not None) == (element == "HB2n-40p" and form != "plane-stress")
     n, b = model.mesh.n_dof, model.mesh.bandwidth
     rng = np.random.default_rng(1)
@@ -281,7 +281,7 @@ def test_fused_kernel_and_ldlt_equal_the_reference(element, law, form):
     forms: the band kernel plus ProjectedPenalty); LDL^T on the column band (HB2n-16)
     solves like gbsv and counts the negative pivots (the inertia)."""
     sc = scene(material=paper.material_table(law, form), element=element, n=4)
-    model = build_model(sc)
+    model = build_model(plan(sc))
     n, b = model.mesh.n_dof, model.mesh.bandwidth
     rng = np.random.default_rng(3)
     u, un = (1e-4 * rng.standard_normal(n) for _ in range(2))
@@ -322,7 +322,7 @@ def test_mass_matvec_without_the_cross_component_zeros(element):
     """Every element's mass matrix couples only dofs of the same component, so the step
     loop multiplies by it without those zeros: the same product as the whole band; a
     tangent (x-y coupled) is not taken for one."""
-    model = build_model(scene(element=element, n=4))
+    model = build_model(plan(scene(element=element, n=4)))
     n, b = model.mesh.n_dof, model.mesh.bandwidth
     Mc = column_band(model.mass_matrix().ab, b)
     first = envelope(model._dofs, n)
@@ -342,9 +342,9 @@ def test_mass_matvec_without_the_cross_component_zeros(element):
 def test_live_tape_replays_the_same_numbers(law, form):
     """The tape without its dead instructions (the compiled loops' tape) gives W and its
     derivatives of the whole tape to the bit; Yeoh in plane stress loses its unused I2."""
-    from ancf.kernels import live_tape
-    from ancf.tape import evaluate
-    model = build_model(scene(material=paper.material_table(law, form), n=2))
+    from ancf.kinematics.section.kernels import live_tape
+    from ancf.core.tape import evaluate
+    model = build_model(plan(scene(material=paper.material_table(law, form), n=2)))
     ops, consts = model._tape
     lops, lconsts = live_tape(ops, consts)
     assert len(lops) <= len(ops) and lops[-1][0] == ops[-1][0]
@@ -360,11 +360,11 @@ def test_live_tape_replays_the_same_numbers(law, form):
 @pytest.mark.parametrize("form", ["plane-strain", "plane-stress"])
 def test_the_initial_force_of_the_loop_equals_the_model(element, form):
     """The initial acceleration's internal force comes from the loop's fused assembly
-    (:func:`ancf.compiled_steps.internal_force`, called by the run's compiled start; no
+    (:func:`ancf.solvers.compiled_steps.internal_force`, called by the run's compiled start; no
     numpy kernel in the timed solve): the model's force at a deformed state, pressure field
     included, to round-off; at det F <= 0 it returns INADMISSIBLE (the start then defers to
     the Python route, which names the point: the next test)."""
-    from ancf.compiled_steps import internal_force as fused_force
+    from ancf.solvers.compiled_steps import internal_force as fused_force
     sc = scene(material=paper.material_table("yeoh", form), element=element, n=4)
     _, integ = run(sc, max_steps=1)
     model = integ.model
@@ -380,7 +380,7 @@ def test_the_initial_force_of_the_loop_equals_the_model(element, form):
 
 @pytest.mark.parametrize("element", sorted(set(ELEMENTS) | {"HB2n-84p"}))
 def test_the_loops_start_and_energies_equal_the_python_route(element):
-    """A run's start (initial accelerations, :func:`ancf.compiled_steps.start`: M
+    """A run's start (initial accelerations, :func:`ancf.solvers.compiled_steps.start`: M
     constrained and factorised by LDL^T in compiled code) and the energies of its outputs
     (:meth:`CompiledLoop.energies`) against the Python route they replace (the scaled
     banded LU of :meth:`Integrator.M_constrained` on the same right-hand side, the model's
@@ -390,8 +390,8 @@ def test_the_loops_start_and_energies_equal_the_python_route(element):
     times round-off, the energies to round-off; at det F <= 0 the start defers to the
     Python route, which names the point."""
     import examples.sextic_section  # noqa: F401  (registers HB2n-84p)
-    from ancf.beam import InadmissibleState
-    from ancf.compiled_steps import internal_force as fused_force
+    from ancf.kinematics.section.model import InadmissibleState
+    from ancf.solvers.compiled_steps import internal_force as fused_force
     sc = scene(element=element, n=3, material=paper.material_table("yeoh", "plane-stress"))
     _, integ = run(sc, max_steps=1)
     model, loop = integ.model, integ._loop

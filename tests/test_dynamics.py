@@ -7,8 +7,8 @@ import pytest
 from .conftest import tiered
 from scipy.integrate import solve_ivp
 
-from ancf.banded import Banded
-from ancf.integrators import INTEGRATORS, ArnoldBruls, DiscreteGradient, GeneralizedAlpha, Newmark
+from ancf.core.banded import Banded
+from ancf.solvers.integrators import INTEGRATORS, ArnoldBruls, DiscreteGradient, GeneralizedAlpha, Newmark
 from ancf.simulation import run_scene
 from mechanics.time_loop import integrate
 from contract import paper
@@ -356,7 +356,7 @@ def test_a_singular_step_matrix_is_a_rejected_step_not_a_crash(monkeypatch):
     """A LinAlgError in a step's solve (the 5 s Newmark run met one) rejects the step;
     it never escapes the integrator. (The Python loop's steps; the compiled loop's LDL^T
     reports a singular step matrix as a rejected step: tests/test_compiled_steps.py.)"""
-    from ancf import banded
+    from ancf.core import banded
     monkeypatch.setattr(GeneralizedAlpha, "advance", None)
     calls = {"n": 0}
     solve = banded.Banded.solve

@@ -3,11 +3,11 @@ registered."""
 import numpy as np
 import pytest
 
-from ancf import beam_theory as bt
-from ancf import checks
+from ancf.checks import beam_theory as bt
+from ancf.checks import element as checks
 from ancf.elements import ELEMENTS, ElementSpec, get_element, register_element
 from contract.errors import SceneError
-from ancf.polynomial import parse
+from ancf.core.polynomial import parse
 from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
 from contract import paper
@@ -148,18 +148,18 @@ def test_face_clamp_holds_the_whole_end_face(name, rng):
     element's basis allows it (a kind left free lets the face bend: measured, a cubic x
     quartic element with r_yyyy free came out 0.13 % too soft on the paper's cantilever)."""
     from ancf import elements
-    from ancf.mesh import Mesh, fixed_dofs
+    from ancf.core.mesh import Mesh
     if name == "cubic x quartic":
         spec = ElementSpec(name, tuple(f"x^{i}*y^{j}" for j in range(5) for i in range(4)), (0.0, 1.0),
                            ("r", "r_x", "r_y", "r_xy", "r_yy", "r_xyy", "r_yyy", "r_xyyy", "r_yyyy", "r_xyyyy"))
     else:
         spec = ELEMENTS[name]
     mesh = Mesh(spec, 3, 0.16, 0.005, 0.007)
-    fixed = fixed_dofs(mesh, "clamp", "face")
+    fixed = mesh.element.family.fixed_dofs(mesh, "clamp", "face")
     pure_y = [k for k in spec.kinds if elements.KINDS[k][0] == 0]
     np.testing.assert_array_equal(np.sort(fixed), np.sort(mesh.dofs(0, pure_y)))
     if len(pure_y) < len(spec.kinds):                           # x-derivative kinds stay free
-        assert len(fixed) < len(fixed_dofs(mesh, "clamp", "all"))
+        assert len(fixed) < len(mesh.element.family.fixed_dofs(mesh, "clamp", "all"))
     if name in _FACE_BULGES:
         return
     u = rng.standard_normal(mesh.n_dof)

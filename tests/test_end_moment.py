@@ -1,5 +1,5 @@
 """The end moment (contract.loads): a conservative couple on the rotation of the end face's
-first moment, in ANCF (ancf.couple). For every registered element the face's first moment
+first moment, in ANCF (ancf.solvers.couple). For every registered element the face's first moment
 reads a rigid rotation exactly; the couple's force is the gradient of its potential and
 its stiffness the force's gradient; the compiled Newton is the Python one with it; the
 load path continues the rotation past pi; and the hinge fixes what contract.loads says."""
@@ -8,10 +8,10 @@ import math
 import numpy as np
 import pytest
 
-from ancf.build import build_model, external_loads, static_loading
+from ancf.build import build_model, external_loads, plan, static_loading
 from ancf.elements import ELEMENTS, KINDS
 from ancf.simulation import run_scene
-from ancf.statics import newton, newton_reference
+from ancf.solvers.statics import newton, newton_reference
 from contract import paper
 from contract.errors import SceneError
 from contract.scene import scene_from_dict
@@ -47,13 +47,13 @@ def _rotated(model, phi: float, stretch: float = 1.0) -> np.ndarray:
     return q.reshape(-1) - m.reference
 
 
-@pytest.mark.parametrize("element", [el for el in sorted(ELEMENTS) if not ELEMENTS[el].cable])
+@pytest.mark.parametrize("element", [el for el in sorted(ELEMENTS) if ELEMENTS[el].kinematics != "cable"])
 def test_the_face_moment_reads_a_rigid_turn_and_a_thickness_stretch_exactly(element):
     """d = R(phi) (0, s) for r = R(phi) (x, s y): theta = phi (mod 2 pi), |d| = s, to round-off.
     (A cable's face, d = R90 r_x: tests/test_cable.py.)"""
     s = scene_from_dict(_scene(element))
-    model = build_model(s)
-    face = static_loading(model, {}, s).face
+    model = build_model(plan(s))
+    face = static_loading(model, {}, plan(s)).face
     assert np.allclose(face.first_moment(np.zeros(model.mesh.n_dof)), (0.0, 1.0), atol=1e-13)
     for phi in (0.3, 2.5, -3.0):
         u = _rotated(model, phi, stretch=0.9)
@@ -68,8 +68,8 @@ def test_the_couple_is_the_gradient_of_its_potential_and_its_stiffness_the_force
     differences of -M theta (step 1e-6 of the state: truncation ~1e-12, round-off ~1e-10
     relative; tolerance 1e-7), the stiffness against differences of the force (same)."""
     s = scene_from_dict(_scene(element, moment=0.3))
-    model = build_model(s)
-    loading = static_loading(model, external_loads(model, s), s)
+    model = build_model(plan(s))
+    loading = static_loading(model, external_loads(model, plan(s)), plan(s))
     rng = np.random.default_rng(3)
     u = _rotated(model, 2.0) + 1e-3 * rng.standard_normal(model.mesh.n_dof)
     v = rng.standard_normal(model.mesh.n_dof)
@@ -89,8 +89,8 @@ def test_the_compiled_newton_is_the_python_newton_with_a_couple(element):
     outcome and iterations, the state to 1e-9 of its size (the factorisations differ in
     round-off only)."""
     s = scene_from_dict(_scene(element, n=8, moment=0.3 * 3 * MU * 0.007 * 0.005 ** 3 / 12 / 0.16))
-    model = build_model(s)
-    loading = static_loading(model, external_loads(model, s), s)
+    model = build_model(plan(s))
+    loading = static_loading(model, external_loads(model, plan(s)), plan(s))
     u0 = np.zeros(model.mesh.n_dof)
     atol = 1e-8 * np.linalg.norm(np.delete(loading.force(u0), model.fixed))
     ref = newton_reference(model, u0, loading, atol, 25)
@@ -125,9 +125,9 @@ def test_an_end_moment_in_a_dynamic_scene_is_refused():
 def test_the_hinge_fixes_r_and_the_y_kinds_of_order_two_or_more(element):
     """r(0, y) = y a: r_y of the first node stays free, every other pure y-kind is fixed; an
     element linear in y is then pinned (the paper's pin)."""
-    model = build_model(scene_from_dict(_scene(element, left="hinge")))
+    model = build_model(plan(scene_from_dict(_scene(element, left="hinge"))))
     kinds = [k for k in model.mesh.element.kinds if KINDS[k][0] == 0 and KINDS[k][1] != 1]
     assert sorted(model.fixed.tolist()) == sorted(model.mesh.dofs(0, kinds).tolist())
     if max(KINDS[k][1] for k in model.mesh.element.kinds) <= 1:
-        pinned = build_model(scene_from_dict(_scene(element, left="pin")))
+        pinned = build_model(plan(scene_from_dict(_scene(element, left="pin"))))
         assert sorted(model.fixed.tolist()) == sorted(pinned.fixed.tolist())

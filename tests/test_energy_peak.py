@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from ancf.build import build_integrator, build_model, external_loads
+from ancf.build import build_integrator, build_model, external_loads, plan
 from ancf.simulation import run_scene
 from contract import paper
 from contract.scene import scene_from_dict
@@ -25,9 +25,9 @@ def test_peak_over_every_step():
     sampled = max(e["total"] for e in rec["energy"])
     assert pk["total"] >= sampled
 
-    model = build_model(scene)
-    loads = external_loads(model, scene)
-    integ = build_integrator(scene, model, model.mass_matrix(), loads)
+    model = build_model(plan(scene))
+    loads = external_loads(model, plan(scene))
+    integ = build_integrator(plan(scene), model, model.mass_matrix(), loads)
     a = scene.analysis
     res = integrate(integ, np.zeros(model.mesh.n_dof), a.t_end, a.dt, a.output_times,
                     energy_every_step=True, compiled=False)

@@ -46,8 +46,7 @@ def test_the_coarse_meshes_default_sees_the_finite_strain_family_and_the_pendulu
     declares [5, 2] from l_e / h = 15 (0.88 at 35). The pendulum does not meet that family:
     the default's error is [4, 2]'s within 3 % of itself, a little larger (measured at dt
     2.5 ms: 2 elements 7.42 against 7.25 %, 4 elements 1.196 against 1.178 %)."""
-    from ancf import rank
-
+    from ancf.checks import rank
     assert rank.rank_test(along_rule.ELEMENT, (4, 2), 35.0)["passes"]
     assert not rank.strain_test(along_rule.ELEMENT, (4, 2), 35.0)["passes"]
     assert rank.strain_test(along_rule.ELEMENT, (5, 2), 35.0)["passes"]

@@ -45,9 +45,9 @@ def test_an_assumed_membrane_stretch_leaves_the_small_strain_stiffness_and_the_s
     changes K (measured 9e-6): the check can fail."""
     import numpy as np
 
-    from ancf.build import build_model
+    from ancf.build import build_model, plan
 
-    model = build_model(scene_from_dict(scene_dict(ELEMENT, 2, 2.5e-3, 0.5)))
+    model = build_model(plan(scene_from_dict(scene_dict(ELEMENT, 2, 2.5e-3, 0.5))))
     free = np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)
     u = np.zeros(model.mesh.n_dof)
     K = {m: AssumedStrain(model, m).tangent(u, free) for m in ("none", "xx", "xy")}

@@ -20,7 +20,7 @@ GOLD = json.loads((Path(__file__).parent / "gold" / "fem_cantilever.json").read_
 
 @pytest.mark.slow(guard="test_the_pendulum_starts")
 def test_the_declared_rules_pass_the_rank_tests_and_the_cheaper_ones_fail():
-    from ancf.rank import rank_test, strain_test
+    from ancf.checks.rank import rank_test, strain_test
 
     def ok(rule, aspect):
         return rank_test(ELEMENT, rule, aspect)["passes"] and strain_test(ELEMENT, rule, aspect)["passes"]
@@ -83,11 +83,11 @@ def test_the_initial_acceleration_is_solved_in_the_mass_matrix_own_scale():
     with det F <= 0 on every mesh). Checked here in those units, D^-1/2 (M a0 - r) against
     D^-1/2 r, D = diag M: a solve that respects the scaling leaves round-off."""
     import numpy as np
-    from ancf.build import build_integrator, build_model, external_loads
+    from ancf.build import build_integrator, build_model, external_loads, plan
     scene = scene_from_dict(_pendulum(8, 0.01))
-    model = build_model(scene)
+    model = build_model(plan(scene))
     M = model.mass_matrix()
-    integ = build_integrator(scene, model, M, external_loads(model, scene))
+    integ = build_integrator(plan(scene), model, M, external_loads(model, plan(scene)))
     u0 = np.zeros(model.mesh.n_dof)
     a0 = integ.initial_state(u0).a
     free = integ.free

@@ -5,7 +5,7 @@ import pytest
 import numpy as np
 
 import examples.cubic_slope  # noqa: F401  (registers HB2n-20xy)
-from ancf import checks
+from ancf.checks import element as checks
 from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
 from studies.peers.work_precision import error
@@ -39,7 +39,7 @@ def test_eight_elements_reach_a_tenth_of_a_percent_on_the_pendulum():
 
 @pytest.mark.slow(guard="test_rank.py::test_each_declared_default_passes_the_u0_test_where_it_is_declared")
 def test_the_declared_rules_pass_the_rank_tests_and_the_cheaper_ones_fail():
-    from ancf.rank import rank_test, strain_test
+    from ancf.checks.rank import rank_test, strain_test
 
     def ok(rule, aspect):
         return rank_test(ELEMENT, rule, aspect)["passes"] and strain_test(ELEMENT, rule, aspect)["passes"]

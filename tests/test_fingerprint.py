@@ -107,4 +107,4 @@ def test_no_record_depends_on_where_compiled_code_is_cached_or_on_the_command_li
         for scene in ({}, {"fem": {"backend": "felupe"}}):
             ms = {m.split(":")[0] for m in _modules(name, scene)}
             assert not ms & set(fp.NOT_RESULTS), name
-    assert "ancf.compiled_cache" in fp.NOT_RESULTS and "ancf.couple" in _modules("ancf", {})
+    assert "ancf.compiled_cache" in fp.NOT_RESULTS and "ancf.solvers.couple" in _modules("ancf", {})

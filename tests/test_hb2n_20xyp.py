@@ -1,4 +1,4 @@
-"""The built-in HB2n-20xyp (ancf/elements.py: the example HB2n-20xy, examples/cubic_slope.py,
+"""The built-in HB2n-20xyp (ancf/elements/: the example HB2n-20xy, examples/cubic_slope.py,
 with an element pressure {1, y}): the pressure cures HB2n-20xy's volumetric locking in
 penalised plane strain and leaves plane stress as it was (issue 20, item 3)."""
 import json
@@ -10,7 +10,7 @@ import pytest
 from .conftest import tiered
 
 import examples.cubic_slope  # noqa: F401  (registers HB2n-20xy, the element without the pressure)
-from ancf import checks
+from ancf.checks import element as checks
 from ancf.elements import get_element
 from ancf.simulation import run_scene
 from contract import paper

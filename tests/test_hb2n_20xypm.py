@@ -1,5 +1,5 @@
-"""The built-in HB2n-20xypm (ancf/elements.py): HB2n-20xyp with an assumed membrane stretch,
-C_xx from three Gauss points along the beam (ancf/assumed.py), the cure for the membrane
+"""The built-in HB2n-20xypm (ancf/elements/): HB2n-20xyp with an assumed membrane stretch,
+C_xx from three Gauss points along the beam (ancf/kinematics/section/assumed.py), the cure for the membrane
 locking of the slender pendulum's coarse meshes that the prototype tests/oracles/assumed_membrane.py found.
 
 Its compiled kernel against the numpy reference, and both against the energy, are held for
@@ -10,11 +10,11 @@ rank tests' verdicts), and the measured effect on the pendulum."""
 import numpy as np
 import pytest
 
-from ancf.assumed import sampling
-from ancf.build import build_model
-from ancf.checks import bent_state
+from ancf.kinematics.section.assumed import sampling
+from ancf.build import build_model, plan
+from ancf.checks.element import bent_state
 from ancf.elements import ElementSpec, get_element
-from ancf.quadrature import gauss
+from ancf.core.quadrature import gauss
 from contract.scene import scene_from_dict
 from studies.peers.work_precision import scene_dict
 
@@ -25,7 +25,7 @@ ELEMENT, BASE = "HB2n-20xypm", "HB2n-20xyp"
 
 
 def _model(element: str, n: int = 2):
-    return build_model(scene_from_dict(scene_dict(element, n, 2.5e-3, 0.5)))
+    return build_model(plan(scene_from_dict(scene_dict(element, n, 2.5e-3, 0.5))))
 
 
 def test_the_sampling_interpolates_along_and_keeps_the_other_components():
@@ -54,7 +54,7 @@ def test_a_bad_assumed_component_is_refused_with_the_allowed_ones():
 
 @pytest.mark.slow(guard="test_the_small_strain_stiffness_is_hb2n_20xyps")
 def test_the_element_is_the_prototype():
-    """The force at a bent, stretched state (ancf.checks.bent_state with noise 1e-3): the
+    """The force at a bent, stretched state (ancf.checks.element.bent_state with noise 1e-3): the
     compiled kernel against the prototype's numpy einsum (round-off), and the 2-element
     pendulum's error against the prototype's own step loop (each solves its steps to rtol
     1e-8; 1e-7 relative, as the prototype's own test against the plain harness)."""
@@ -85,14 +85,14 @@ def test_the_assumed_stretch_relieves_the_slender_pendulums_coarse_meshes():
 
 @pytest.mark.slow(guard="test_the_sampling_interpolates_along_and_keeps_the_other_components")
 def test_the_finite_strain_rank_test_sees_the_assumed_strain():
-    """ancf.rank's finite-strain test reads E_bar = (C_bar - I) / 2 at the rule's points for
+    """ancf.checks.rank's finite-strain test reads E_bar = (C_bar - I) / 2 at the rule's points for
     an element with an assumed strain. Second route: the numpy reference's C_bar
     (AssumedStrain) at a random state of one element. Measured: at l_e / h = 10 the worst
     state shows [4, 2] 0.44 of its strain through C_bar (HB2n-20xyp's own points 0.51);
     [3, 3] samples along at its own points, so both see the same 0.86 at 0.1; the declared
     rules pass where they are declared."""
-    from ancf import rank
-    from ancf.assumed import AssumedStrain as Reference
+    from ancf.checks import rank
+    from ancf.kinematics.section.assumed import AssumedStrain as Reference
 
     el, aspect = get_element(ELEMENT), 3.0
     points, T = sampling(el.assumed, el.assumed_points, gauss(4, 2))
@@ -100,7 +100,7 @@ def test_the_finite_strain_rank_test_sees_the_assumed_strain():
     q = 0.1 * np.random.default_rng(5).standard_normal((el.n_shape, 2))
     _, Cbar, _, _ = Reference(None, dN, points.weight, T)._kinematics(q.reshape(1, -1))
     Ebar = 0.5 * (Cbar[0] - [1.0, 1.0, 0.0]) * [1.0, 1.0, np.sqrt(2.0)]
-    np.testing.assert_allclose(rank._green(q, dN, T), Ebar, rtol=0, atol=1e-14)
+    np.testing.assert_allclose(el.family.finite_strain(q, dN, T), Ebar, rtol=0, atol=1e-14)
 
     ratio = {name: rank.strain_test(name, (4, 2), 10.0)["ratio"] for name in (ELEMENT, BASE)}
     assert ratio[ELEMENT] < ratio[BASE] - 0.03, ratio

@@ -4,7 +4,7 @@ support a solver cannot apply is one clear error naming it."""
 import numpy as np
 import pytest
 
-from ancf.build import build_model
+from ancf.build import build_model, plan
 from ancf.elements import ELEMENTS, KINDS
 from contract import paper
 from contract.errors import SceneError
@@ -14,7 +14,7 @@ from contract.scene import scene_from_dict
 def _model(element: str, n: int = 2, left: str = "clamp"):
     d = paper.cantilever_scene("neo-hookean", "plane-stress", element, n, quadrature=None)
     d["supports"] = {"left": left} if left != "clamp" else d["supports"]
-    return build_model(scene_from_dict(d))
+    return build_model(plan(scene_from_dict(d)))
 
 
 def _rigid(model, v: np.ndarray, theta: float = 0.0) -> np.ndarray:

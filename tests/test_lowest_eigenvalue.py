@@ -8,7 +8,7 @@ import pytest
 
 from ancf.build import build_model
 from ancf.simulation import run_scene
-from ancf.stability import SINGULAR_TOL
+from ancf.solvers.stability import SINGULAR_TOL
 from contract import paper
 from contract.scene import scene_from_dict
 
@@ -17,7 +17,7 @@ from .test_stability_inertia import scaled_dense
 
 @pytest.mark.parametrize("element,count", [("HB2n-12", 6), ("HB3n-12", 6), ("HB2n-16", 24)])
 def test_stable_record_carries_its_margin(element, count):
-    """6 elements: the dense path of ancf.stability.lowest_eigenvalue; 24 x HB2n-16 (194
+    """6 elements: the dense path of ancf.solvers.stability.lowest_eigenvalue; 24 x HB2n-16 (194
     unknowns): its shift-invert Lanczos."""
     d = paper.cantilever_scene("neo-hookean", "plane-stress", element, count, name="margin")
     rec, (model, res) = run_scene(scene_from_dict(d))

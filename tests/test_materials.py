@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from contract.errors import SceneError
-from ancf.formulations import FORMULATIONS, get_formulation
-from ancf.jet import Jet
+from ancf.core.formulations import FORMULATIONS, get_formulation
+from ancf.core.jet import Jet
 from mechanics.laws import get_law
 
 from .conftest import ALL_FORMULATIONS, ALL_LAWS, material
@@ -164,7 +164,7 @@ def test_compiled_tape_matches_the_numpy_jet(law, form, rng):
     """The energy traced into a tape and replayed by the compiled interpreter gives W
     and its (a, J) partials equal to the numpy jet's, to round-off, for every
     registered law x formulation (a new one is covered by being registered)."""
-    from ancf.tape import evaluate, trace
+    from ancf.core.tape import evaluate, trace
     m = material(law, form)
     a = 2.0 + 0.5 * rng.random((7, 5)) ** 2     # denser near the reference state (a, J) = (2, 1)
     J = 1.0 + 0.2 * (rng.random((7, 5)) - 0.5) ** 3
@@ -175,9 +175,9 @@ def test_compiled_tape_matches_the_numpy_jet(law, form, rng):
 
 @pytest.mark.parametrize("law,form", CASES)
 def test_batched_tape_matches_the_numpy_jet(law, form, rng):
-    """The compiled step's batched replay (:func:`ancf.tape.tape_batch`, log included)
+    """The compiled step's batched replay (:func:`ancf.core.tape.tape_batch`, log included)
     gives the numpy jet's W and partials at every order it is asked for."""
-    from ancf.tape import tape_batch, trace
+    from ancf.core.tape import tape_batch, trace
     m = material(law, form)
     ops, consts = trace(m)
     a = 2.0 + 0.5 * rng.random(9) ** 2
@@ -194,7 +194,7 @@ def test_a_log_outside_its_domain_is_not_a_number_everywhere(rng):
     """Gent's energy beyond its limit (I1 - 3 >= Jm) is NaN in the jet, the tape and the
     batched tape alike (never a silent finite value), which the solvers reject as an
     inadmissible state."""
-    from ancf.tape import evaluate, tape_batch, trace
+    from ancf.core.tape import evaluate, tape_batch, trace
     m = material("gent", "plane-stress")
     a, J = np.array([[2.0, 3.5]]), np.array([[1.0, 1.0]])   # I1 - 3 = 0 and 1.5 > Jm = 0.1
     jet = m.energy_jet(a, J).D
@@ -225,7 +225,7 @@ def test_a_user_law_with_a_log_reaches_both_solvers_through_one_table():
 
 
 def test_tracing_rejects_what_it_cannot_compile():
-    from ancf.tape import Tape
+    from ancf.core.tape import Tape
     t = Tape()
     a, J = t.push(0), t.push(1)
     with pytest.raises(TypeError, match="constant exponents"):

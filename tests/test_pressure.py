@@ -1,4 +1,4 @@
-"""The element pressure field (ancf.pressure): the condensed u-p mixed form against the
+"""The element pressure field (ancf.kinematics.section.pressure): the condensed u-p mixed form against the
 pointwise penalty it generalises, its exact discrete gradient, and the locking it cures,
 measured against the exactly incompressible continuum."""
 import json
@@ -8,11 +8,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ancf import checks
-from ancf.beam import BeamModel
-from ancf.checks import bent_state, small_model
+from ancf.checks import element as checks
+from ancf.kinematics.section.model import BeamModel
+from ancf.checks.element import bent_state, small_model
 from ancf.elements import ELEMENTS, ElementSpec
-from ancf.pressure import ProjectedPenalty
+from ancf.kinematics.section.pressure import ProjectedPenalty
 from ancf.simulation import run_scene
 from contract import paper
 from contract.errors import SceneError
@@ -42,7 +42,7 @@ def test_a_pressure_value_per_point_is_the_pointwise_penalty(rng):
 
 
 def test_a_pressure_element_runs_on_the_compiled_loops_with_its_field_as_data():
-    """The compiled loops read the pressure field as arrays (ancf.element_fields.pressure_arrays):
+    """The compiled loops read the pressure field as arrays (ancf.kinematics.section.fields.pressure_arrays):
     q and w q (nq, nk), alpha M^-1 = L L^T (nk, nk), w q L (nq, nk); empty (nk = 0) where
     there is none (plane stress: no penalty, no pressure term), so every model runs
     compiled."""
@@ -64,12 +64,12 @@ def test_compiled_pressure_terms_equal_the_projected_penalty(rng):
     """HB2n-40p in penalised plane strain (Yeoh, penalty 1e4 C10): the fused kernel's force
     and tangent, its energy, the compiled discrete-gradient force and the round-off
     magnitudes equal those of the pointwise law (the same kernels with the field empty)
-    plus ancf.pressure.ProjectedPenalty's, to round-off. (tests/test_beam.py and
+    plus ancf.kinematics.section.pressure.ProjectedPenalty's, to round-off. (tests/test_beam.py and
     tests/test_compiled_steps.py hold the whole against the numpy reference.)"""
-    from ancf.compiled_statics import force_magnitude
-    from ancf.dgkernel import assemble_dg, dg_scratch
-    from ancf.element_fields import pressure_arrays
-    from ancf.kernels import OK, assemble_fused, step_scratch, strain_energy_fused
+    from ancf.solvers.compiled_statics import force_magnitude
+    from ancf.kinematics.section.dg_kernels import assemble_dg, dg_scratch
+    from ancf.kinematics.section.fields import pressure_arrays
+    from ancf.kinematics.section.kernels import OK, assemble_fused, step_scratch, strain_energy_fused
 
     model = small_model("HB2n-40p", "yeoh", "plane-strain", 4, 1e4 * paper.materials()["yeoh"]["C10"])
     pen = model.pressure
@@ -179,7 +179,7 @@ def test_the_quintic_pressure_element_reaches_the_plane_stress_target():
 @pytest.mark.slow(guard="test_rank.py::test_each_declared_default_passes_the_u0_test_where_it_is_declared")
 def test_the_quintic_pressure_elements_rules_pass_the_rank_tests_and_the_cheaper_ones_fail():
     """The rules HB2n-60p declares (about 2 s per finite-strain test)."""
-    from ancf.rank import rank_test, strain_test
+    from ancf.checks.rank import rank_test, strain_test
 
     el = "HB2n-60p"
 
@@ -195,7 +195,7 @@ def test_the_element_fields_are_a_tuple_numba_types_in_c(element, form):
     """The fields reach every compiled call as one tuple (BeamModel.fused[5]). numba's
     dispatcher fingerprints a tuple of at most four arrays in C (the fingerprint spells the
     types: b"(A..."); a fifth array made it type the arguments in Python at every call,
-    about 1 ms per run of 2 x HB2n-12 on the thick pendulum (ancf.element_fields.pressure_arrays)."""
+    about 1 ms per run of 2 x HB2n-12 on the thick pendulum (ancf.kinematics.section.fields.pressure_arrays)."""
     from numba._dispatcher import compute_fingerprint
 
     fields = small_model(element, "yeoh", form).fused[5]

@@ -1,4 +1,4 @@
-"""The rank tests of ancf.rank and the default rules they choose: every declared default
+"""The rank tests of ancf.checks.rank and the default rules they choose: every declared default
 passes both tests where it is declared; the next cheaper rule fails one; the u = 0
 spurious-mode count agrees with the zero eigenvalues of the model's own tangent (the
 independent route); a scene without a rule gets the default, a scene with a
@@ -10,10 +10,10 @@ import pytest
 
 from ancf.build import build_material
 from ancf.elements import ELEMENTS, SLENDER, get_element
-from ancf.mesh import Mesh
-from ancf.beam import BeamModel
-from ancf.quadrature import gauss
-from ancf.rank import ASPECTS, default_quadrature, rank_test, strain_test
+from ancf.core.mesh import Mesh
+from ancf.kinematics.section.model import BeamModel
+from ancf.core.quadrature import gauss
+from ancf.checks.rank import ASPECTS, default_quadrature, rank_test, strain_test
 from ancf.simulation import run_scene
 from contract import paper
 from contract.scene import MaterialSpec, scene_from_dict

@@ -191,7 +191,7 @@ class _Probe:
 
     def potential(self, w, t) -> float:
         """-t M_p theta(d(w)) (per unit width) with d by the independent route."""
-        from contract.loads import face_rotation
+        from mechanics.end_rotation import face_rotation
 
         self.set(w, t)
         if self.backend == "dolfinx":

@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from ancf.build import build_material
-from ancf.checks import law_constants
-from ancf.jet import Jet
+from ancf.checks.element import law_constants
+from ancf.core.jet import Jet
 from contract import paper
 from contract.scene import MaterialSpec
 from mechanics.laws import LAWS

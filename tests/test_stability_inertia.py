@@ -8,14 +8,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from ancf.build import build_model, external_loads
-from ancf.checks import runs
+from ancf.build import build_model, external_loads, plan
+from ancf.checks.element import runs
 from ancf.elements import ELEMENTS
-from ancf.formulations import FORMULATIONS
+from ancf.core.formulations import FORMULATIONS
 from mechanics.laws import LAWS
 from ancf.simulation import run_scene
-from ancf.stability import SINGULAR_TOL, below, check_stability, lowest_mode
-from ancf.statics import solve_static
+from ancf.solvers.stability import SINGULAR_TOL, below, check_stability, lowest_mode
+from ancf.solvers.statics import solve_static
 from contract import paper
 from contract.scene import scene_from_dict
 
@@ -39,8 +39,8 @@ def states(law, formulation, element):
     two states off equilibrium (a deterministic perturbation: indefinite tangents)."""
     d = law_scene(law, formulation, element, 4, quadrature=contract_rule(element), name="inertia")
     scene = scene_from_dict(d)
-    model = build_model(scene)
-    f = sum(external_loads(model, scene).values())
+    model = build_model(plan(scene))
+    f = sum(external_loads(model, plan(scene)).values())
     out = []
     for k in (0.3, 1.0, 3.0):
         res = solve_static(model, k * f)
@@ -102,10 +102,10 @@ def test_the_saddle_itself_is_called_unstable():
     negative eigenvalues of the dense solve, whatever the nearest-to-a-shift eigenvalue."""
     d = paper.cantilever_scene("yeoh", "paper", "HB2n-16", 32, quadrature=(2, 2), clamp="all", name="saddle")
     scene = scene_from_dict(d)
-    model = build_model(scene)
-    f = sum(external_loads(model, scene).values())
+    model = build_model(plan(scene))
+    f = sum(external_loads(model, plan(scene)).values())
     from mechanics.load_path import PathCounts, follow
-    from ancf.statics import increment_solver
+    from ancf.solvers.statics import increment_solver
     free = np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)
     solve, state = increment_solver(model, lambda t: f * t, np.zeros(model.mesh.n_dof),
                                     1e-8 * np.linalg.norm(f[free]), 25)
@@ -134,7 +134,7 @@ def test_the_factor_growth_decides_whether_a_tiny_pivot_spoils_the_count():
     """A nearly singular but definite matrix has a tiny pivot and no growth (its count
     is trusted); a tiny pivot that makes the factors large is reported as growth (the
     count then goes to LAPACK's bisection). Both counts are known in closed form."""
-    from ancf.bandsolve import band_ldlt_inertia
+    from ancf.core.bandsolve import band_ldlt_inertia
 
     def band(a, c):          # [[a, c], [c, a]] in upper band form, b = 1
         return np.array([[0.0, c], [a, a]])
@@ -151,7 +151,7 @@ def test_the_banded_solve_keeps_every_scale():
     Without the Jacobi scaling, LU with partial pivoting loses the small-scaled unknowns
     (their part of the matrix is below its backward error)."""
     import numpy as np
-    from ancf.banded import Banded
+    from ancf.core.banded import Banded
     rng = np.random.default_rng(0)
     n, b = 30, 4
     A = np.zeros((n, n))

@@ -6,19 +6,19 @@ import itertools
 import numpy as np
 import pytest
 
-from ancf import beam_theory as bt
-from ancf.build import build_material, build_model, external_loads
-from ancf.mesh import Mesh
-from ancf.beam import BeamModel
-from ancf.rank import default_quadrature
-from ancf.quadrature import gauss
+from ancf.checks import beam_theory as bt
+from ancf.build import build_material, build_model, external_loads, plan
+from ancf.core.mesh import Mesh
+from ancf.kinematics.section.model import BeamModel
+from ancf.checks.rank import default_quadrature
+from ancf.core.quadrature import gauss
 from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
-from ancf.statics import newton, solve_static
+from ancf.solvers.statics import newton, solve_static
 from ancf.elements import ELEMENTS
 from contract import paper
 
-from ancf.checks import law_constants
+from ancf.checks.element import law_constants
 from mechanics.laws import get_law
 
 from .conftest import ALL_ELEMENTS, ALL_FORMULATIONS, CONTINUUM_ELEMENTS, ALL_LAWS, HEAVY_ELEMENTS, PAPER_LAWS, contract_rule, law_scene, \
@@ -191,8 +191,8 @@ def test_newton_converges_quadratically():
     ... 2.9e-6 -> 7.2e-12 (quadratic, constant ~1); a tangent wrong by 1 % converges
     linearly (factor ~1e-2) and fails the same check."""
     s = scene_from_dict(paper.cantilever_scene("yeoh", "plane-stress", "HB2n-12", 16))
-    model = build_model(s)
-    f = sum(external_loads(model, s).values())
+    model = build_model(plan(s))
+    f = sum(external_loads(model, plan(s)).values())
     u_star = solve_static(model, f, rtol=1e-12).u
     u_99 = solve_static(model, 0.99 * f).u
     assert is_quadratic(newton_errors(model, u_99, f, u_star))

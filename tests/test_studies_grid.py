@@ -45,7 +45,8 @@ def test_a_check_runs_no_rank_test_and_a_run_records_them(monkeypatch):
     """A study's check of an ANCF case (ancf.build.capacity, through its plan) runs no rank
     test of a rule the scene chose: half a second each, for thousands of cases. A run asks
     the plan for them and records them as warnings."""
-    from ancf import build, rank
+    from ancf import build
+    from ancf.checks import rank
     from contract.paper import cantilever_scene
     from studies.engine.solvers import get_solver
 

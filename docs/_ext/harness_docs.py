@@ -97,7 +97,7 @@ def _registered(what: str) -> list[str]:
         from ancf.elements import ELEMENTS
         return list(ELEMENTS)
     if what == "integrator":
-        from ancf.integrators import INTEGRATORS
+        from ancf.solvers.integrators import INTEGRATORS
         return list(INTEGRATORS)
     raise KeyError(what)
 
@@ -340,21 +340,21 @@ def _refuses(e, refused: dict) -> str:
     """What a scene may not ask of the element: its refused integrators and, for a
     kinematics that runs only some, the formulations it takes."""
     parts = [f"{_code(i)}: {why}" for i, why in sorted(refused.items())]
-    if e.formulations is not None:
-        parts.append(f"formulations other than {', '.join(_code(f) for f in e.formulations)}")
+    if e.family.formulations is not None:
+        parts.append(f"formulations other than {', '.join(_code(f) for f in e.family.formulations)}")
     return "; ".join(parts) or "-"
 
 
 def registries(warn: Callable[[str], None]) -> str:
     from ancf.admission import refused_integrators
     from ancf.elements import ELEMENTS
-    from ancf.formulations import FORMULATIONS
-    from ancf.integrators import INTEGRATORS
+    from ancf.core.formulations import FORMULATIONS
+    from ancf.solvers.integrators import INTEGRATORS
     from contract.scene import FORMULATIONS as PENALISED
     from mechanics.laws import LAWS
 
-    out = ["<!-- generated from ancf.elements.ELEMENTS, mechanics.laws.LAWS, ancf.formulations"
-           ".FORMULATIONS and ancf.integrators.INTEGRATORS; do not edit -->\n", "## Elements\n"]
+    out = ["<!-- generated from ancf.elements.ELEMENTS, mechanics.laws.LAWS, ancf.core.formulations"
+           ".FORMULATIONS and ancf.solvers.integrators.INTEGRATORS; do not edit -->\n", "## Elements\n"]
     rows = []
     for name, e in ELEMENTS.items():
         dof = 2 * len(e.nodes) * len(e.kinds)

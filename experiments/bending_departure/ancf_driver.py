@@ -5,7 +5,7 @@ is Rivlin's at Rivlin's state); else unpatched."""
 import os, sys, math
 sys.path.insert(0, "../..")
 import numpy as np
-import ancf.build as B, ancf.couple as C
+import ancf.build as B, ancf.solvers.couple as C
 from ancf.quadrature import gauss
 spec = os.environ.get("BEND_WEIGHT", "")
 if spec.startswith("rivlin:"):

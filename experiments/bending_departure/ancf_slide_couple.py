@@ -11,14 +11,14 @@ import sys, json, math
 sys.path.insert(0, "../.."); sys.path.insert(0, ".")
 import numpy as np
 from contract.scene import load_scene
-from ancf.build import build_model
+from ancf.build import build_model, plan
 from ancf.quadrature import gauss
 from studies.verification.closed_forms import rivlin_bending
 
 scene = load_scene(sys.argv[1]); out = sys.argv[2]
 import os; DEBUG = os.environ.get('DEBUG')
 kpf = float(sys.argv[3]) if len(sys.argv) > 3 else 1e4
-model = build_model(scene); m = model.mesh
+model = build_model(plan(scene)); m = model.mesh
 h, L, w = scene.beam.height, scene.beam.length, scene.beam.width
 M = scene.loads.end_moment
 n_dof = m.n_dof

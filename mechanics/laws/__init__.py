@@ -3,7 +3,7 @@
 A law is data: its name, the constants it needs (Pa, or as the law says), and its
 energy as arithmetic (+, -, *, /, ** with constant exponents) plus the functions of a
 math namespace ``m`` it is handed (``m.log``). The same function then runs on ANCF's
-jets and on its tape (:class:`ancf.jet.Jet`, :class:`ancf.tape.Node`: the default
+jets and on its tape (:class:`ancf.core.jet.Jet`, :class:`ancf.core.tape.Node`: the default
 namespace :data:`MATH` dispatches to their ``.log()``), in UFL (the DOLFINx backend
 passes ``ufl.ln``) and on any other algebra that brings its own ``log`` (FElupe's
 tensortrax). Which invariants a law sees (the paper's 2D ones, plane strain isochoric

@@ -3,7 +3,7 @@
 The laws themselves are the shared table (one energy per law, the same code ANCF runs);
 this module gives them UFL's ``ln`` (:data:`UFL_MATH`) and builds the invariants from
 the 3D right Cauchy-Green tensor, independently of the 2D shortcuts in
-:mod:`ancf.formulations`, so that the pointwise test compares two derivations:
+:mod:`ancf.core.formulations`, so that the pointwise test compares two derivations:
 
 - plane strain: F3 = diag(F, 1); I1 = tr C3, I2 = (I1^2 - tr C3^2) / 2, made
   isochoric with J = det F: I1bar = J^(-2/3) I1, I2bar = J^(-4/3) I2;

@@ -44,7 +44,7 @@ def qlabel(quadrature) -> str:
 def takes(grid: dict, element: str, quadrature) -> bool:
     """Whether ``element`` runs with ``quadrature`` in this grid: every rule, unless the
     grid's ``per_element.<element>.quadratures`` lists the rules it takes (an element with
-    a pressure field refuses a rule too coarse for it, :mod:`ancf.pressure`)."""
+    a pressure field refuses a rule too coarse for it, :mod:`ancf.kinematics.section.pressure`)."""
     allowed = grid.get("per_element", {}).get(element, {}).get("quadratures")
     return allowed is None or rule(quadrature) in {rule(a) for a in allowed}
 

@@ -24,7 +24,7 @@ figures :mod:`studies.design.accuracy_cost_figures`', the choose-an-element tabl
 """
 from __future__ import annotations
 
-from ancf.checks import runs
+from ancf.checks.element import runs
 
 from .accuracy_cost_figures import all_figure, lead_figure, pendulum_all_figure, pendulum_lead_figure
 from .accuracy_cost_peers import peer_comparison

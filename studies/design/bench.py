@@ -25,11 +25,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ancf.build import build_model
-from ancf.checks import runs
-from ancf.element_kernels import element_assemble, element_work
+from ancf.build import build_model, plan
+from ancf.checks.element import runs
+from ancf.kinematics.kernels import element_assemble, element_work
 from ancf.elements import ELEMENTS
-from ancf.kernels import live_tape
+from ancf.kinematics.section.kernels import live_tape
 from ancf.simulation import run_scene
 from contract import paper
 from contract.scene import FORMULATIONS, load_scene, scene_from_dict
@@ -172,7 +172,7 @@ def _per_call(f, calls: int, repeats: int) -> list[float]:
 
 def kernel_rows(calls: int = 100, repeats: int = 10, elements: int = KERNEL_ELEMENTS,
                 only: tuple[str, str, str] | None = None) -> list[dict]:
-    """Chrono's ANCF benchmark form for our compiled kernel (:func:`ancf.element_kernels.element_assemble`,
+    """Chrono's ANCF benchmark form for our compiled kernel (:func:`ancf.kinematics.kernels.element_assemble`,
     the step loop's): microseconds per element per internal-force call and per tangent
     call (force and tangent in one pass: the step loop never needs the tangent alone),
     for every registered element x law x formulation, on the pendulum's mesh at a
@@ -185,7 +185,7 @@ def kernel_rows(calls: int = 100, repeats: int = 10, elements: int = KERNEL_ELEM
     for element, law, form in combos:
         d = pendulum_dict(element, elements, form, 1e-3, 0.5)
         d["material"] = _kernel_material(law, form)
-        model = build_model(scene_from_dict(d))
+        model = build_model(plan(scene_from_dict(d)))
         n = model.mesh.n_dof
         u = 1e-4 * np.random.default_rng(0).standard_normal(n)
         times = {}
@@ -235,9 +235,9 @@ def exudyn_kernel_row(elements: int = KERNEL_ELEMENTS) -> dict | None:
 
 
 KERNELS = {
-    "compiled": "`ancf.element_kernels.element_assemble`, the compiled step and static loops' kernel (force and "
-                "tangent in one pass; `ancf.kernels.assemble_fused` for a continuum-based element, "
-                "`ancf.cable_kernels.cable_assemble` for a cable)",
+    "compiled": "`ancf.kinematics.kernels.element_assemble`, the compiled step and static loops' kernel (force and "
+                "tangent in one pass; `ancf.kinematics.section.kernels.assemble_fused` for a continuum-based element, "
+                "`ancf.kinematics.cable.kernels.cable_assemble` for a cable)",
     "exudyn": "`MainSolverImplicitSecondOrder.ComputeODE2RHS` / `ComputeJacobianODE2RHS` called from "
               "Python: the whole system (the gravity loads and the Python call included) per element; "
               "Exudyn exposes no single element's force",

@@ -3,9 +3,9 @@
 ``python -m studies card NAME [NAME ...] [--import MODULE] [--tiny] [--out DIR]`` (``paper``
 names the four paper elements) writes ``<out>/cards/<element>.md`` with its figures:
 
-1. **contract checks** (:mod:`ancf.checks`): nodality, reference state, force and tangent
+1. **contract checks** (:mod:`ancf.checks.element`): nodality, reference state, force and tangent
    Taylor tests and rigid motions in the three formulations, the patch test, exact mass;
-2. **rank tests** (:mod:`ancf.rank`) of four rules over l_e / h = 10 ... 0.01, and the
+2. **rank tests** (:mod:`ancf.checks.rank`) of four rules over l_e / h = 10 ... 0.01, and the
    element's default rule at each;
 3. **conformity**: the jump of r and r_y across a shared face, and the patch-test
    inconsistency against l_e / h;

@@ -23,7 +23,7 @@ CABLE_NOT_RUN = ("a cable integrates the law's incompressible uniaxial energy ov
 def _cable_contract_lines(chk: dict) -> list[str]:
     p = chk["patch"][0]
     return [f"The `paper` and `plane-strain` rows are not run: {CABLE_NOT_RUN}. The patch test of a cable is axial "
-            f"(`ancf.checks.axial_patch`): a uniform stretch {_f(p.get('stretch'))} on a free cable must load only "
+            f"(`ancf.checks.element.axial_patch`): a uniform stretch {_f(p.get('stretch'))} on a free cable must load only "
             "the end positions, with P h w, P = dW_u/dlambda (the uniaxial nominal stress); its closed form "
             "lambda(P) is the benchmarks' tension case and tests/test_cable.py's.", ""]
 
@@ -34,11 +34,11 @@ def _cable_rank_lines(chk: dict) -> list[str]:
     ratios = ", ".join(f"{_f(rows[a]['default_tests']['plane-stress']['strain_ratio'], '.2f')} at {a:g}"
                        for a in slender)
     return ["A cable's tests read its fibre strain: the small u_x' - y u_y'' at u = 0 and the finite lambda - 1 "
-            "(`ancf.rank`). Its default keeps 3 points along where the finite-strain test fails"
+            "(`ancf.checks.rank`). Its default keeps 3 points along where the finite-strain test fails"
             + (f" ({ratios})" if ratios else "") + ": the state it finds is the membrane stretch between the points "
             "along, and seeing it is the cubic cable's membrane locking (measured: [5, 3] sees it, 0.93, and puts "
             "the paper's cantilever 2 to 3 times further from the continuum at 2 to 8 elements, the pendulum too, "
-            "with the same converged tip; HC2n-8's note in `ancf/elements.py`). 3 points across: part 1b.", ""]
+            "with the same converged tip; HC2n-8's note in `ancf/elements/`). 3 points across: part 1b.", ""]
 
 
 def _section_lines(chk: dict) -> list[str]:

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ancf.rank import ASPECTS
+from ancf.checks.rank import ASPECTS
 from contract import paper
 
 from ..common.grid import DEFAULT, cantilever_case
@@ -76,7 +76,7 @@ def element_imports(element: str) -> list[str]:
 
 def formulations_of(element: str, g: dict) -> list[str]:
     """The grid's formulations the element runs (a cable: plane stress alone)."""
-    from ancf.checks import runs
+    from ancf.checks.element import runs
 
     return [f for f in g["formulations"] if runs(element, f)]
 
@@ -113,7 +113,7 @@ def cases(element: str, tiny: bool = False) -> list[Case]:
     for n in pd["counts"]:
         out.append(make_case(study, "ancf", pendulum_dict(element, n, pd["formulation"], pd["dt"],
                                                           t_end=pd["t_end"]), opts or None))
-    if get_element(element).cable:
+    if not get_element(element).family.section_field:
         sw = SLENDERNESS_TINY if tiny else SLENDERNESS
         for law in g["laws"]:
             for ratio in sw["ratios"]:
@@ -175,9 +175,9 @@ def slender_scene(element: str, ratio: float, n: int) -> dict:
 
 def measure_checks(element: str, tiny: bool = False) -> dict:
     """Parts 1 to 3, measured here (numbers in SI or as ratios)."""
-    from ancf import checks
+    from ancf.checks import element as checks
     from ancf.elements import get_element
-    from ancf.rank import default_quadrature, rank_test, strain_test
+    from ancf.checks.rank import default_quadrature, rank_test, strain_test
 
     g, spec, rng = grid_for(tiny), get_element(element), np.random.default_rng(20211206)
     forms = {}
@@ -218,19 +218,19 @@ SECTION_CURVATURES = (0.1, 0.2, 0.3, 0.5)       # kappa h of a cable's section-m
 
 def section_model(element: str, g: dict) -> list[dict] | None:
     """A cable's section model (None for other elements): its bending moment at N = 0 per
-    law and kappa h (:func:`ancf.cable.section_moment`, the element's own rule across and 64
+    law and kappa h (:func:`ancf.kinematics.cable.model.section_moment`, the element's own rule across and 64
     points), with the thickness change d eta / dY = lambda^-1/2 instead of eta = Y, and the
     exact plane-stress pure bending (:func:`studies.verification.closed_forms.plane_stress_bending`), each
     as M / (EI kappa), EI = 3 mu h^3 / 12 per width."""
-    from ancf.cable import section_moment
-    from ancf.checks import law_constants, paper_material
+    from ancf.kinematics.cable.model import section_moment
+    from ancf.checks.element import law_constants, paper_material
     from ancf.elements import get_element
-    from ancf.rank import default_quadrature
+    from ancf.checks.rank import default_quadrature
     from mechanics.laws import get_law
     from ..verification.closed_forms import plane_stress_bending
 
     spec = get_element(element)
-    if not spec.cable:
+    if spec.family.section_field:
         return None
     h = paper.CANTILEVER["height"]
     across = default_quadrature(spec, False, 1.0)[1]
@@ -251,16 +251,16 @@ def section_model(element: str, g: dict) -> list[dict] | None:
 
 def slender_strains(element: str, g: dict) -> list[dict]:
     """The slender probe's mechanism: its states solved here (small meshes, the linear
-    regime) and split by :func:`ancf.checks.strain_split`, with Timoshenko's shear share
+    regime) and split by :func:`ancf.checks.element.strain_split`, with Timoshenko's shear share
     1.2 (h / L)^2 beside each."""
-    from ancf.checks import strain_split
+    from ancf.checks.element import strain_split
     from ancf.simulation import run_scene
     from contract.scene import scene_from_dict
 
     from ancf.elements import get_element
 
     rows = []
-    if get_element(element).cable:       # no section field to split: its strain is its fibres' alone
+    if not get_element(element).family.section_field:       # no section field to split: its strain is its fibres' alone
         return rows
     for ratio in g["slender"]["slenderness"]:
         for n in g["slender"]["counts"]:
@@ -332,9 +332,9 @@ def clamp_probe(element: str, g: dict) -> dict | None:
     other elements."""
     from dataclasses import replace
 
-    from ancf.build import build_model, external_loads
+    from ancf.build import build_model, external_loads, plan
     from ancf.elements import KINDS, get_element
-    from ancf.statics import solve_static
+    from ancf.solvers.statics import solve_static
     from contract.scene import scene_from_dict
 
     spec = get_element(element)
@@ -345,9 +345,9 @@ def clamp_probe(element: str, g: dict) -> dict | None:
     exact = beam_theory(ratio)[1]
     out = {"slenderness": ratio, "freed": extra, "counts": list(g["slender"]["counts"]), "face": [], "freed_errors": []}
     for n in g["slender"]["counts"]:
-        scene = scene_from_dict(slender_scene(element, ratio, n))
-        model = build_model(scene)
-        f = sum(external_loads(model, scene).values())
+        p = plan(scene_from_dict(slender_scene(element, ratio, n)))
+        model = build_model(p)
+        f = sum(external_loads(model, p).values())
         freed = replace(model, fixed=model.mesh.dofs(0, ("r", "r_y")))
         for key, m in (("face", model), ("freed_errors", freed)):
             res = solve_static(m, f)

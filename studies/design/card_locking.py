@@ -169,7 +169,7 @@ CONTRACTION = (-0.75, -0.25)   # eps_yy / eps_xx outside this band (exact -1/2) 
 
 
 def mechanism(row: dict) -> list[str]:
-    """The mechanisms a slender-probe state shows (:func:`ancf.checks.strain_split`), by rule."""
+    """The mechanisms a slender-probe state shows (:func:`ancf.checks.element.strain_split`), by rule."""
     out = []
     if row["shear_share"] > SPURIOUS_SHEAR * row["beam_shear_share"]:
         out.append("shear locking")
@@ -186,7 +186,7 @@ def _mechanism_section(chk: dict, recs) -> list[str]:
         return []
     errs = shear_locking(recs)["rows"]
     lines = ["#### Which mechanism: the probe's strains", "",
-             "The same states, split by `ancf.checks.strain_split`: the share of the energy in transverse shear "
+             "The same states, split by `ancf.checks.element.strain_split`: the share of the energy in transverse shear "
              "against Timoshenko's 1.2 (h/L)^2 (more than "
              f"{SPURIOUS_SHEAR:g}x: spurious shear, **shear locking**), and the section's contraction eps_yy / eps_xx "
              "(exact -1/2; above " f"{CONTRACTION[1]:g}: the height cannot contract, **Poisson locking in the plane**, "

@@ -27,7 +27,7 @@ FEM_STATIC = ROOT / "tests" / "gold" / "fem_cantilever.json"
 
 
 def _contract_section(chk: dict) -> list[str]:
-    lines = ["## 1. Contract checks (`ancf.checks`)", "",
+    lines = ["## 1. Contract checks (`ancf.checks.element`)", "",
              "| check | measured | bound | verdict |", "|---|---|---|---|"]
     add = lambda name, meas, bound, ok: lines.append(f"| {name} | {meas} | {bound} | {_yes(ok)} |")
     n, r, m = chk["nodality"], chk["reference_state"], chk["mass"]
@@ -68,7 +68,7 @@ def _conformity_section(chk: dict, section: str = "r_y") -> list[str]:
 
 def _rank_section(chk: dict, out: Path, name: str) -> list[str]:
     rules = list(chk["rank"][0]["rules"])
-    lines = ["## 2. Rank tests (`ancf.rank`)", "",
+    lines = ["## 2. Rank tests (`ancf.checks.rank`)", "",
              "Per rule: spurious zero-energy modes beyond the 3 rigid ones / mu_min (smallest energy ratio of a "
              "deformation mode under the rule against an exact rule) / finite-strain ratio (seen / true Green "
              "strain of the worst state, amplitude 0.2). Passing: 0 spurious, mu_min >= 0.1, ratio >= 0.3. The "
@@ -254,7 +254,7 @@ def render(element: str, out: Path, tiny: bool = False) -> Path:
             f"Consistency checks: {'all pass' if checks_ok else '**some fail**'}; patch test: "
             f"{'passes' if all(x['passes'] for x in chk['patch']) else '**fails** (see 3)'}; conforming: "
             f"{chk['conformity']['conforming']}. {len(recs)} solver runs.", ""]
-    if get_element(element).cable:                   # what a cable runs, and part 9
+    if not get_element(element).family.section_field:                   # what a cable runs, and part 9
         text = (head + _contract_section(chk) + _cable_contract_lines(chk) + _section_lines(chk)
                 + _rank_section(chk, cards, name) + _cable_rank_lines(chk) + _conformity_section(chk, "r_x") + conv
                 + _locking(recs, refs, CABLE_NOT_RUN) + _shear_locking(recs) + _cable_shear_lines(recs) + _pendulum(recs)

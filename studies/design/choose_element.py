@@ -5,7 +5,7 @@ accuracy, from its card's records (:func:`cable_slenderness`); why an element ha
 cells where it refuses a formulation (:func:`absent`)."""
 from __future__ import annotations
 
-from ancf.checks import runs
+from ancf.checks.element import runs
 from ancf.elements import get_element
 
 from .accuracy_cost_points import TIE, _slenderness, all_pendulum_points, settled, settled_steps
@@ -23,7 +23,7 @@ def absent(grid: dict) -> list[str]:
     for el in grid["elements"]:
         miss = [f for f in grid["formulations"] if not runs(el, f)]
         if miss:
-            why = CABLE_NOT_RUN if get_element(el).cable else f"it runs {', '.join(get_element(el).formulations)} only"
+            why = CABLE_NOT_RUN if not get_element(el).family.section_field else f"it runs {', '.join(get_element(el).family.formulations)} only"
             out.append(f"{el} has no {' or '.join(f'`{f}`' for f in miss)} cells: {why}.")
     return out
 
@@ -115,7 +115,7 @@ def choose_rows(g: dict, pts: list[dict], pend: list[dict], sweeps: dict) -> lis
 
 def cable_elements(elements) -> list[str]:
     """The centre-line cables among ``elements``."""
-    return [el for el in elements if get_element(el).cable]
+    return [el for el in elements if not get_element(el).family.section_field]
 
 
 def cable_slenderness(ctx) -> dict[tuple[str, str], list[tuple[float, float]]]:

@@ -214,7 +214,7 @@ def rel_dev(value: float | None, ref: float | None) -> float | None:
 
 
 VERDICTS = {
-    "stable": "converged; the constrained tangent is positive definite (ancf.stability)",
+    "stable": "converged; the constrained tangent is positive definite (ancf.solvers.stability)",
     "converged": "converged; a dynamic run or a continuum run (no equilibrium tangent to test)",
     "warned": "converged, but the record carries a warning (e.g. a quadrature rule that nearly misses a mode)",
     "singular": "converged to a state whose tangent has a zero-energy mode of the quadrature rule",

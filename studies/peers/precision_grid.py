@@ -40,7 +40,7 @@ CABLE_SETTINGS = {"ANCFCable2D": "modified", "ANCFCable2D-linear": "linear"}
 # thick, 2 x HB2n-20xyp, 10 ms, 70 iterations against 264, error 0.58 % against 0.62 %; at
 # 5 ms and below every point's error within 3 % of the defaults').
 # " (linear)": one solve per step and no convergence test, as the cable's linear mode (its
-# state's det F and the energies still checked; ancf.compiled_steps).
+# state's det F and the energies still checked; ancf.solvers.compiled_steps).
 OUR_SETTINGS = {"": {}, " (rtol 1e-3)": {"newton_rtol": 1e-3}, " (linear)": {"newton": "linear"}}
 
 

@@ -48,7 +48,7 @@ def is_cable(element: str) -> bool | None:
     """Is our run's element (a label, :func:`our_element`) a centre-line cable (no section
     field: no shear, no thickness change)? None: not a registered element here."""
     name = our_element(element)[0]
-    return ELEMENTS[name].cable if name in ELEMENTS else None
+    return (not ELEMENTS[name].family.section_field) if name in ELEMENTS else None
 
 
 def floors_by_section(fl: dict[tuple, dict]) -> str:

@@ -10,7 +10,7 @@ measurements of our deciding run, into ``<out>/data/peers/peers-step-cost.json``
    grid: is there a cheaper step among the settings a scene has?
 2. **What one step does.** The run's step split into its parts, each timed in a compiled
    loop of ``--calls`` calls at the run's final state (:func:`split`): the whole step
-   (:func:`ancf.compiled_steps.step`), the force and tangent at the predictor, the
+   (:func:`ancf.solvers.compiled_steps.step`), the force and tangent at the predictor, the
    factorisation and solve, and the residual after the correction that verifies the
    step. Where the run takes one iteration per step (its Newton counter equals its steps),
    its states are those of one linear solve per step, and the verifying residual is all a
@@ -33,9 +33,9 @@ import time
 import numpy as np
 from numba import njit
 
-from ancf.build import build_integrator, external_loads, resolve
-from ancf.compiled_steps import I_MASS_SPLIT, _correct, _factorise, _mass, _residual, step
-from ancf.element_kernels import element_assemble, element_work
+from ancf.build import build_integrator, external_loads, plan
+from ancf.solvers.compiled_steps import I_MASS_SPLIT, _correct, _factorise, _mass, _residual, step
+from ancf.kinematics.kernels import element_assemble, element_work
 from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
 from mechanics import alpha_family
@@ -127,7 +127,7 @@ def split(element: str, n: int, dt: float, rho_inf: float, scene: str, settings:
     state (``step``), the force and tangent there (``force_and_tangent``), the step
     matrix's factorisation and one solve (``factorise_and_solve``), and the force and
     residual at the corrected state (``verifying_residual``)."""
-    p = resolve(_scene(element, n, dt, rho_inf, scene, settings))
+    p = plan(_scene(element, n, dt, rho_inf, scene, settings))
     rec, (model, res) = run_scene(p)
     M = model.mass_matrix()
     integ = build_integrator(p, model, M, external_loads(model, p))

@@ -70,7 +70,7 @@ CABLE_BENDING = ("a cable's fibres are in uniaxial stress (no radial stress, eta
 
 
 def _is_cable(solver: str) -> bool:
-    return solver in ELEMENTS and ELEMENTS[solver].cable
+    return solver in ELEMENTS and (not ELEMENTS[solver].family.section_field)
 
 
 def _solver_of(rec: dict) -> str:

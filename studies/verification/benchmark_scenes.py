@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
-from ancf.checks import runs
+from ancf.checks.element import runs
 from contract import paper
 from mechanics.laws import get_law
 

@@ -21,7 +21,7 @@ The cases (the references in :mod:`studies.verification.closed_forms`):
    them: tolerance 1e-6 on lambda - 1 (100 x Newton's 1e-8 of the load); the penalised
    plane strain of ANCF adds its own volumetric strain, J - 1 of about P / alpha: tolerance
    2 P lambda / (alpha (lambda - 1)) on lambda - 1 (twice that estimate). A non-conforming
-   element (HB2n-12, HB3n-12: its patch test fails, :func:`ancf.checks.patch`) does not
+   element (HB2n-12, HB3n-12: its patch test fails, :func:`ancf.checks.element.patch`) does not
    hold a homogeneous state exactly; its error is shown against the same tolerance.
 2. ``shear``: simple shear at a material point (a beam cannot carry it): the ANCF
    material's first Piola-Kirchhoff P_12 at F = [[1, gamma], [0, 1]] against tau = 2 gamma

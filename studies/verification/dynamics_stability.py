@@ -122,7 +122,7 @@ def scene_for(grid: dict, changes: dict, integrator: str) -> dict:
 
 def takes_rho_inf(integrator: str) -> bool:
     """Whether the method's coefficients depend on rho_inf (its class in the registry says)."""
-    from ancf.integrators import INTEGRATORS
+    from ancf.solvers.integrators import INTEGRATORS
 
     c = INTEGRATORS[integrator].coefficients
     return c(0.0) != c(1.0)
@@ -197,10 +197,10 @@ def swing_rows(rows: list[dict]) -> list[list]:
 
 
 def _definitions() -> str:
-    from ancf.stability import SINGULAR_TOL
+    from ancf.solvers.stability import SINGULAR_TOL
     return (
         "## Verdicts\n\n"
-        "Static (ancf.stability, on the converged state's tangent K with the supports applied, scaled to unit "
+        "Static (ancf.solvers.stability, on the converged state's tangent K with the supports applied, scaled to unit "
         "diagonal: S = D^-1/2 K D^-1/2, the same signs of eigenvalues as K; eigenvalues within "
         f"SINGULAR_TOL = {SINGULAR_TOL:g} of zero are not resolved in double precision):\n\n"
         "- **stable**: no eigenvalue of S below +SINGULAR_TOL (counted by Sylvester's law of inertia); the "
@@ -218,12 +218,12 @@ def _definitions() -> str:
         "the output times.")
 
 
-DEFINITIONS = None   # (built on first use: it states SINGULAR_TOL from ancf.stability)
+DEFINITIONS = None   # (built on first use: it states SINGULAR_TOL from ancf.solvers.stability)
 
 
 def margin_rows(ctx) -> list[list]:
     """[cell, status, verdict, negative eigenvalues, lowest, lowest / SINGULAR_TOL] of every Table 3 record."""
-    from ancf.stability import SINGULAR_TOL
+    from ancf.solvers.stability import SINGULAR_TOL
     from ..engine.report import verdict as run_verdict
 
     out = []

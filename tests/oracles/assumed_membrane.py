@@ -1,7 +1,7 @@
 """Which strain the three points along the beam relieve (issue 20; experiments/along_rule.py).
 
 A prototype in numpy; the remedy it found is built in as ``ElementSpec.assumed``
-(ancf/assumed.py) and the element HB2n-20xypm, which tests/test_hb2n_20xypm.py holds
+(ancf/kinematics/section/assumed.py) and the element HB2n-20xypm, which tests/test_hb2n_20xypm.py holds
 equal to this prototype (a test oracle, kept with the tests since: it is the second
 route the built-in element is checked against). HB2n-20xyp keeps its default rule ([4, 2]; [5, 2] from l_e / h =
 15). Chosen components of C = F^T F are taken from three points along the beam: sampled at
@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ancf.build import build_model, external_loads
+from ancf.build import build_model, external_loads, plan
 from ancf.quadrature import gauss
 from contract import paper
 from contract.scene import scene_from_dict
@@ -110,8 +110,8 @@ def pendulum_error(n: int, mode: str, dt: float = 2.5e-3, rtol: float = 1e-8) ->
     """The slender pendulum of the work-precision bench (plane-stress Yeoh, rho_inf 0.5,
     pin, gravity) on n elements: error / L against the continuum (max over t = 0.1 ... 0.5 s)."""
     scene = scene_from_dict(scene_dict(ELEMENT, n, dt, 0.5))
-    model = build_model(scene)
-    f_ext = sum(external_loads(model, scene).values())
+    model = build_model(plan(scene))
+    f_ext = sum(external_loads(model, plan(scene)).values())
     M = model.mass_matrix().to_sparse().toarray()
     free = np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)
     Mf = M[np.ix_(free, free)]
@@ -151,8 +151,8 @@ def cantilever_tip(n: int, mode: str, increments: int = 20, rtol: float = 1e-10)
     clamp, gravity) on n elements: the tip's vertical displacement (m), by Newton on equal load
     increments."""
     scene = scene_from_dict(paper.cantilever_scene("yeoh", "plane-stress", ELEMENT, n, quadrature=None))
-    model = build_model(scene)
-    f_ext = sum(external_loads(model, scene).values())
+    model = build_model(plan(scene))
+    f_ext = sum(external_loads(model, plan(scene)).values())
     free = np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)
     law = AssumedStrain(model, mode)
     u = np.zeros(model.mesh.n_dof)
