@@ -325,7 +325,6 @@ def step_dg(dN, w, dofs, ops, consts, pr, Mc, first, f_ext, fixed, is_free, inew
         Mv[i] *= -2.0 / h                             # the residual's constant part, -2 M v_n / h
     it = 0
     r_prev = math.inf
-    stalled = False
     while True:
         status = element_assemble_dg(u_n, u, dN, w, dofs, ops, consts, pr, f, S, *scratch)
         counters[C_RESIDUALS] += 1

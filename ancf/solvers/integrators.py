@@ -33,6 +33,7 @@ from mechanics.time_loop import Energies, Output, State, StepFailure, accelerati
 
 from ..core.banded import Banded
 from ..kinematics.section.model import BeamModel, InadmissibleState
+from .compiled_steps import KAPPA, CompiledLoop   # KAPPA: the compiled step's contraction test, the same iterations
 
 
 class Integrator:
@@ -52,7 +53,6 @@ class Integrator:
 
     @cached_property
     def _loop(self):
-        from .compiled_steps import CompiledLoop
         return CompiledLoop(self.model, self.M, self.f_ext, self.coefficients(self.rho_inf), self.newton,
                             self.newton_rtol, self.max_iterations, self.utol,
                             discrete_gradient=self.compiled == "discrete-gradient",
@@ -271,8 +271,6 @@ class DiscreteGradient(Integrator):
         M, fixed = self.M, self.model.fixed
         u = alpha_family.predict(s.u, s.v, s.a, dt)
         atol = self.newton_rtol * self._scale(s)
-        from .compiled_steps import KAPPA   # the compiled step's contraction test, the same iterations
-
         c = 2.0 / (dt * dt)
         it = 0
         r_prev = math.inf
