@@ -20,7 +20,7 @@ import time
 from dataclasses import replace
 from pathlib import Path
 
-from contract.scene import Analysis, Scene, load_scene, scene_from_dict
+from contract.scene import Scene, load_scene, scene_from_dict
 
 from .admission import refused_integrators
 from .elements import ELEMENTS

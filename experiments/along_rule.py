@@ -28,7 +28,7 @@ import numpy as np
 
 from ancf.checks import rank
 from ancf.elements import get_element
-from ancf.quadrature import gauss
+from ancf.core.quadrature import gauss
 from ancf.simulation import run_scene
 from contract.scene import scene_from_dict
 from studies.peers.work_precision import SCENES, error, scene_dict

@@ -93,7 +93,7 @@ register_element(ElementSpec(
 # stretch at 1 at 4 points of an element and bends too stiffly (membrane locking); in small
 # strain eps_xx is quadratic along x, so the 3 points see it exactly and the stiffness at
 # u = 0 (the rank tests) is HB2n-20xyp's. Measured in the numpy prototype
-# (experiments/assumed_membrane.py) under [4, 2], slender pendulum, dt 2.5 ms: 2 / 4 elements 5.23
+# (tests/oracles/assumed_membrane.py) under [4, 2], slender pendulum, dt 2.5 ms: 2 / 4 elements 5.23
 # / 0.447 % of L (HB2n-20xyp 7.25 / 1.18 %); with C_xy assumed as well 2.57 / 0.442 %, which changes
 # the stiffness at u = 0 (not taken). The rules are HB2n-20xyp's ([4, 2] 0.31 at 15, 0.14
 # at 35; [5, 2] 0.32-0.43 from 15 to 140: its 3 samples of C_xx bound what more points see).

@@ -2,7 +2,7 @@
 the kernel that assembles it.
 
 The static Newton (:mod:`ancf.solvers.compiled_statics`) and the step loop (:mod:`ancf.solvers.compiled_steps`)
-call only these, with the model's data (:attr:`ancf.kinematics.section.model.ElementModel.fused`: dN, w, dofs,
+call only these, with the model's data (:attr:`ancf.kinematics.model.ElementModel.fused`: dN, w, dofs,
 the law's tape ops and consts, the element's fields pr) and the work arrays of
 :func:`element_work`; they keep no element knowledge. The data say which kernel: a
 cable's tape is the law's uniaxial energy in the fibre stretch
@@ -98,7 +98,7 @@ def element_assemble_dg(u0, u1, dN, w, dofs, ops, consts, pr, f, Kc, chunk, R, F
                         W):
     """The discrete gradient's force and tangent (:func:`ancf.kinematics.section.dg_kernels.assemble_dg`). A cable
     has none (its fibre stretch is not quadratic in u; the loop refuses it when it is built,
-    :func:`ancf.kinematics.section.model.refuse_discrete_gradient`): INADMISSIBLE."""
+    :func:`ancf.kinematics.model.refuse_discrete_gradient`): INADMISSIBLE."""
     if is_cable(ops):
         return INADMISSIBLE
     return assemble_dg(u0, u1, dN, w, dofs, ops, consts, pr, f, Kc, chunk, R, Fb, ab, Jb, ew, F0, F1, aL, JL, RL, W)

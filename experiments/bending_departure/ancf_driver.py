@@ -6,7 +6,7 @@ import os, sys, math
 sys.path.insert(0, "../..")
 import numpy as np
 import ancf.build as B, ancf.solvers.couple as C
-from ancf.quadrature import gauss
+from ancf.core.quadrature import gauss
 spec = os.environ.get("BEND_WEIGHT", "")
 if spec.startswith("rivlin:"):
     kh = float(spec.split(":")[1]); C10 = 953018.0

@@ -12,7 +12,7 @@ sys.path.insert(0, "../.."); sys.path.insert(0, ".")
 import numpy as np
 from contract.scene import load_scene
 from ancf.build import build_model, plan
-from ancf.quadrature import gauss
+from ancf.core.quadrature import gauss
 from studies.verification.closed_forms import rivlin_bending
 
 scene = load_scene(sys.argv[1]); out = sys.argv[2]

@@ -29,7 +29,7 @@ from __future__ import annotations
 import numpy as np
 
 from ancf.build import build_model, external_loads, plan
-from ancf.quadrature import gauss
+from ancf.core.quadrature import gauss
 from contract import paper
 from contract.scene import scene_from_dict
 from mechanics import alpha_family
