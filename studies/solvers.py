@@ -17,6 +17,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from reference_fem.backends import DEFAULT
+
 from .engine.solvers import Solver, register_solver
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -125,7 +127,7 @@ def _check_continuum(scene: dict) -> None:
 
 
 def _fem_backend(scene: dict) -> str:
-    return (scene.get("fem") or {}).get("backend", "dolfinx")
+    return (scene.get("fem") or {}).get("backend", DEFAULT)
 
 
 _COLD_RUN = ("import json, sys, time; t0 = time.perf_counter(); "

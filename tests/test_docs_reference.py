@@ -189,3 +189,22 @@ def test_the_api_pages_need_no_continuum_stack_and_compile_nothing():
     run = subprocess.run([sys.executable, "-c", IMPORTS_NOTHING_HEAVY], cwd=ROOT, capture_output=True, text=True,
                          timeout=300)
     assert run.returncode == 0, run.stdout + run.stderr[-3000:]
+
+
+def test_a_third_backend_is_recorded_and_verified_by_its_registration_alone():
+    """A continuum backend registered by one line (a stub: nothing of it runs) is, with no
+    other line: a solver label of the docs' record keys (its records are the continuum's),
+    and its record key (the backend's versions) no result that verify compares."""
+    from reference_fem.backends import BACKENDS, PackageBackend, register_backend
+    from studies.engine import verify
+
+    register_backend(PackageBackend("stubfem", "reference_fem.stubfem_backend", "Stub"))
+    try:
+        assert harness_docs.record_solvers()["stubfem"] == "continuum"
+        assert "stubfem" in verify.not_results()
+        old = {"solver": "stubfem", "stubfem": {"version": "1"}, "tip": {"uy": -0.1}}
+        new = {"solver": "stubfem", "stubfem": {"version": "2"}, "tip": {"uy": -0.1}}
+        assert verify.compare(old, new, 1e-8) == []
+        assert verify.compare(old, {**new, "tip": {"uy": -0.2}}, 1e-8) != []    # a result still counts
+    finally:
+        del BACKENDS["stubfem"]

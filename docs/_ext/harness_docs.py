@@ -242,19 +242,25 @@ RECORD_GROUPS = {
     "dynamic": "Added by a dynamic run, both solvers",
     "study": "Added by the study runner (`python -m studies`) to the records in `reports/data`",
 }
-RECORD_SOLVERS = {"ancf": "ancf", "dolfinx": "continuum", "felupe": "continuum"}
+def record_solvers() -> dict[str, str]:
+    """{a record's solver label: the solver}: ``ancf``, and every continuum backend's name
+    (its records are labelled with the backend that ran, :data:`reference_fem.backends.BACKENDS`)."""
+    from reference_fem.backends import BACKENDS
+
+    return {"ancf": "ancf", **{name: "continuum" for name in BACKENDS}}
 
 
 def observed_record_keys() -> dict[str, set[str]]:
     """{solver: top-level keys} of the committed records of the two solvers."""
     seen: dict[str, set[str]] = {}
+    solvers = record_solvers()
     for f in sorted((REPORTS / "data").glob("*.jsonl")):
         for line in f.read_text(encoding="utf-8").splitlines():
             try:
                 rec = json.loads(line)
             except ValueError:
                 continue
-            if isinstance(rec, dict) and rec.get("solver") in RECORD_SOLVERS:
+            if isinstance(rec, dict) and rec.get("solver") in solvers:
                 seen.setdefault(rec["solver"], set()).update(rec)
     return seen
 

@@ -53,12 +53,20 @@ from pathlib import Path
 from typing import Callable
 
 from contract.registry import Registry
+from reference_fem.backends import BACKENDS
 
 from .case import Case
 
 TIMING_ONLY = ("ancf-cold", "ancf-effects")
 NOT_RESULTS = {"pid", "run", "host", "versions", "case", "case_id", "timing", "effect_costs", "cold",
-               "traceback", "transient", "dolfinx", "felupe"}
+               "traceback", "transient"}
+
+
+def not_results() -> set[str]:
+    """Record keys that are no result: :data:`NOT_RESULTS` and each continuum backend's name
+    (a continuum record carries its backend's versions under it), from the backends' registry
+    (:data:`reference_fem.backends.BACKENDS`), so a new backend needs no line here."""
+    return NOT_RESULTS | set(BACKENDS)
 VERIFY_FACTOR = 10.0
 DEFAULT_RTOL = 1e-8
 EIGEN_RTOL = 1e-3
@@ -184,9 +192,9 @@ def compare(old, new, rtol: float, where: str = "", scale: float | None = None, 
     """Where two records' results differ (see the module doc); ``floor``: the energies'
     round-off floor (:func:`energy_floor`), added to their tolerance."""
     if isinstance(old, dict) and isinstance(new, dict):
-        out = []
+        out, skip = [], not_results()
         for k in sorted(set(old) | set(new)):
-            if k in NOT_RESULTS or k.endswith("_s"):
+            if k in skip or k.endswith("_s"):
                 continue
             if k not in old or k not in new:
                 out.append(f"{where}{k}: {'absent' if k not in old else old[k]!r:.60} -> "

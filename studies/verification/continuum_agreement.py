@@ -31,6 +31,8 @@ from __future__ import annotations
 import json
 import math
 
+from reference_fem.backends import DEFAULT
+
 from .continuum import scene as continuum_scene
 from ..engine.case import make_case
 from ..engine.report import Section, Table, mm
@@ -146,7 +148,7 @@ def cases(grid: dict, tiny: bool) -> list:
 
 
 def _backend(rec: dict) -> str:
-    return (rec["scene"].get("fem") or {}).get("backend", "dolfinx")
+    return (rec["scene"].get("fem") or {}).get("backend", DEFAULT)
 
 
 def _row(law: str, variant: str, ra: ContinuumReference, rb: ContinuumReference) -> dict:
