@@ -62,7 +62,7 @@ audit: setup
 # the converged 3D cantilever gold (2 to 4 min per law; RANKS=N: on N MPI ranks).
 RANKS ?= 1
 MPIEXEC := mpiexec --oversubscribe --allow-run-as-root -x PYTHONPATH -x OMP_NUM_THREADS -x OPENBLAS_NUM_THREADS
-CARDS = paper HB2n-20xyp HB2n-20xypm HB2n-40p HB2n-60p HC2n-8 HB2n-20 HB2n-20xy HB2n-84p
+CARDS = all
 CARD_IMPORTS = --import examples.transversely_cubic --import examples.cubic_slope --import examples.sextic_section
 study-full: study
 	$(PY) -m studies run full

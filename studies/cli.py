@@ -198,10 +198,15 @@ def _gold(args) -> int:
 
 
 def _card(args) -> int:
+    from ancf.elements import ELEMENTS
+    from contract.console import import_modules
+
     from .design.card import PAPER_ELEMENTS, run_cards
 
     out = resolve_out(args.out, args.tiny)
-    names = [e for n in args.names for e in (PAPER_ELEMENTS if n == "paper" else (n,))]
+    import_modules(args.imports)          # before "all": the user's elements are registered
+    groups = {"paper": PAPER_ELEMENTS, "all": tuple(ELEMENTS)}
+    names = list(dict.fromkeys(e for n in args.names for e in groups.get(n, (n,))))
     for path in run_cards(names, out, args.tiny, args.imports, args.workers, not args.no_progress, args.force,
                           dry=args.dry_run):
         print(f"card: {path}")
@@ -264,7 +269,9 @@ def parser() -> argparse.ArgumentParser:
     v.add_argument("--reports", help="the reports directory (default reports/)")
     v.add_argument("--workers", type=_positive(int), default=2)
     c = sub.add_parser("card", help="element report cards (NAME ..., or paper)")
-    c.add_argument("names", nargs="+", metavar="NAME")
+    c.add_argument("names", nargs="+", metavar="NAME",
+                   help="an element, 'paper' (the paper's four) or 'all' (every registered element, the "
+                        "--import modules' too)")
     c.add_argument("--import", dest="imports", action="append", default=[], metavar="MODULE",
                    help="a module to import first (it registers the user's element); repeatable")
     c.add_argument("--tiny", action="store_true", help="the CI grid")

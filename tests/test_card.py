@@ -254,3 +254,17 @@ def test_the_cables_tiny_card_runs_what_applies_and_says_why_for_the_rest(tmp_pa
     static = [r for r in recs if r["scene"]["analysis"]["kind"] == "static"]
     assert f"stable: {len(static)}, unstable: 0" in card
     assert "| 32 | " in card.split("## 9.")[1] and "within 1 % down to L / h" in card
+
+
+def test_card_all_is_every_registered_element_and_the_imported_modules_ones(tmp_path):
+    """`studies card all` (the Makefile's CARDS) follows the registry: every built-in element
+    and each element a --import module registers gets its card, with no list to extend
+    (a dry run: nothing runs)."""
+    from ancf.elements import ELEMENTS
+
+    p = subprocess.run([sys.executable, "-m", "studies", "card", "all", "--import", "examples.cubic_slope",
+                        "--tiny", "--out", str(tmp_path), "--dry-run"],
+                       cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    carded = [line.split()[1].rstrip(":") for line in p.stdout.splitlines() if line.startswith("card ")]
+    assert sorted(carded) == sorted([*ELEMENTS.builtin, "HB2n-20xy"]) and len(set(carded)) == len(carded)
