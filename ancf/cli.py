@@ -19,7 +19,7 @@ T_IMPORT = time.perf_counter()
 
 # One BLAS / OpenMP thread, set before numpy loads (free here; ancf.simulation limits an already
 # loaded BLAS with threadpoolctl): a banded system of a few hundred unknowns only pays
-# for a thread pool (issue 10 measured 0.61 s of solve against 0.33 s with one thread).
+# for a thread pool (measured: 0.61 s of solve against 0.33 s with one thread).
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 

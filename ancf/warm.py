@@ -86,8 +86,9 @@ def kernel_representatives() -> list[str]:
     each (kinematics, pressure field, assumed strain) in registration order (every element of
     a kind runs the same compiled specialisations)."""
     seen = {}
-    for name in sorted(ELEMENTS.builtin, key=list(ELEMENTS).index):
-        el = ELEMENTS[name]
+    for name, el in ELEMENTS.items():
+        if name not in ELEMENTS.builtin:
+            continue
         seen.setdefault((el.kinematics, bool(el.pressure), bool(el.assumed)), name)
     return list(seen.values())
 

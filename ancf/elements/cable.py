@@ -4,7 +4,7 @@ from __future__ import annotations
 from ..core.spec import ElementSpec, rules
 from . import register_element
 
-# Found with the harness (issue: the cheapest element at every accuracy): the planar ANCF
+# Found with the harness, looking for the cheapest element at every accuracy: the planar ANCF
 # cable (r and r_x at two nodes, cubic Hermite along: Gerstmayr & Irschik 2008's centre
 # line, Exudyn's ObjectANCFCable2D's dofs) whose section integrates the law's exact
 # incompressible uniaxial energy fibre by fibre (ancf.kinematics.cable.model), instead of a linear

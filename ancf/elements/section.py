@@ -19,7 +19,7 @@ register_element(ElementSpec(
     "HB2n-16", ("1", "x", "y", "x*y", "x^2", "y^2", "x*y^2", "x^3"), (0.0, 1.0),
     ("r", "r_x", "r_y", "r_yy"), "Patel & Shabana 2018",
     rules((0.3, (3, 2)), (0.0, (3, 3)))))
-# Found with the harness (issue 20; README "An element for incompressible rubber"): HB2n-16
+# Found with the harness (README "An element for incompressible rubber"): HB2n-16
 # made cubic along the beam in every cross-section mode and quartic across it (kinds r, r_y,
 # ..., r_yyyy and their x-slopes: 10 kinds, 40 dof), with an element pressure linear in x and
 # quadratic in y that carries the penalty (ancf.kinematics.section.pressure). Pressure spaces measured (paper's
@@ -42,7 +42,7 @@ register_element(ElementSpec(
     "this harness: cubic Hermite along, quartic across, element pressure {1, x} x {1, y, y^2}",
     rules((SLENDER, (5, 5)), (1.0, (4, 5)), (0.1, (5, 5)), (0.0, (5, 6))),
     pressure=("1", "x", "y", "x*y", "y^2", "x*y^2")))
-# Found with the harness (issue 20): HB2n-40p made quintic along the beam (Hermite: r, r_x,
+# Found with the harness: HB2n-40p made quintic along the beam (Hermite: r, r_x,
 # r_xx in every cross-section mode r, r_y, ..., r_yyyy: 15 kinds, 60 dof), quartic across,
 # with an element pressure two degrees below the displacement in each direction, {1, x, x^2,
 # x^3} x {1, y, y^2}. Measured on the paper's cantilever (face clamp, gravity, default rules)
@@ -62,7 +62,7 @@ register_element(ElementSpec(
     "this harness: quintic Hermite along, quartic across, element pressure {1, .., x^3} x {1, y, y^2}",
     rules((SLENDER, (8, 5)), (1.0, (6, 5)), (0.05, (6, 6)), (0.0, (6, 7))),
     pressure=tuple(f"x^{i}*y^{j}" for j in range(3) for i in range(4))))
-# Found with the harness (issue 20): the cheap lock-free element, HB2n-16 with the mixed slope
+# Found with the harness: the cheap lock-free element, HB2n-16 with the mixed slope
 # r_xy (so the cross-section field r_y is cubic along the beam like the centre line; HB2n-16's
 # linear r_y makes a coarse mesh too stiff in bending: 8 elements, pendulum tip 2.0 % of L
 # off) and an element pressure {1, y} that carries the penalty. Without the pressure (the
@@ -87,7 +87,7 @@ register_element(ElementSpec(
     "this harness: HB2n-16 with r_xy (cubic r_y along the beam), element pressure {1, y}",
     rules((SLENDER, (5, 2)), (1.0, (4, 2)), (0.0, (3, 3))),
     pressure=("1", "y")))
-# Found with the harness (issue 20): HB2n-20xyp with an assumed membrane stretch, C_xx taken
+# Found with the harness: HB2n-20xyp with an assumed membrane stretch, C_xx taken
 # from 3 Gauss points along the beam at each row across and carried to the rule's points by
 # quadratic Lagrange (ancf.kinematics.section.assumed). A cubic centre line in large rotation cannot keep its
 # stretch at 1 at 4 points of an element and bends too stiffly (membrane locking); in small

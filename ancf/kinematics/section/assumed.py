@@ -12,7 +12,7 @@ is the law's at the assumed C,
 and the force and tangent are its exact derivatives. With the element's pressure field
 the penalty acts on the projection of J_bar - 1.
 
-Why (issue 20; tests/oracles/assumed_membrane.py, README "Which strain carries it"): a cubic
+Why (tests/oracles/assumed_membrane.py, README "Which strain carries it"): a cubic
 centre line in large rotation cannot keep its membrane stretch at 1 at four points along
 an element; it bends too stiffly (membrane locking). In small strain eps_xx is quadratic
 along x (u_x is cubic), so three points see it exactly and an assumed C_xx leaves the
