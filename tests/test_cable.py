@@ -246,8 +246,9 @@ def test_the_end_face_is_the_normal_of_r_x_and_the_couple_the_gradient_of_its_po
     of -M theta (step 1e-6: truncation ~1e-12, round-off ~1e-10: 1e-7), its stiffness against
     differences of the force (the same)."""
     s = _couple_scene(M=0.01)
-    model = build_model(plan(s))
-    loading = static_loading(model, external_loads(model, plan(s)), plan(s))
+    p = plan(s)
+    model = build_model(p)
+    loading = static_loading(model, external_loads(model, p), p)
     face = loading.face
     for phi in (0.3, 2.5, -3.0):
         w, _ = checks.rotate(model, np.zeros(model.mesh.n_dof), phi)
@@ -267,8 +268,9 @@ def test_the_end_load_does_the_work_of_the_uniform_traction_on_the_end_section()
     """The uniform dead traction F / (h w) on the end section r(L) + Y n does the work
     F . delta r(L) (int Y dY = 0): the load vector is F on the last node's r, zero elsewhere."""
     s = _couple_scene(tip=[0.3, -0.2])
-    model = build_model(plan(s))
-    f = external_loads(model, plan(s))["tip_force"]
+    p = plan(s)
+    model = build_model(p)
+    f = external_loads(model, p)["tip_force"]
     expect = np.zeros(model.mesh.n_dof)
     expect[model.mesh.dofs(model.mesh.n_nodes - 1, ("r",))] = [0.3, -0.2]
     np.testing.assert_allclose(f, expect, rtol=0, atol=1e-15)

@@ -19,8 +19,9 @@ from .conftest import contract_rule
 def problem(element, form, law="mooney-rivlin", n=8, quadrature="contract"):
     quadrature = contract_rule(element) if quadrature == "contract" else quadrature
     s = scene_from_dict(paper.cantilever_scene(law, form, element, n, quadrature=quadrature, clamp="all"))
-    model = build_model(plan(s))
-    f = sum(external_loads(model, plan(s)).values())
+    p = plan(s)
+    model = build_model(p)
+    f = sum(external_loads(model, p).values())
     scale = np.linalg.norm(np.delete(f, model.fixed))
     return model, f, 1e-8 * scale
 
@@ -123,8 +124,9 @@ def test_residual_tolerance_respects_the_roundoff_floor():
     from ancf.solvers.statics import ROUNDOFF_FLOOR, solve_static
     from studies.design.card import slender_scene
     s = scene_from_dict(slender_scene("HB2n-12", 70, 8))
-    model = build_model(plan(s))
-    f = sum(external_loads(model, plan(s)).values())
+    p = plan(s)
+    model = build_model(p)
+    f = sum(external_loads(model, p).values())
     u0 = np.zeros(model.mesh.n_dof)
     floor = model.static_kernel.roundoff_floor(u0)
     free = np.ones(len(f), bool)
@@ -159,9 +161,10 @@ def test_slender_path_converges_above_the_floor(monkeypatch):
     from ancf.solvers import statics
     from studies.design.card import slender_scene
     s = scene_from_dict(slender_scene("HB2n-20", 70, 8))
-    model = build_model(plan(s))
-    f = sum(external_loads(model, plan(s)).values())
+    p = plan(s)
+    model = build_model(p)
+    f = sum(external_loads(model, p).values())
     res = statics.solve_static(model, f)
     assert res.status == "converged" and res.newton_iterations < 30
     monkeypatch.setattr(statics, "ROUNDOFF_FLOOR", 0.0)
-    assert statics.solve_static(build_model(plan(s)), f).status == "failed"
+    assert statics.solve_static(build_model(p), f).status == "failed"

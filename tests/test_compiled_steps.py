@@ -36,8 +36,9 @@ def scene(n=8, t_end=0.1, dt=1e-3, law="yeoh", element="HB2n-12", material=None,
 
 
 def run(sc, compiled=True, energy_limit=1e-3, max_steps=None):
-    model = build_model(plan(sc))
-    integ = build_integrator(plan(sc), model, model.mass_matrix(), external_loads(model, plan(sc)))
+    p = plan(sc)
+    model = build_model(p)
+    integ = build_integrator(p, model, model.mass_matrix(), external_loads(model, p))
     a = sc.analysis
     return integrate(integ, np.zeros(model.mesh.n_dof), a.t_end, a.dt, a.output_times, a.dt_min,
                      energy_limit=energy_limit, max_steps=max_steps, compiled=compiled), integ

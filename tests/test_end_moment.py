@@ -52,8 +52,9 @@ def test_the_face_moment_reads_a_rigid_turn_and_a_thickness_stretch_exactly(elem
     """d = R(phi) (0, s) for r = R(phi) (x, s y): theta = phi (mod 2 pi), |d| = s, to round-off.
     (A cable's face, d = R90 r_x: tests/test_cable.py.)"""
     s = scene_from_dict(_scene(element))
-    model = build_model(plan(s))
-    face = static_loading(model, {}, plan(s)).face
+    p = plan(s)
+    model = build_model(p)
+    face = static_loading(model, {}, p).face
     assert np.allclose(face.first_moment(np.zeros(model.mesh.n_dof)), (0.0, 1.0), atol=1e-13)
     for phi in (0.3, 2.5, -3.0):
         u = _rotated(model, phi, stretch=0.9)
@@ -68,8 +69,9 @@ def test_the_couple_is_the_gradient_of_its_potential_and_its_stiffness_the_force
     differences of -M theta (step 1e-6 of the state: truncation ~1e-12, round-off ~1e-10
     relative; tolerance 1e-7), the stiffness against differences of the force (same)."""
     s = scene_from_dict(_scene(element, moment=0.3))
-    model = build_model(plan(s))
-    loading = static_loading(model, external_loads(model, plan(s)), plan(s))
+    p = plan(s)
+    model = build_model(p)
+    loading = static_loading(model, external_loads(model, p), p)
     rng = np.random.default_rng(3)
     u = _rotated(model, 2.0) + 1e-3 * rng.standard_normal(model.mesh.n_dof)
     v = rng.standard_normal(model.mesh.n_dof)
@@ -89,8 +91,9 @@ def test_the_compiled_newton_is_the_python_newton_with_a_couple(element):
     outcome and iterations, the state to 1e-9 of its size (the factorisations differ in
     round-off only)."""
     s = scene_from_dict(_scene(element, n=8, moment=0.3 * 3 * MU * 0.007 * 0.005 ** 3 / 12 / 0.16))
-    model = build_model(plan(s))
-    loading = static_loading(model, external_loads(model, plan(s)), plan(s))
+    p = plan(s)
+    model = build_model(p)
+    loading = static_loading(model, external_loads(model, p), p)
     u0 = np.zeros(model.mesh.n_dof)
     atol = 1e-8 * np.linalg.norm(np.delete(loading.force(u0), model.fixed))
     ref = newton_reference(model, u0, loading, atol, 25)

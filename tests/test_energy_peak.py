@@ -25,9 +25,10 @@ def test_peak_over_every_step():
     sampled = max(e["total"] for e in rec["energy"])
     assert pk["total"] >= sampled
 
-    model = build_model(plan(scene))
-    loads = external_loads(model, plan(scene))
-    integ = build_integrator(plan(scene), model, model.mass_matrix(), loads)
+    p = plan(scene)
+    model = build_model(p)
+    loads = external_loads(model, p)
+    integ = build_integrator(p, model, model.mass_matrix(), loads)
     a = scene.analysis
     res = integrate(integ, np.zeros(model.mesh.n_dof), a.t_end, a.dt, a.output_times,
                     energy_every_step=True, compiled=False)

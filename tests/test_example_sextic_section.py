@@ -85,9 +85,10 @@ def test_the_initial_acceleration_is_solved_in_the_mass_matrix_own_scale():
     import numpy as np
     from ancf.build import build_integrator, build_model, external_loads, plan
     scene = scene_from_dict(_pendulum(8, 0.01))
-    model = build_model(plan(scene))
+    p = plan(scene)
+    model = build_model(p)
     M = model.mass_matrix()
-    integ = build_integrator(plan(scene), model, M, external_loads(model, plan(scene)))
+    integ = build_integrator(p, model, M, external_loads(model, p))
     u0 = np.zeros(model.mesh.n_dof)
     a0 = integ.initial_state(u0).a
     free = integ.free

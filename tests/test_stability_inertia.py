@@ -39,8 +39,9 @@ def states(law, formulation, element):
     two states off equilibrium (a deterministic perturbation: indefinite tangents)."""
     d = law_scene(law, formulation, element, 4, quadrature=contract_rule(element), name="inertia")
     scene = scene_from_dict(d)
-    model = build_model(plan(scene))
-    f = sum(external_loads(model, plan(scene)).values())
+    p = plan(scene)
+    model = build_model(p)
+    f = sum(external_loads(model, p).values())
     out = []
     for k in (0.3, 1.0, 3.0):
         res = solve_static(model, k * f)
@@ -102,8 +103,9 @@ def test_the_saddle_itself_is_called_unstable():
     negative eigenvalues of the dense solve, whatever the nearest-to-a-shift eigenvalue."""
     d = paper.cantilever_scene("yeoh", "paper", "HB2n-16", 32, quadrature=(2, 2), clamp="all", name="saddle")
     scene = scene_from_dict(d)
-    model = build_model(plan(scene))
-    f = sum(external_loads(model, plan(scene)).values())
+    p = plan(scene)
+    model = build_model(p)
+    f = sum(external_loads(model, p).values())
     from mechanics.load_path import PathCounts, follow
     from ancf.solvers.statics import increment_solver
     free = np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)

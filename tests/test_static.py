@@ -191,8 +191,9 @@ def test_newton_converges_quadratically():
     ... 2.9e-6 -> 7.2e-12 (quadratic, constant ~1); a tangent wrong by 1 % converges
     linearly (factor ~1e-2) and fails the same check."""
     s = scene_from_dict(paper.cantilever_scene("yeoh", "plane-stress", "HB2n-12", 16))
-    model = build_model(plan(s))
-    f = sum(external_loads(model, plan(s)).values())
+    p = plan(s)
+    model = build_model(p)
+    f = sum(external_loads(model, p).values())
     u_star = solve_static(model, f, rtol=1e-12).u
     u_99 = solve_static(model, 0.99 * f).u
     assert is_quadratic(newton_errors(model, u_99, f, u_star))

@@ -110,8 +110,9 @@ def pendulum_error(n: int, mode: str, dt: float = 2.5e-3, rtol: float = 1e-8) ->
     """The slender pendulum of the work-precision bench (plane-stress Yeoh, rho_inf 0.5,
     pin, gravity) on n elements: error / L against the continuum (max over t = 0.1 ... 0.5 s)."""
     scene = scene_from_dict(scene_dict(ELEMENT, n, dt, 0.5))
-    model = build_model(plan(scene))
-    f_ext = sum(external_loads(model, plan(scene)).values())
+    p = plan(scene)
+    model = build_model(p)
+    f_ext = sum(external_loads(model, p).values())
     M = model.mass_matrix().to_sparse().toarray()
     free = np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)
     Mf = M[np.ix_(free, free)]
@@ -151,8 +152,9 @@ def cantilever_tip(n: int, mode: str, increments: int = 20, rtol: float = 1e-10)
     clamp, gravity) on n elements: the tip's vertical displacement (m), by Newton on equal load
     increments."""
     scene = scene_from_dict(paper.cantilever_scene("yeoh", "plane-stress", ELEMENT, n, quadrature=None))
-    model = build_model(plan(scene))
-    f_ext = sum(external_loads(model, plan(scene)).values())
+    p = plan(scene)
+    model = build_model(p)
+    f_ext = sum(external_loads(model, p).values())
     free = np.setdiff1d(np.arange(model.mesh.n_dof), model.fixed)
     law = AssumedStrain(model, mode)
     u = np.zeros(model.mesh.n_dof)
