@@ -88,18 +88,15 @@ bench: setup
 bench-penalty: setup
 	$(PY) -m studies bench penalty
 
-# the elements of the work-precision diagram: the paper's two, the lock-free ones and the
-# hyperelastic cable HC2n-8 (studies.peers.precision_grid.ELEMENTS)
-PEER_ELEMENTS = --element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-20xypm --element HB2n-40p --element HB2n-60p --element HC2n-8
-
 # The pendulum beside a peer, Exudyn's ANCF cable, installed in a separate venv (.venv-peers,
 # never in .venv): the same pendulum side by side, Exudyn against its own published numbers,
-# and the work-precision diagrams of two pendulums (reports/peers*.md)
+# and the work-precision diagrams of two pendulums with every registered element that runs
+# plane stress, but one tagged locking (reports/peers*.md)
 bench-peers: setup
 	bash tools/setup_peers.sh && $(PY) -m studies peers compare --report
 	$(PY) -m studies peers published --report && $(PY) -m studies peers compare --report-only
-	$(PY) -m studies peers work-precision --scene pendulum $(PEER_ELEMENTS)
-	$(PY) -m studies peers work-precision --scene thick $(PEER_ELEMENTS)
+	$(PY) -m studies peers work-precision --scene pendulum
+	$(PY) -m studies peers work-precision --scene thick
 
 # Exudyn through the external-solver protocol (studies/peers/exudyn.toml, in .venv-peers):
 # the benchmark suite's cases it takes, its records in reports/external/data and its

@@ -198,14 +198,14 @@ def _gold(args) -> int:
 
 
 def _card(args) -> int:
-    from ancf.elements import ELEMENTS
+    from ancf.elements import select
     from contract.console import import_modules
 
-    from .design.card import PAPER_ELEMENTS, run_cards
+    from .design.card import run_cards
 
     out = resolve_out(args.out, args.tiny)
     import_modules(args.imports)          # before "all": the user's elements are registered
-    groups = {"paper": PAPER_ELEMENTS, "all": tuple(ELEMENTS)}
+    groups = {"paper": select("paper"), "all": select()}
     names = list(dict.fromkeys(e for n in args.names for e in groups.get(n, (n,))))
     for path in run_cards(names, out, args.tiny, args.imports, args.workers, not args.no_progress, args.force,
                           dry=args.dry_run):

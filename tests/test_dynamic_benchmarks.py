@@ -67,7 +67,9 @@ def test_the_cases_are_admitted_by_their_solvers():
     from ancf.admission import check
     from reference_fem.settings import fem_settings
 
-    g = D.STUDY["grid"]
+    from studies.engine.catalog import load_catalog
+
+    g = load_catalog()["dynamic-benchmarks"].grid
     for s in D._solvers(g):
         for d in [D.swing_scene(g, s)] + [D.frequency_scene(g, r, s) for r in g["ratios"]]:
             sc = scene_from_dict(d)

@@ -28,10 +28,18 @@ def test_every_ancf_case_of_every_study_passes_the_solvers_check(tiny):
 
 
 def test_per_element_rules_and_counts_select_cases():
-    grid = {"counts": [4, 8], "per_element": {"E": {"quadratures": ["default"], "counts": [4]}}}
-    assert takes(grid, "E", "default") and not takes(grid, "E", [2, 2])
-    assert takes(grid, "other", [2, 2])
-    assert counts_of(grid, "E") == [4] and counts_of(grid, "other") == [4, 8]
+    grid = {"counts": [4, 8], "per_element": {"HB2n-12": {"quadratures": ["default"], "counts": [4]}}}
+    assert takes(grid, "HB2n-12", "default") and not takes(grid, "HB2n-12", [2, 2])
+    assert takes(grid, "HB3n-12", [2, 2])
+    assert counts_of(grid, "HB2n-12") == [4] and counts_of(grid, "HB3n-12") == [4, 8]
+
+
+def test_an_element_with_a_pressure_field_takes_its_own_rule_only():
+    """[2, 2] cannot resolve a pressure field: the grid asks the element, not a list of names;
+    a grid's per_element rules still decide where it gives them."""
+    assert takes({}, "HB2n-40p", "default") and not takes({}, "HB2n-40p", [2, 2])
+    assert takes({}, "HB2n-20xyp", "default") and not takes({}, "HB2n-20xyp", [3, 2])
+    assert takes({"per_element": {"HB2n-40p": {"quadratures": [[6, 5]]}}}, "HB2n-40p", [6, 5])
 
 
 def test_a_fixed_rule_a_pressure_element_refuses_is_a_scene_error():

@@ -29,12 +29,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from contract.errors import UnknownName
 from contract.registry import Registry
 from .polynomial import Poly, parse
+
+if TYPE_CHECKING:
+    from ..kinematics.family import Kinematics
 
 # kinematics name -> its :class:`ancf.kinematics.Kinematics` (filled by ancf.kinematics)
 KINEMATICS: Registry = Registry("ancf.element.kinematics", "kinematics")
@@ -63,6 +67,14 @@ class _Kinds(dict):
 
 KINDS: dict[str, tuple[int, int]] = _Kinds({"r": (0, 0)})
 
+# what an element's tags say (``ElementSpec.tags``): which studies take it is read from
+# them (:func:`ancf.elements.select`), never from a list of names
+TAGS = {
+    "paper": "one of the paper's four elements: the studies that reproduce the paper take these alone",
+    "locking": "an element that locks: drawn apart and kept out of the findings about the lock-free ones",
+    "costly": "its runs take most of a sweep's time: a sweep that must stay quick leaves it to its reference study",
+}
+
 @dataclass(frozen=True)
 class ElementSpec:
     name: str
@@ -85,6 +97,9 @@ class ElementSpec:
     # a registered kinematics (:data:`KINEMATICS`): "continuum" (shape functions in x and y)
     # or "cable" (a centre line: basis and kinds in x only)
     kinematics: str = "continuum"
+    # what it is, for the studies (:data:`TAGS`); untagged, an element takes part in every
+    # study that runs its kinematics and formulations
+    tags: tuple[str, ...] = ()
 
     def __post_init__(self):
         unknown = [k for k in self.kinds if k not in KINDS]
@@ -96,6 +111,9 @@ class ElementSpec:
         if len(self.basis) != len(self.nodes) * len(self.kinds):
             raise ValueError(f"element {self.name}: {len(self.basis)} basis functions but "
                              f"{len(self.nodes)} nodes x {len(self.kinds)} kinds")
+        odd = [t for t in self.tags if t not in TAGS]
+        if odd:
+            raise ValueError(f"element {self.name}: unknown tags {odd}; tags are {sorted(TAGS)}")
         try:
             family = KINEMATICS.lookup(self.kinematics)
         except UnknownName as e:
@@ -137,7 +155,7 @@ class ElementSpec:
         return polys, np.linalg.inv(A)
 
     @property
-    def family(self) -> "ancf.kinematics.Kinematics":
+    def family(self) -> Kinematics:
         """The kinematics this element declares (:data:`KINEMATICS`): its model, supports, end
         face, admissible formulations and integrators, its checks' data."""
         return KINEMATICS.lookup(self.kinematics)

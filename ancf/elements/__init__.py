@@ -10,15 +10,21 @@ To add an element, register a spec (:class:`ancf.core.spec.ElementSpec`, data)::
 kinematics (``kinematics``, default "continuum") is a registered family
 (:mod:`ancf.kinematics`), which checks the spec. The built-in elements are data files of
 their families: :mod:`.section` and :mod:`.cable`.
+
+The studies, the cards and the peers' diagram take their elements from this registry
+(:func:`select`), by the elements' tags (:data:`TAGS`: "paper", "locking", "costly") and
+the formulations they run: an element registered once, untagged, joins every study that
+runs its formulations.
 """
 from __future__ import annotations
 
 import sys
+from typing import Iterable
 
 from contract.registry import Registry
 
 from .. import kinematics  # noqa: F401  (fills KINEMATICS: an element names one)
-from ..core.spec import KINDS, KINEMATICS, SLENDER, ElementSpec, rules  # noqa: F401  (the names element authors use)
+from ..core.spec import KINDS, KINEMATICS, SLENDER, TAGS, ElementSpec, rules  # noqa: F401  (the names element authors use)
 
 # (ELEMENTS.origin: element name -> the module that registered it, what a fresh process
 # imports to have it)
@@ -32,6 +38,20 @@ def register_element(spec: ElementSpec) -> ElementSpec:
 
 def get_element(name: str) -> ElementSpec:
     return ELEMENTS.lookup(name)
+
+
+def select(tagged: str | None = None, without: Iterable[str] = (), running: Iterable[str] = ()) -> list[str]:
+    """The registered elements a study takes, in the registry's order: those tagged
+    ``tagged`` (every one if None), none tagged with any of ``without``, each running
+    every formulation of ``running``. A study names its elements this way, so that an
+    element registered (a user's module too) joins every study its tags admit."""
+    for t in (tagged, *without):
+        if t is not None and t not in TAGS:
+            raise ValueError(f"unknown element tag {t!r}; tags are {sorted(TAGS)}")
+    without, running = set(without), tuple(running)
+    return [name for name, spec in ELEMENTS.items()
+            if (tagged is None or tagged in spec.tags) and not without & set(spec.tags)
+            and all(spec.family.runs(f) for f in running)]
 
 
 from . import section  # noqa: E402,F401  (the built-in elements register themselves,

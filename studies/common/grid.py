@@ -42,11 +42,16 @@ def qlabel(quadrature) -> str:
 
 
 def takes(grid: dict, element: str, quadrature) -> bool:
-    """Whether ``element`` runs with ``quadrature`` in this grid: every rule, unless the
-    grid's ``per_element.<element>.quadratures`` lists the rules it takes (an element with
-    a pressure field refuses a rule too coarse for it, :mod:`ancf.kinematics.section.pressure`)."""
+    """Whether ``element`` runs with ``quadrature`` in this grid: the rules the grid's
+    ``per_element.<element>.quadratures`` lists, else every rule, except that an element
+    with a pressure field takes its own rule only (a fixed rule of the paper's, [2, 2],
+    cannot resolve the field: :mod:`ancf.kinematics.section.pressure`)."""
+    from ancf.elements import get_element
+
     allowed = grid.get("per_element", {}).get(element, {}).get("quadratures")
-    return allowed is None or rule(quadrature) in {rule(a) for a in allowed}
+    if allowed is None:
+        return rule(quadrature) == DEFAULT or not get_element(element).pressure
+    return rule(quadrature) in {rule(a) for a in allowed}
 
 
 def counts_of(grid: dict, element: str) -> list[int]:

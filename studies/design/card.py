@@ -44,7 +44,7 @@ from ..engine.audit import register_prebuild
 from ..engine.scheduler import dry_run, run_cases
 from ..engine.store import store_for
 from ..engine.verify import register_case_source
-from .card_cases import (GRID, LAWS, PAPER_ELEMENTS, SLENDER, SLENDERNESS, SLENDERNESS_TINY, TINY,  # noqa: F401
+from .card_cases import (GRID, LAWS, SLENDER, SLENDERNESS, SLENDERNESS_TINY, TINY,  # noqa: F401
                          beam_theory, cases, checks_current, checks_path, checks_record, checks_source, clamp_probe,
                          element_imports, formulations_of, grid_for, import_modules, measure_checks,
                          section_model, slender_scene, slender_strains, slenderness_scene, slug)

@@ -21,7 +21,6 @@ from ..common.pendulum_cases import pendulum_dict
 from ..engine import fingerprint as fp
 from ..engine.case import Case, make_case
 
-PAPER_ELEMENTS = ("HB2n-12", "HB3n-12", "HB2n-16", "LB2n-12")
 LAWS = ("neo-hookean", "mooney-rivlin", "yeoh")
 GRID = {
     "laws": LAWS, "formulations": ("plane-stress", "plane-strain"),

@@ -83,7 +83,7 @@ class Case:
 
 def user_definitions(scene: Mapping) -> dict:
     """What a scene takes from a user's module (empty for built-in ones): the element's
-    specification as plain data (its free-text reference left out), and the normalised
+    specification as plain data (its free-text reference and its tags left out), and the normalised
     code of the module that defines the law's energy (a law is code, an element data)."""
     import dataclasses
 
@@ -93,6 +93,7 @@ def user_definitions(scene: Mapping) -> dict:
     if isinstance(element, str) and element not in BUILTIN and element in ELEMENTS:
         spec = dataclasses.asdict(ELEMENTS[element])
         spec.pop("reference", None)
+        spec.pop("tags", None)          # which studies take it, not what it computes
         out["element_spec"] = spec
     law = (scene.get("material") or {}).get("law")
     from mechanics.laws import BUILTIN as BUILTIN_LAWS, LAWS

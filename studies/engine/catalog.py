@@ -11,6 +11,11 @@ studies whose records it reads (``needs``), whether it is heavy (``full``: left 
 - ``report(ctx: studies.engine.report.Context) -> studies.engine.report.Section``: tables and
   figures from records only.
 
+A grid names its elements by the registry, never by a list of names: a value
+``{"registered": {"tagged": ..., "without": [...], "running": [...]}}`` becomes, when the
+catalog loads (after a user's ``--import``), the registered elements those tags and
+formulations select (:func:`ancf.elements.select`); a ``tiny`` grid may list a few names.
+
 Optionally ``gold_values(ctx) -> {name: (value, tolerance)}`` for the tiny-mode
 regression (tests/gold/studies_tiny.json), and ``audit(ctx) -> [problem]``: the study's
 own consistency rules, run by ``python -m studies audit`` (:mod:`.audit`).
@@ -33,6 +38,10 @@ from types import ModuleType
 CASES_TOML = None    # the default catalog: the studies declared in their modules (no file)
 META_KEYS = ("module", "title", "needs", "tiny", "full")
 COMMON = "common"   # not a study: grid keys every study gets unless it sets its own
+# a grid value {"registered": {"tagged": ..., "without": [...], "running": [...]}}: the
+# registered elements those tags and formulations select (:func:`registered`)
+REGISTERED = "registered"
+SELECT_KEYS = ("tagged", "without", "running")
 
 
 @dataclass(frozen=True)
@@ -90,6 +99,7 @@ def load_catalog(tiny: bool = False, path: Path | None = CASES_TOML) -> dict[str
         grid = {**common, **{k: v for k, v in t.items() if k not in META_KEYS}}
         if tiny:
             grid.update(t.get("tiny", {}))
+        grid = registered(grid, name)
         needs = tuple(t.get("needs", ()))
         out[name] = Study(name, t.get("title", name), t["module"], grid, needs, tiny, bool(t.get("full", False)))
     for s in out.values():
@@ -98,6 +108,27 @@ def load_catalog(tiny: bool = False, path: Path | None = CASES_TOML) -> dict[str
             raise ValueError(f"{Path(path).name if path else 'studies'}: study {s.name!r} needs unknown {unknown}; "
                              f"studies: {', '.join(out)}")
     return out
+
+
+def registered(value, where: str):
+    """A grid with each ``{"registered": {...}}`` replaced by the names of the registered
+    elements it selects (:func:`ancf.elements.select`: keys ``tagged``, ``without``,
+    ``running``), read when the catalog loads, after a user's ``--import``: a study names
+    its elements by their tags, never by a list of names."""
+    if isinstance(value, dict) and set(value) == {REGISTERED}:
+        from ancf.elements import select
+
+        sel = value[REGISTERED]
+        odd = sorted(set(sel) - set(SELECT_KEYS)) if isinstance(sel, dict) else [sel]
+        if odd:
+            raise ValueError(f"{where}.{REGISTERED}: unknown keys {odd}; allowed: {', '.join(SELECT_KEYS)}")
+        try:
+            return select(**sel)
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"{where}.{REGISTERED}: {e}") from None
+    if isinstance(value, dict):
+        return {k: registered(v, f"{where}.{k}") for k, v in value.items()}
+    return value
 
 
 def _read(path: Path) -> dict:

@@ -19,7 +19,7 @@ STUDY = {
     "full": True,
     "grid": {
         "laws": ["neo-hookean", "mooney-rivlin", "yeoh"],
-        "elements": ["HB2n-12", "HB3n-12", "HB2n-16", "LB2n-12"],
+        "elements": {"registered": {"tagged": "paper"}},
         "counts": "paper",
         "clamps": ["face", "all"],
         "quadratures": [[2, 2], [3, 2], [5, 3], [3, 3]],

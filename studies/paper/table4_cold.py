@@ -17,7 +17,7 @@ from ..common.pendulum_cases import describe_dynamic, pendulum_dict
 STUDY = {
     "name": "table4-cold",
     "title": "Table 4's first run after installing: compiling included",
-    "grid": {"elements": ["HB2n-12", "HB3n-12", "HB2n-16"], "count": 32, "formulation": "plane-stress",
+    "grid": {"elements": {"registered": {"tagged": "paper", "without": ["locking"]}}, "count": 32, "formulation": "plane-stress",
              "dt": 1e-3, "rho_inf": 0.5, "t_end": 0.5},
     "tiny": {"elements": []},
     "full": True,

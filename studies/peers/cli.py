@@ -24,7 +24,7 @@ import os
 from pathlib import Path
 
 from . import compare, exudyn_published, step_cost, thick_reference, work_precision
-from .precision_grid import COUNTS, ELEMENTS, MIN_REPEATS, SCENE, SCENES, STEPS_PER_OUTPUT
+from .precision_grid import COUNTS, MIN_REPEATS, SCENE, SCENES, STEPS_PER_OUTPUT, elements
 from .precision_report import report
 from .records import costs_path, points_path, read, read_costs, rounds_path, write_costs
 from .venv import PEER_PYTHON
@@ -67,9 +67,9 @@ def _published(a) -> int:
 
 
 def _work_precision(a) -> int:
-    a.element = a.element or list(ELEMENTS)
     for m in a.imports:
         importlib.import_module(m)
+    a.element = a.element or elements()      # after the imports: a user's elements join
     path = points_path(a.out)
     recs = (work_precision.rescore(path) if a.rescore else read(path) if a.report_only
             else work_precision.run(a))
@@ -139,7 +139,8 @@ def add_commands(sub) -> None:
     w.add_argument("--scene", choices=sorted(SCENES), default=SCENE, help="pendulum (h = 5 mm, default) or thick "
                    "(h = 20 mm)")
     w.add_argument("--counts", type=int, nargs="+", default=list(COUNTS))
-    w.add_argument("--element", action="append", help="our element (repeatable; default: ELEMENTS)")
+    w.add_argument("--element", action="append", help="our element (repeatable; default: every registered "
+                   "element that runs plane stress, but one tagged locking)")
     w.add_argument("--rho-inf", type=float, default=0.5, help="generalized-alpha spectral radius (default 0.5, "
                    "Table 4's)")
     w.add_argument("--steps-per-output", type=int, nargs="+", default=list(STEPS_PER_OUTPUT),

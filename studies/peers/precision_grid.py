@@ -19,10 +19,17 @@ SCENES = {"pendulum": {"height": 0.005, "title": "the paper's slender pendulum, 
 # without its guard too (a run that gains energy shows it in its error, not by stopping).
 ENERGY_GUARD = "none"
 MIN_REPEATS = 5
-# the paper's two, the lock-free ones with a pressure field, and the hyperelastic cable
-# (HC2n-8: the peer's kinematics, r and r_x at two nodes, with the law's exact uniaxial energy;
-# plane stress, as every run of ours here)
-ELEMENTS = ("HB2n-12", "HB2n-16", "HB2n-20xyp", "HB2n-20xypm", "HB2n-40p", "HB2n-60p", "HC2n-8")
+
+
+def elements() -> list[str]:
+    """Our elements on the diagram: every registered one that runs plane stress (as every
+    run of ours here), but one that locks; the hyperelastic cable HC2n-8 among them (the
+    peer's kinematics, r and r_x at two nodes, with the law's exact uniaxial energy)."""
+    from ancf.elements import select
+
+    return select(without=["locking"], running=["plane-stress"])
+
+
 # The cable's runs, by the label its records carry as their element -> its Newton
 # (exudyn_pendulum.py --newton). "linear" solves each step's equations linearised at the
 # predictor, once, with no convergence test: Exudyn offers it (newton.active =

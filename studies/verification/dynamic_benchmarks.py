@@ -58,8 +58,8 @@ STUDY = {
     "name": "dynamic-benchmarks",
     "title": "Dynamic benchmarks with outside references: the rigid pendulum, a clamped beam's frequency",
     "grid": {
-        # every built-in element and every continuum backend (None: their registries)
-        "elements": None, "codes": None,
+        # every registered element and every continuum backend (None: its registry)
+        "elements": {"registered": {}}, "codes": None,
         # rigid-swing
         "stiffer": 2e4, "swing_elements": 16, "swing_dt": 1e-3, "swing_t_end": 0.3, "swing_every": 0.005,
         "swing_cells_height": 2,
@@ -222,9 +222,7 @@ def energy_change(rec: dict) -> float | None:
 # -- the cases and the report ------------------------------------------------------------------------
 
 def _elements(grid: dict) -> list[str]:
-    from ancf.elements import ELEMENTS
-
-    return sorted(grid["elements"] or ELEMENTS.builtin)
+    return sorted(grid["elements"])
 
 
 def _codes(grid: dict) -> list[str]:

@@ -32,7 +32,7 @@ STUDY = {
     "full": True,
     "grid": {"law": "yeoh", "formulation": "plane-stress", "levels": [2, 4, 8], "aspect": 2.0, "dt": 1e-3,
              "rho_inf": 0.8, "time_level": 4,
-             "elements": ["HB2n-12", "HB2n-16", "HB2n-20xyp", "HB2n-40p", "HB2n-60p"], "count": 32,
+             "elements": {"registered": {"without": ["locking"], "running": ["plane-stress"]}}, "count": 32,
              "ancf_dt": 5e-4, "ancf_rho_inf": 0.5},
     "tiny": {"aspect": 4.0, "dt": 2e-3, "time_level": 2, "elements": ["HB2n-40p"], "count": 4, "ancf_dt": 2e-3,
              "t_end": 0.1},
