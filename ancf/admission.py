@@ -17,8 +17,8 @@ from contract.scene import Scene, check_names
 from mechanics.laws import LAWS
 
 from .core.spec import ElementSpec
-from .elements import ELEMENTS, get_element
-from .core.formulations import FORMULATIONS, get_formulation
+from .core.formulations import FORMULATIONS
+from .elements import ELEMENTS
 from .solvers.integrators import INTEGRATORS
 
 
@@ -42,18 +42,18 @@ def check(scene: Scene) -> Scene:
     if scene.ancf is None:
         raise SceneError("ancf: the scene has no [ancf] table (element, elements)")
     check_names(scene, laws=LAWS, formulations=FORMULATIONS, integrators=INTEGRATORS, elements=ELEMENTS)
-    _check_kinematics(scene)
-    _check_pressure_rule(scene)
-    _check_aspect(scene)
+    el = ELEMENTS[scene.ancf.element]                  # the names are known now
+    _check_kinematics(scene, el)
+    _check_pressure_rule(scene, el, FORMULATIONS[scene.material.formulation].penalised)
+    _check_aspect(scene, el)
     return scene
 
 
-def _check_aspect(scene: Scene) -> None:
+def _check_aspect(scene: Scene, el: ElementSpec) -> None:
     """The element's basis must be determined by its nodal coordinates at this mesh's l_e and
     h (and at l_e / h, the rank tests' scaling): an element absurdly stout (l_e / h = 1e-7
     for HB2n-12 and HB3n-12) makes the nodal matrix singular in floating point."""
-    s, el = scene.ancf, get_element(scene.ancf.element)
-    le, h = scene.beam.length / s.elements, scene.beam.height
+    le, h = scene.beam.length / scene.ancf.elements, scene.beam.height
     if _singular(el, le, h):
         raise SceneError(f"beam.height: an element of l_e / h = {le / h:.3g} (beam.length / ancf.elements / "
                          f"beam.height) is singular for {el.name}: its nodal coordinates do not determine its "
@@ -72,12 +72,11 @@ def _singular(el: ElementSpec, le: float, h: float) -> bool:
     return False
 
 
-def _check_kinematics(scene: Scene) -> None:
+def _check_kinematics(scene: Scene, el: ElementSpec) -> None:
     """What an element's kinematics cannot run: the formulations it refuses
     (:attr:`ancf.kinematics.family.Kinematics.formulations`: a cable integrates the law's
     uniaxial energy, with free lateral faces, so plane stress alone); the integrators it
     refuses (:func:`refused_integrators`)."""
-    el = get_element(scene.ancf.element)
     family = el.family
     if not family.runs(scene.material.formulation):
         raise SceneError(f"material.formulation: {scene.material.formulation!r} cannot run element {el.name} "
@@ -96,11 +95,11 @@ def _check_kinematics(scene: Scene) -> None:
                          f"{', '.join(repr(i) for i in allowed_integrators(el))}")
 
 
-def _check_pressure_rule(scene: Scene) -> None:
+def _check_pressure_rule(scene: Scene, el: ElementSpec, penalised: bool) -> None:
     """A rule the scene chose must resolve the element's pressure field where it carries
     the penalty (a tensor rule with more points than the field's degree in x and in y)."""
-    s, el = scene.ancf, get_element(scene.ancf.element)
-    if not (el.pressure and s.quadrature is not None and get_formulation(scene.material.formulation).penalised):
+    s = scene.ancf
+    if not (el.pressure and s.quadrature is not None and penalised):
         return
     dx = max(p.degree()[0] for p in el.pressure_polys)
     dy = max(p.degree()[1] for p in el.pressure_polys)

@@ -40,10 +40,11 @@ def _run(args) -> int:
     scene = load_scene(args.scene)
     json_out = check_output_file(args.json, "--json")
     vtk_dir = check_output_dir(args.vtk, "--vtk")
+    name = safe_name(scene.name)            # the output files' stem
     resolved = plan(scene)                  # the scene checked and resolved once, for the whole run
     for w in resolved.capacity_warnings:
         print(f"ancf: warning: {w}", file=sys.stderr)
-    load_s = load(scene)
+    load_s = load(resolved)
     progress = Progress(scene.analysis.t_end, enabled=not args.quiet) if scene.analysis.kind == "dynamic" else None
     try:
         rec, (model, res) = run_scene(resolved, progress=progress)
@@ -56,7 +57,6 @@ def _run(args) -> int:
         write_record(rec, json_out)
     if vtk_dir and res is not None and getattr(res, "u", True) is not None:
         from .output import frame_strip, write_vtk
-        name = safe_name(scene.name)
         states = ([(o.t, o.state.u) for o in res.outputs] if scene.analysis.kind == "dynamic"
                   else [(0.0, res.u)])
         pvd = write_vtk(model, states, vtk_dir, name)

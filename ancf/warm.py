@@ -20,10 +20,15 @@ import time
 from dataclasses import replace
 from pathlib import Path
 
+from typing import TYPE_CHECKING
+
 from contract.scene import Scene, load_scene, scene_from_dict
 
 from .admission import refused_integrators
 from .elements import ELEMENTS
+
+if TYPE_CHECKING:
+    from .build import Plan
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENES = ROOT / "scenes"
@@ -54,17 +59,17 @@ def compiled_signatures() -> int:
     return n
 
 
-def load(scene: Scene) -> float:
-    """Load (or compile) the compiled code ``scene`` runs, and take the one-off checks its
-    record carries (the rank tests of a rule the scene chose, :attr:`ancf.build.Plan.rule_warnings`,
-    cached per element, rule and l_e / h: about a second, which a timed run's first
-    sample would otherwise hold); return the wall time it took."""
-    from .build import plan
+def load(p: "Plan") -> float:
+    """Load (or compile) the compiled code the planned scene runs, and take the one-off
+    checks its record carries (the rank tests of a rule the scene chose,
+    :attr:`ancf.build.Plan.rule_warnings`, cached per element, rule and l_e / h: about a
+    second, which a timed run's first sample would otherwise hold); return the wall time
+    it took."""
     from .simulation import run_scene
 
     t0 = time.perf_counter()
-    run_scene(tiny(scene))
-    plan(scene).rule_warnings
+    run_scene(tiny(p.scene))
+    p.rule_warnings
     return time.perf_counter() - t0
 
 
@@ -143,12 +148,13 @@ def prune() -> list[Path]:
 def warm(log=print) -> float:
     """Load or compile what every shipped scene and every variant runs (and remove the
     caches of earlier code); the time taken."""
+    from .build import plan
     from .compiled_cache import cache_dir
 
     t0 = time.perf_counter()
     gone = prune()
     for s in shipped() + variants():
-        load(s)
+        load(plan(s))
     dt = time.perf_counter() - t0
     log(f"ancf: compiled code ready in {cache_dir()} ({dt:.1f} s"
         + (f"; {len(gone)} cache(s) of earlier code removed)" if gone else ")"))

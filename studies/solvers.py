@@ -106,10 +106,11 @@ def _run_continuum(scene: dict) -> dict:
 
 
 def _warm_ancf(scene: dict) -> None:
+    from ancf.build import plan
     from ancf.warm import load
     from contract.scene import scene_from_dict
 
-    load(scene_from_dict(scene))
+    load(plan(scene_from_dict(scene)))
 
 
 def _check_ancf(scene: dict) -> None:

@@ -12,11 +12,12 @@ ROOT = Path(__file__).resolve().parent.parent
 
 PROBE = """
 import json, sys
+from ancf.build import plan
 from ancf.simulation import run_scene
 from ancf.warm import compiled_signatures, load, shipped
 out = {}
 for scene in shipped():
-    load(scene)
+    load(plan(scene))
     before = compiled_signatures()
     run_scene(scene)
     out[scene.name] = [before, compiled_signatures()]
