@@ -308,7 +308,7 @@ def test_cli_vtk_and_frame_strip(tmp_path):
     s = pendulum_scene(n=4, t_end=0.02, dt=1e-3)
     scene_file = tmp_path / "p.toml"
     scene_file.write_text("\n".join(
-        [f'name = "p"'] + [f"[{k}]\n" + "\n".join(f"{kk} = {v!r}".replace("'", '"') for kk, v in t.items())
+        ['name = "p"'] + [f"[{k}]\n" + "\n".join(f"{kk} = {v!r}".replace("'", '"') for kk, v in t.items())
                            for k, t in s.items() if isinstance(t, dict)]))
     assert load_scene(scene_file).ancf.elements == 4
     out = tmp_path / "vtk"

@@ -255,7 +255,6 @@ def test_output_paths_are_checked_before_the_solve(tmp_path, capsys, monkeypatch
     """Before the solve (the solver is replaced by one that refuses), no stray file left."""
     blocker = tmp_path / "a-file"
     blocker.write_text("x")
-    d = scene_with(ancf={"elements": 2000})
     scene = tmp_path / "long.toml"
     scene.write_text(SCENE.read_text().replace("elements = 16", "elements = 2000"))
     import ancf.simulation

@@ -35,8 +35,8 @@ from .venv import PEER_PYTHON, parse_peer_output, run_peer_script  # noqa: F401 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "scenes" / "pendulum-yeoh-plane-stress.toml"
 PEER_SCRIPT = Path(__file__).with_name("exudyn_pendulum.py")
-TARGET_RATIO = 1.0          # issue 10: at least as fast as Exudyn (issue 4 asked for 3x)
-# issue 22: at equal steps, HB2n-12 within half of Exudyn's time and HB2n-16 within 0.8 of it
+TARGET_RATIO = 1.0          # at least as fast as Exudyn
+# at equal steps, HB2n-12 within half of Exudyn's time and HB2n-16 within 0.8 of it
 TARGETS = {"HB2n-12": 0.5, "HB2n-16": 0.8}
 
 
@@ -238,7 +238,7 @@ def peers_markdown(result: dict, published: dict | None = None) -> str:
                      f"{min(o['wall_s']):.4f}-{max(o['wall_s']):.4f} | {o['cpu_median_s']:.4f} | "
                      f"{min(o['cpu_s']):.4f}-{max(o['cpu_s']):.4f} | {rw:.2f}, {rc:.2f} | "
                      f"{med:.2f} ({', '.join(f'{x:.2f}' for x in rr)}) | {target:g}: {verdict} |")
-    lines += ["", "Targets (issue 22): HB2n-12 within 0.5 and HB2n-16 within 0.8 of Exudyn's time; a target "
+    lines += ["", "Targets: HB2n-12 within 0.5 and HB2n-16 within 0.8 of Exudyn's time; a target "
               "counts as met when the median over the rounds of each round's CPU ratio is within it (the CPU "
               "ratio is the steadier one on a shared machine, and a round's two medians are taken in the same "
               "phase of the machine's speed).", "",

@@ -1,5 +1,5 @@
 """Who is cheaper at equal accuracy: our pendulum and Exudyn's ANCF cable pendulum on one
-work-precision diagram, timed side by side in one run (``make bench-peers``, issue 10).
+work-precision diagram, timed side by side in one run (``make bench-peers``).
 
     .venv/bin/python -m studies peers work-precision [--scene pendulum|thick] [--counts 2 4 8 16 32 64]
         [--element HB2n-12 --element HB2n-16 --element HB2n-20xyp --element HB2n-20xypm --element HB2n-40p --element HB2n-60p

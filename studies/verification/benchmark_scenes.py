@@ -187,7 +187,7 @@ def arc_departure(phi: float, ratio: float) -> float:
     """|r_tip(exact pure bending) - r_tip(elastica)| / L: how far the plane-stress strip's own
     arc (its curvature and its mid-line's stretch, :func:`plane_stress_bending`) lies from
     Euler's inextensible one at the same couple; the beam's tip is read at r(L, 0)."""
-    L, w = SLENDER_BEAM["length"], SLENDER_BEAM["width"]
+    L = SLENDER_BEAM["length"]
     h = L / ratio
     c, _ = constants("neo-hookean")
     M = phi * 3.0 * mu_of("neo-hookean") * h ** 3 / 12.0 / L          # per width

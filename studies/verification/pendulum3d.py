@@ -1,4 +1,4 @@
-"""The paper's pendulum as the real 3D beam (issue 11; ``make study-full``).
+"""The paper's pendulum as the real 3D beam (``make study-full``).
 
 The flexible pendulum (350 x 5 x 7 mm, pinned, released horizontal under gravity) as a
 3D solid (reference_fem ``model = "3d"``: Q2/Q1 hexahedra, exactly incompressible, the

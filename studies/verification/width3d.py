@@ -1,5 +1,5 @@
 """The 2D-assumption map: the static tip of the real 3D beam against plane stress and
-plane strain as the width grows (issue 11).
+plane strain as the width grows.
 
 The paper's cantilever (L = 160 mm, h = 5 mm, own weight) as a 3D solid
 (reference_fem ``model = "3d"``, Q2/Q1 hexahedra, exactly incompressible, clamped face)

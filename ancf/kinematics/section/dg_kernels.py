@@ -43,7 +43,7 @@ def assemble_dg(u0, u1, dN, w, dofs, ops, consts, pr, f, Kc, chunk, R, Fb, ab, J
     W^_a = [int_0^1 W_a(a0 + s da, J0) + W_a(a0 + s da, J1) ds] / 2 and W^_J alike, by
     3-point Gauss in s; the second derivatives at (a_m, J_m). Returns OK or
     INADMISSIBLE (det F <= 0 at u0 or u1). Scratch: :func:`dg_scratch`."""
-    ne, nq = dofs.shape[0], dN.shape[0]
+    ne = dofs.shape[0]
     last = ops.shape[0] - 1
     f[:] = 0.0
     Kc[:, :] = 0.0

@@ -96,7 +96,7 @@ def write_gold(out_dir: Path, levels: int = 5, progress=None) -> Path:
     return path
 
 
-# -- the real beam in 3D (issue 11) -----------------------------------------------------
+# -- the real beam in 3D ---------------------------------------------------------------
 FILE_3D = "fem_cantilever_3d.json"
 # Level 0 of the 3D sequences: 16 x 1 x 1 Q2/Q1 hexahedra, graded along x toward the clamp
 # (cell-to-cell factor 8^(1/15): the last cell 8 times the first; each refined level takes
