@@ -73,7 +73,13 @@ def _list(args) -> int:
 
 
 def _run(args) -> int:
+    from contract.console import import_modules
+
+    from .engine import catalog as catalogs
+
     out = resolve_out(args.out, args.tiny)
+    import_modules(args.imports)
+    catalogs.IMPORTED.extend(args.imports)        # their elements join the studies
     catalog = load_catalog(args.tiny, args.catalog)
     if args.names not in (["all"], ["full"]):
         for n in args.names:
@@ -240,6 +246,9 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--timeout", type=float, default=None,
                    help="seconds per solver run before it is stopped and recorded as failed (default: the "
                         f"study's grid key timeout_s, else {DEFAULT_TIMEOUT_S:g})")
+    r.add_argument("--import", dest="imports", action="append", default=[], metavar="MODULE",
+                   help="import a module first: the elements it registers join every study that runs them "
+                        "(repeatable; write to another --out than reports/)")
     rp = sub.add_parser("report", help="rebuild tables, figures and README from records")
     rp.add_argument("--tiny", action="store_true")
     rp.add_argument("--out")

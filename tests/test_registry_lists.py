@@ -1,8 +1,8 @@
 """The registries are the only lists: an element registered once joins every study, card
 and diagram its tags admit, and none that its tags keep out.
 
-The element here is a copy of HB2n-12 under another name, registered in this process
-(as a user's ``--import`` module would). Each study's declared grid, and (full tier) the
+The element here is a copy of HB2n-12 under another name, registered in this process by
+this module, which then stands where ``studies run --import`` puts a user's module. Each study's declared grid, and (full tier) the
 cases it expands into, are searched for its name; the studies that reproduce the
 paper take their elements by the tag "paper" and must not take it.
 """
@@ -33,10 +33,14 @@ def _names(value) -> set[str]:
 
 @pytest.fixture
 def copied():
+    from studies.engine import catalog
+
     spec = register_element(dataclasses.replace(get_element("HB2n-12"), name=NAME, tags=()))
+    catalog.IMPORTED.append(ELEMENTS.origin[NAME])       # as `studies run --import` does
     try:
         yield spec
     finally:
+        catalog.IMPORTED.remove(ELEMENTS.origin[NAME])
         del ELEMENTS[NAME]
 
 
@@ -59,6 +63,27 @@ def test_and_in_their_cases(copied):
     print("the registered element appears in the cases of:", sorted(appears))
     assert TAKING <= appears, f"missing from {sorted(TAKING - appears)}"
     assert not appears & NOT_TAKING, f"in the paper's studies {sorted(appears & NOT_TAKING)}"
+
+
+def test_an_element_a_card_imported_stays_out_of_the_studies():
+    """A module imported for its cards (``studies card X --import M``, which rebuilds the
+    reports afterwards) does not put its element into the studies' grids."""
+    from studies.engine.catalog import load_catalog
+
+    register_element(dataclasses.replace(get_element("HB2n-12"), name=NAME, tags=()))
+    try:
+        assert NAME in select()                  # registered: `studies card all` takes it
+        assert not any(NAME in _names(s.grid) for s in load_catalog().values())
+    finally:
+        del ELEMENTS[NAME]
+
+
+def test_its_cases_carry_the_module_a_worker_imports(copied):
+    from contract import paper
+    from studies.engine.case import make_case
+
+    case = make_case("s", "ancf", paper.cantilever_scene("yeoh", "plane-stress", NAME, 4))
+    assert case.options["imports"] == [ELEMENTS.origin[NAME]]
 
 
 def test_the_card_and_the_peers_diagram_take_it_too(copied):
@@ -94,3 +119,13 @@ def test_a_grid_selector_with_an_unknown_key_names_it():
     with pytest.raises(ValueError, match=r"table3\.elements\.registered: unknown keys \['tag'\]"):
         registered({"elements": {"registered": {"tag": "paper"}}}, "table3")
     assert registered({"e": {"registered": {"tagged": "paper"}}}, "s") == {"e": select("paper")}
+
+
+def test_a_study_leaves_an_element_out_only_with_its_reason():
+    from studies.engine.catalog import registered
+
+    got = registered({"registered": {"tagged": "paper", "except": {"HB3n-12": "not converged here"}}}, "s")
+    assert got == [n for n in select("paper") if n != "HB3n-12"]
+    for bad in ({"HB3n-12": ""}, {"HBx": "why"}, ["HB3n-12"]):
+        with pytest.raises(ValueError, match=r"s\.registered\.except: \{element: why\}"):
+            registered({"registered": {"except": bad}}, "s")

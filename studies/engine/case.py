@@ -143,11 +143,32 @@ def packages(case: "Case") -> dict:
     return solver_fingerprint(case.solver, case.scene, case.options)["packages"]
 
 
+def user_modules(scene: Mapping) -> list[str]:
+    """The modules that registered the scene's element and law where they are not built in
+    (what a worker imports to have them: the case's ``imports``); a script's (``__main__``)
+    cannot be imported and is left out."""
+    from ancf.elements import BUILTIN, ELEMENTS
+    from mechanics.laws import BUILTIN as BUILTIN_LAWS, LAWS
+
+    out = []
+    for name, registry, builtin in (((scene.get("ancf") or {}).get("element"), ELEMENTS, BUILTIN),
+                                    ((scene.get("material") or {}).get("law"), LAWS, BUILTIN_LAWS)):
+        origin = registry.origin.get(name) if isinstance(name, str) and name not in builtin else None
+        if origin and origin != "__main__":
+            out.append(origin)
+    return out
+
+
 def make_case(study: str, solver: str, scene: Mapping, options: Mapping | None = None) -> Case:
     """A case from plain data; the solver name and the scene are checked here (an
-    unknown solver fails with the list of valid ones; a bad scene with a SceneError)."""
+    unknown solver fails with the list of valid ones; a bad scene with a SceneError). A
+    scene naming a user's element or law carries the modules that register them in its
+    options' ``imports`` (:func:`user_modules`: how it is run, not what it is)."""
     get_solver(solver).check(dict(scene))
-    return Case(study, solver, canonical(scene), canonical(dict(options or {})), solver_module=SOLVERS.origin[solver])
+    options = dict(options or {})
+    if user := user_modules(scene):
+        options["imports"] = sorted(set(options.get("imports", ())) | set(user))
+    return Case(study, solver, canonical(scene), canonical(options), solver_module=SOLVERS.origin[solver])
 
 
 __all__ = ["Case", "make_case", "case_id", "packages", "canonical", "SOLVERS"]

@@ -13,8 +13,9 @@ studies whose records it reads (``needs``), whether it is heavy (``full``: left 
 
 A grid names its elements by the registry, never by a list of names: a value
 ``{"registered": {"tagged": ..., "without": [...], "running": [...]}}`` becomes, when the
-catalog loads (after a user's ``--import``), the registered elements those tags and
-formulations select (:func:`ancf.elements.select`); a ``tiny`` grid may list a few names.
+catalog loads, the built-in elements and those of a study run's ``--import`` modules
+(:data:`IMPORTED`) that those tags and formulations select (:func:`ancf.elements.select`);
+a ``tiny`` grid may list a few names.
 
 Optionally ``gold_values(ctx) -> {name: (value, tolerance)}`` for the tiny-mode
 regression (tests/gold/studies_tiny.json), and ``audit(ctx) -> [problem]``: the study's
@@ -39,9 +40,20 @@ CASES_TOML = None    # the default catalog: the studies declared in their module
 META_KEYS = ("module", "title", "needs", "tiny", "full")
 COMMON = "common"   # not a study: grid keys every study gets unless it sets its own
 # a grid value {"registered": {"tagged": ..., "without": [...], "running": [...]}}: the
-# registered elements those tags and formulations select (:func:`registered`)
+# studied elements those tags and formulations select (:func:`registered`)
 REGISTERED = "registered"
-SELECT_KEYS = ("tagged", "without", "running")
+SELECT_KEYS = ("tagged", "without", "running", "except")
+# the modules a study run imported so that their elements join its studies (``studies run
+# --import``); an element another module registered (a card's) stays out of the studies
+IMPORTED: list[str] = []
+
+
+def studied_elements() -> list[str]:
+    """The elements the studies take: the built-in ones and those the modules of
+    :data:`IMPORTED` registered, in the registry's order."""
+    from ancf.elements import BUILTIN, ELEMENTS
+
+    return [n for n in ELEMENTS if n in BUILTIN or ELEMENTS.origin.get(n) in IMPORTED]
 
 
 @dataclass(frozen=True)
@@ -111,19 +123,28 @@ def load_catalog(tiny: bool = False, path: Path | None = CASES_TOML) -> dict[str
 
 
 def registered(value, where: str):
-    """A grid with each ``{"registered": {...}}`` replaced by the names of the registered
-    elements it selects (:func:`ancf.elements.select`: keys ``tagged``, ``without``,
-    ``running``), read when the catalog loads, after a user's ``--import``: a study names
-    its elements by their tags, never by a list of names."""
+    """A grid with each ``{"registered": {...}}`` replaced by the names of the studied
+    elements (:func:`studied_elements`) it selects (:func:`ancf.elements.select`: keys
+    ``tagged``, ``without``, ``running``; ``except``: {element: why the study leaves it
+    out}), read when the catalog loads: a study names its elements by their tags, never by
+    a list of names."""
     if isinstance(value, dict) and set(value) == {REGISTERED}:
         from ancf.elements import select
 
-        sel = value[REGISTERED]
+        sel = dict(value[REGISTERED]) if isinstance(value[REGISTERED], dict) else value[REGISTERED]
         odd = sorted(set(sel) - set(SELECT_KEYS)) if isinstance(sel, dict) else [sel]
         if odd:
             raise ValueError(f"{where}.{REGISTERED}: unknown keys {odd}; allowed: {', '.join(SELECT_KEYS)}")
+        # except: {element: why this study leaves it out} (a measured reason, never a list of members)
+        left_out = sel.pop("except", {})
+        from ancf.elements import ELEMENTS
+        if not (isinstance(left_out, dict) and all(n in ELEMENTS and isinstance(w, str) and w
+                                                    for n, w in left_out.items())):
+            raise ValueError(f"{where}.{REGISTERED}.except: {{element: why}} of registered elements, "
+                             f"got {left_out!r}")
         try:
-            return select(**sel)
+            studied = set(studied_elements())
+            return [n for n in select(**sel) if n in studied and n not in left_out]
         except (TypeError, ValueError) as e:
             raise ValueError(f"{where}.{REGISTERED}: {e}") from None
     if isinstance(value, dict):

@@ -23,8 +23,12 @@ STUDY = {
     "full": True,
     "grid": {
         "laws": ["neo-hookean", "mooney-rivlin", "yeoh"],
-        # every element that runs the three formulations, but one that locks
-        "elements": {"registered": {"without": ["locking"], "running": ["paper", "plane-strain", "plane-stress"]}},
+        # every element that runs the three formulations, but one that locks, and one not
+        # converged on these meshes (a formulation's answer is compared here, not a mesh's)
+        "elements": {"registered": {"without": ["locking"], "running": ["paper", "plane-strain", "plane-stress"],
+                                    "except": {"HB2n-16": "its tip still moves 1.2 to 3.2 % from 160 to 320 "
+                                                          "elements in the penalised formulations (volumetric "
+                                                          "locking: its card; the paper runs it on 640)"}}},
         "counts": [160, 320],
         # [formulation, quadrature, clamp]
         "configurations": [["paper", [2, 2], "all"], ["paper", [3, 2], "face"], ["plane-strain", "default", "face"],
@@ -33,7 +37,10 @@ STUDY = {
         # the pendulum half: each formulation's ANCF pendulum against the continuum pendulums
         # (tests/gold/fem_pendulum.json: plane stress, and plane strain exactly incompressible)
         "pendulum": {"elements": {"registered": {"without": ["locking"],
-                                                 "running": ["paper", "plane-strain", "plane-stress"]}},
+                                                 "running": ["paper", "plane-strain", "plane-stress"],
+                                                 "except": {"HB3n-12": "on 32 elements its plane-stress pendulum "
+                                                                       "is 8 to 9 mm off its own continuum model "
+                                                                       "(NH, Yeoh; shear locking: its card)"}}},
                      "count": 32,
                      "dt": 0.0005,
                      "rho_inf": 0.5,
