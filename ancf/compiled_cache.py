@@ -8,12 +8,14 @@ module has changed, and runs the old code. Measured: after an edit of
 were removed (``tests/test_compiled_cache.py`` shows the same with two small modules).
 
 So :func:`configure` (called by ``ancf/__init__.py``, before any compiled function is
-defined) points numba at ``<base>/numba-<digest>``, the digest taken over the code of
+defined) points numba at ``<base>/numba-<digest>-<toolchain>``, the digest taken over the code of
 every module of the package (but its front end: the command line, the compiled-code
 loader, the output writers) and of ``mechanics`` (whose step rules the step loop
 compiles), comments and docstrings left out by the records' normaliser
 (:func:`contract.source.normalised`): an edit of code anywhere starts a fresh
-cache (one compilation), and an unchanged package loads its compiled code as before. ``<base>`` is ``$NUMBA_CACHE_DIR``
+cache (one compilation), and an unchanged package loads its compiled code as before; the
+toolchain (:func:`toolchain`: interpreter, numba, numpy) keeps the caches of two venvs of
+one clone apart. ``<base>`` is ``$NUMBA_CACHE_DIR``
 if set, else the package's ``__pycache__``, else (not writable) ``~/.cache/ancf``.
 numba has one cache directory per process, so other packages' cached functions defined
 after this call are stored there too.
@@ -88,9 +90,25 @@ def _writable(d: Path) -> bool:
     return os.access(d, os.W_OK)
 
 
+def toolchain() -> str:
+    """The interpreter, numba and numpy this process compiles with, and the machine (8 hex
+    digits): two venvs of one clone (Debian's packages and PyPI's) never load each other's
+    compiled code, nor overwrite each other's cache."""
+    import platform
+    import sys
+
+    import numba
+    import numpy
+
+    text = (f"python {sys.version_info[0]}.{sys.version_info[1]} numba {numba.__version__} "
+            f"numpy {numpy.__version__} {platform.machine()}")
+    return hashlib.sha256(text.encode()).hexdigest()[:8]
+
+
 def cache_dir(package: Path = PACKAGE) -> Path:
-    """Where numba caches the package's compiled code (see the module docstring)."""
-    name = f"numba-{source_digest(package)}"
+    """Where numba caches the package's compiled code (see the module docstring):
+    ``numba-<source digest>-<toolchain>``."""
+    name = f"numba-{source_digest(package)}-{toolchain()}"
     for base in (os.environ.get("NUMBA_CACHE_DIR"), Path(package) / "__pycache__", Path.home() / ".cache" / "ancf"):
         if base and _writable(Path(base) / name):
             return Path(base) / name

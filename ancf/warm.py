@@ -128,15 +128,18 @@ def shipped() -> list[Scene]:
 
 
 def prune() -> list[Path]:
-    """Remove the caches of earlier versions of the code (``numba-<digest>`` beside the
-    current one, 25 MB each) and the digest memos of earlier sources
-    (:func:`ancf.compiled_cache.source_digest`); return the caches removed."""
+    """Remove the caches of earlier versions of the code compiled by this toolchain
+    (``numba-<digest>-<toolchain>`` beside the current one, 25 MB each; another venv's
+    stay) and the digest memos of earlier sources (:func:`ancf.compiled_cache.source_digest`);
+    return the caches removed."""
+    import re
     import shutil
 
-    from .compiled_cache import PACKAGE, cache_dir
+    from .compiled_cache import PACKAGE, cache_dir, toolchain
 
     current = cache_dir()
-    gone = [d for d in current.parent.glob("numba-*") if d.is_dir() and d != current]
+    mine = re.compile(rf"numba-[0-9a-f]{{16}}(-{toolchain()})?$")    # (no suffix: before the toolchain key)
+    gone = [d for d in current.parent.glob("numba-*") if d.is_dir() and d != current and mine.match(d.name)]
     for d in gone:
         shutil.rmtree(d, ignore_errors=True)
     memos = sorted((PACKAGE / "__pycache__").glob("digest-*"), key=lambda p: p.stat().st_mtime)

@@ -218,6 +218,7 @@ def test_a_card_names_why_a_pendulum_run_has_no_result():
     assert "- n = 8, dt = 0.5 ms: failed: step below dt_min at t = 0 s: det F <= 0" in lines
 
 
+@pytest.mark.records
 def test_a_committed_card_renders_again_from_its_records(tmp_path):
     """The quick guard of the card runs: HB2n-12's committed card rendered again from
     the committed records alone (no solver run) is the committed card, line for line."""

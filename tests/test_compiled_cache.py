@@ -81,7 +81,7 @@ def _edits_keep_or_change_the_digest(tmp_path, pick) -> None:
         p.write_text(text)
     assert compiled_cache.source_digest(copy) == d0
     assert numba.config.CACHE_DIR == str(compiled_cache.cache_dir())
-    assert Path(numba.config.CACHE_DIR).name == f"numba-{d0}"
+    assert Path(numba.config.CACHE_DIR).name == f"numba-{d0}-{compiled_cache.toolchain()}"
     assert ancf.__version__
 
 
@@ -97,3 +97,22 @@ def test_the_digest_covers_the_code_of_every_module_and_names_the_cache(tmp_path
     """An edit of code in any module (the front end's aside) starts a new cache; a
     comment, a docstring or a blank line does not."""
     _edits_keep_or_change_the_digest(tmp_path, lambda ms: ms)
+
+
+def test_prune_keeps_another_toolchains_cache_and_drops_this_ones_earlier_code():
+    """Two venvs of one clone (Debian's numba and PyPI's) keep their own compiled code: the
+    warm-up's prune removes the earlier code of its own toolchain only."""
+    from ancf.warm import prune
+
+    current = compiled_cache.cache_dir()
+    other = current.parent / f"numba-{'0' * 16}-{'f' * 8}"
+    earlier = current.parent / f"numba-{'0' * 16}-{compiled_cache.toolchain()}"
+    for d in (other, earlier):
+        d.mkdir(parents=True, exist_ok=True)
+    try:
+        gone = prune()
+        assert earlier in gone and not earlier.exists()
+        assert other.exists() and other not in gone and current.exists()
+    finally:
+        shutil.rmtree(other, ignore_errors=True)
+        shutil.rmtree(earlier, ignore_errors=True)

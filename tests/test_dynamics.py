@@ -299,6 +299,7 @@ def test_cli_vtk_and_frame_strip(tmp_path):
     """`ancf run --vtk DIR`: a .vtu per output time (valid XML, 4 x 2 quads per
     element, displacement zero at t = 0), a .pvd collection and a frame strip PNG; the
     record carries the centre-line configurations."""
+    import json
     import subprocess
     import sys
     import xml.etree.ElementTree as ET
@@ -308,8 +309,9 @@ def test_cli_vtk_and_frame_strip(tmp_path):
     s = pendulum_scene(n=4, t_end=0.02, dt=1e-3)
     scene_file = tmp_path / "p.toml"
     scene_file.write_text("\n".join(
-        ['name = "p"'] + [f"[{k}]\n" + "\n".join(f"{kk} = {v!r}".replace("'", '"') for kk, v in t.items())
-                           for k, t in s.items() if isinstance(t, dict)]))
+        ['name = "p"'] + [f"[{k}]\n" + "\n".join(f"{kk} = {json.dumps(v, default=lambda o: o.tolist())}"
+                                                for kk, v in t.items())
+                           for k, t in s.items() if isinstance(t, dict)]))   # (numpy 2's repr is not TOML)
     assert load_scene(scene_file).ancf.elements == 4
     out = tmp_path / "vtk"
     p = subprocess.run([sys.executable, "-m", "ancf", "run", str(scene_file), "--vtk", str(out),

@@ -59,6 +59,7 @@ def _strip(rec: dict) -> dict:
     ("yeoh", "3d", "mixed", "generalized-alpha", None),
 ], lambda law, model, inc, integrator, loads: model == "3d" or inc == "mixed",
     "test_same_mesh_same_history_as_dolfinx"))
+@pytest.mark.dolfinx
 def test_same_mesh_same_history_as_dolfinx(law, model, inc, integrator, loads):
     """35 x 2 Q2 (Q2/Q1) cells, dt = 2 ms, 20 ms (3D: 10 ms): the same steps and Newton
     iterations, the same tip history, centre line and energies, and a record with the same

@@ -12,6 +12,7 @@ ROOT = Path(__file__).resolve().parents[1]
 DEBIAN = "/usr/lib/python3/dist-packages/"
 
 
+@pytest.mark.debian
 @pytest.mark.parametrize("name", ["numpy", "scipy"])
 def test_numpy_and_scipy_are_debians(name):
     """pip must never install numpy/scipy into the venv (dolfinx is built against Debian's)."""

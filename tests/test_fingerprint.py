@@ -62,6 +62,7 @@ def _modules(solver: str, scene: dict, options: dict | None = None, module: str 
     return fp.modules(*get_solver(solver, module).entries(scene, options))
 
 
+@pytest.mark.dolfinx
 def test_each_backend_counts_its_own_code_and_packages():
     dolfinx, felupe = {"fem": {"backend": "dolfinx"}}, {"fem": {"backend": "felupe"}}
     md, mf = _modules("continuum", dolfinx), _modules("continuum", felupe)

@@ -18,6 +18,8 @@ from contract.scene import scene_from_dict
 from studies.verification.continuum_gold import pendulum
 from studies.verification.continuum_gold.pendulum import pendulum_dict
 
+pytestmark = pytest.mark.dolfinx      # the continuum runs of this module are DOLFINx's
+
 GOLD_PATH = Path(__file__).parent / "gold" / "fem_pendulum.json"
 ROOT = Path(__file__).parent.parent
 # Coarse mesh of the fast tests: 35 x 2 Q2 cells (10 mm x 2.5 mm), pin at a vertex.

@@ -10,7 +10,8 @@ from ancf.core.jet import Jet
 from contract import paper
 from contract.scene import MaterialSpec
 from mechanics.laws import LAWS
-from reference_fem.dolfinx_backend.models import MODELS
+pytest.importorskip("ufl", reason="needs the FEniCSx stack (DOLFINx, UFL): the Debian route or conda-forge")
+from reference_fem.dolfinx_backend.models import MODELS  # noqa: E402
 
 PENALTY = paper.PENALTY
 

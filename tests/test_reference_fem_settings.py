@@ -15,6 +15,8 @@ from reference_fem.simulation import check_static
 from reference_fem.settings import DEFAULT_ASPECT, DEFAULT_CELLS_HEIGHT, fem_settings
 from studies.verification.continuum_gold.cantilever import cantilever
 
+pytestmark = pytest.mark.dolfinx      # the continuum runs of this module are DOLFINx's
+
 GOLD = Path(__file__).parent / "gold" / "fem_cantilever.json"
 
 

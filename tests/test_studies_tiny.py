@@ -50,6 +50,7 @@ def few(tmp_path_factory):
     return out, log
 
 
+@pytest.mark.dolfinx
 def test_a_few_studies_leave_a_record_per_case_reports_from_records_and_their_gold_values(few, monkeypatch):
     """The quick tier's guard of the four tests on every study below: records per case,
     reports from records only, a warm rerun that computes nothing, the gold values."""
