@@ -12,10 +12,11 @@ studies whose records it reads (``needs``), whether it is heavy (``full``: left 
   figures from records only.
 
 A grid names its elements by the registry, never by a list of names: a value
-``{"registered": {"tagged": ..., "without": [...], "running": [...]}}`` becomes, when the
-catalog loads, the built-in elements and those of a study run's ``--import`` modules
-(:data:`IMPORTED`) that those tags and formulations select (:func:`ancf.elements.select`);
-a ``tiny`` grid may list a few names.
+``{"registered": {"tagged": ..., "without": [...], "running": [...], "except": {element:
+why}}}`` becomes, when the catalog loads, the built-in elements and those of a study run's
+``--import`` modules (:data:`IMPORTED`) that those tags and formulations select
+(:func:`ancf.elements.select`), but those ``except`` leaves out with its reason; a ``tiny``
+grid may list a few names.
 
 Optionally ``gold_values(ctx) -> {name: (value, tolerance)}`` for the tiny-mode
 regression (tests/gold/studies_tiny.json), and ``audit(ctx) -> [problem]``: the study's
@@ -129,7 +130,7 @@ def registered(value, where: str):
     out}), read when the catalog loads: a study names its elements by their tags, never by
     a list of names."""
     if isinstance(value, dict) and set(value) == {REGISTERED}:
-        from ancf.elements import select
+        from ancf.elements import ELEMENTS, select
 
         sel = dict(value[REGISTERED]) if isinstance(value[REGISTERED], dict) else value[REGISTERED]
         odd = sorted(set(sel) - set(SELECT_KEYS)) if isinstance(sel, dict) else [sel]
@@ -137,7 +138,6 @@ def registered(value, where: str):
             raise ValueError(f"{where}.{REGISTERED}: unknown keys {odd}; allowed: {', '.join(SELECT_KEYS)}")
         # except: {element: why this study leaves it out} (a measured reason, never a list of members)
         left_out = sel.pop("except", {})
-        from ancf.elements import ELEMENTS
         if not (isinstance(left_out, dict) and all(n in ELEMENTS and isinstance(w, str) and w
                                                     for n, w in left_out.items())):
             raise ValueError(f"{where}.{REGISTERED}.except: {{element: why}} of registered elements, "
