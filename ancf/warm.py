@@ -19,7 +19,6 @@ import sys
 import time
 from dataclasses import replace
 from pathlib import Path
-
 from typing import TYPE_CHECKING
 
 from contract.scene import Scene, load_scene, scene_from_dict
@@ -59,7 +58,7 @@ def compiled_signatures() -> int:
     return n
 
 
-def load(p: "Plan") -> float:
+def load(p: Plan) -> float:
     """Load (or compile) the compiled code the planned scene runs, and take the one-off
     checks its record carries (the rank tests of a rule the scene chose,
     :attr:`ancf.build.Plan.rule_warnings`, cached per element, rule and l_e / h: about a
