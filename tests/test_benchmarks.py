@@ -8,6 +8,8 @@ from contract.scene import scene_from_dict
 from studies.verification.closed_forms import (MATTIASSON_1981, elastica_end_moment, elastica_tip_load, nominal_stress,
                                   simple_shear_stress, uniaxial_stretch)
 
+from .conftest import tiered
+
 
 def test_the_elastica_closed_form_reproduces_mattiassons_table_to_its_last_digit():
     for alpha, (u, v) in MATTIASSON_1981.items():
@@ -74,8 +76,11 @@ def test_the_elastica_is_the_slender_limit_of_a_lock_free_element():
 
 
 @pytest.mark.dolfinx
-@pytest.mark.parametrize("solver, form, x", [("HB2n-40p", "plane-stress", 0.5), ("dolfinx", "plane-strain", 0.2),
-                                             ("felupe", "plane-stress", 0.2)])
+# the continuum's two runs (about 8 s each) in the full tier, the element's in the quick one
+@pytest.mark.parametrize("solver, form, x", tiered([("HB2n-40p", "plane-stress", 0.5), ("dolfinx", "plane-strain", 0.2),
+                                                    ("felupe", "plane-stress", 0.2)],
+                                                   lambda solver, form, x: solver in ("dolfinx", "felupe"),
+                                                   "test_pure_bending_is_rivlins_flexure_in_both_solvers"))
 def test_pure_bending_is_rivlins_flexure_in_both_solvers(solver, form, x):
     """The tiny subset of the bending benchmark: the curvature from two lengths (8 h and 16 h,
     the couple's end zone cancelling) within the benchmark's tolerance of the exact flexure

@@ -26,13 +26,14 @@ from pathlib import Path
 
 import pytest
 
-from .conftest import HAS_FENICSX
+from .conftest import HAS_FENICSX, tiered
 
 ROOT = Path(__file__).resolve().parents[1]
 TUTORIALS = ROOT / "docs" / "tutorials"
 PAGES = sorted(p for p in TUTORIALS.glob("*.md") if p.name != "index.md")
 # pages whose runs include the default continuum backend (DOLFINx)
 CONTINUUM_PAGES = {"first-scene", "your-law"}
+SLOW_PAGES = {"your-element"}
 FENCE = re.compile(r"^(`{3,})\s*(\{[a-z-]+\})?\s*([A-Za-z0-9_-]*)(.*)$")
 NOT_RUN = re.compile(r"<!--\s*not run:\s*(.+?)\s*-->")
 RUNS = ("python", "sh")
@@ -124,7 +125,10 @@ def test_the_tutorials_have_runnable_blocks():
                 assert b["skip"].strip(), f"{page.name}:{b['line']}: 'not run' without a reason"
 
 
-@pytest.mark.parametrize("page", PAGES, ids=[p.stem for p in PAGES])
+# the element tutorial (about 15 s: its element's compile and card) runs in the full tier;
+# the other tutorials keep the steps' runner in the quick one
+@pytest.mark.parametrize("page", tiered(PAGES, lambda p: p.stem in SLOW_PAGES,
+                                        "test_a_tutorial_runs_as_written"), ids=[p.stem for p in PAGES])
 def test_a_tutorial_runs_as_written(page, tmp_path):
     if page.stem in CONTINUUM_PAGES and not HAS_FENICSX:
         pytest.skip(f"{page.name} runs the default continuum code, DOLFINx, which is not installed here")

@@ -137,6 +137,7 @@ def _tips(left: str, levels) -> list[tuple[float, float]]:
     return out
 
 
+@pytest.mark.slow(guard="test_hinged_pendulum_has_the_same_history_in_both_codes")
 def test_hinged_pendulum_converges_under_refinement_and_the_pinned_one_does_not():
     """The pendulum's tip at t = 0.1 s (dt = 5 ms fixed: the same time discretisation at every
     level, so the levels differ by the mesh only) on three meshes of cells halved each time.

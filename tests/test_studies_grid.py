@@ -15,8 +15,13 @@ from contract.scene import scene_from_dict
 from studies.engine.catalog import load_catalog
 from studies.common.grid import counts_of, takes
 
+from .conftest import tiered
 
-@pytest.mark.parametrize("tiny", [False, True], ids=["full", "tiny"])
+
+# the full grids' cases (about 5 s to expand) in the full tier, the tiny grids' in the quick one
+@pytest.mark.parametrize("tiny", tiered([False, True], lambda tiny: not tiny,
+                                        "test_every_ancf_case_of_every_study_passes_the_solvers_check"),
+                         ids=["full", "tiny"])
 def test_every_ancf_case_of_every_study_passes_the_solvers_check(tiny):
     n = 0
     for study in load_catalog(tiny=tiny).values():
