@@ -99,10 +99,12 @@ bench-peers: setup
 	$(PY) -m studies peers work-precision --scene thick
 
 # Exudyn through the external-solver protocol (studies/peers/exudyn.toml, in .venv-peers):
-# the benchmark suite's cases it takes, its records in reports/external/data and its
-# verdicts in reports/external/benchmarks@exudyn.md
+# the benchmark suite's cases it takes and the cable's element card (the sections that need
+# only runs), its records in reports/external/data, its verdicts in
+# reports/external/benchmarks@exudyn.md and its card in reports/external/cards/
 external-exudyn: setup
 	bash tools/setup_peers.sh && $(PY) -m studies external studies/peers/exudyn.toml benchmarks --out reports/external
+	$(PY) -m studies card --solver studies/peers/exudyn.toml --out reports/external
 
 # The documentation site (Sphinx with MyST Markdown and furo, Debian's packages):
 # docs/ -> docs/_build/html; every warning is an error; the reference pages and the results

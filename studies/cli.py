@@ -23,7 +23,9 @@
   records recomputed with today's code and compared field by field
   (:mod:`studies.engine.verify`); exits 1 naming record and field of each mismatch;
 - ``card NAME [NAME ...] [--import MODULE]``: the element report card (:mod:`studies.design.card`),
-  ``paper`` for the four paper elements; written to ``<out>/cards/``;
+  ``paper`` for the four paper elements; written to ``<out>/cards/``; ``card --solver
+  DECLARATION``: an external solver's element, the sections that need only runs
+  (:mod:`studies.external.card`);
 - ``external DECLARATION NAME [NAME ...] [--out DIR]``: the ANCF cases of the named studies
   run on an external solver declared in a TOML file (:mod:`studies.external`), those it
   does not declare skipped with the reason; records in ``DIR/data/<study>@<solver>.jsonl``;
@@ -209,6 +211,15 @@ def _card(args) -> int:
 
     from .design.card import run_cards
 
+    if args.solver:
+        from .external.card import run_external_cards
+
+        out = Path(args.out) if args.out else Path("reports") / "external"
+        for path in run_external_cards(args.solver, args.names, out, args.tiny, args.force, args.dry_run):
+            print(f"card: {path}")
+        return 0
+    if not args.names:
+        raise SystemExit("card: name an element, 'paper' or 'all' (or --solver DECLARATION)")
     out = resolve_out(args.out, args.tiny)
     import_modules(args.imports)          # before "all": the user's elements are registered
     groups = {"paper": select("paper"), "all": select()}
@@ -278,9 +289,13 @@ def parser() -> argparse.ArgumentParser:
     v.add_argument("--reports", help="the reports directory (default reports/)")
     v.add_argument("--workers", type=_positive(int), default=2)
     c = sub.add_parser("card", help="element report cards (NAME ..., or paper)")
-    c.add_argument("names", nargs="+", metavar="NAME",
+    c.add_argument("names", nargs="*", metavar="NAME",
                    help="an element, 'paper' (the paper's four) or 'all' (every registered element, the "
-                        "--import modules' too)")
+                        "--import modules' too); with --solver, the elements it runs by name (none for a "
+                        "solver with its own element)")
+    c.add_argument("--solver", metavar="DECLARATION",
+                   help="the card's run-only sections on an external solver declared in a TOML file "
+                        "(default --out reports/external)")
     c.add_argument("--import", dest="imports", action="append", default=[], metavar="MODULE",
                    help="a module to import first (it registers the user's element); repeatable")
     c.add_argument("--tiny", action="store_true", help="the CI grid")

@@ -269,3 +269,57 @@ def test_the_committed_exudyn_report_is_its_records_verdicts(tmp_path):
     finally:
         del SOLVERS[solver.name]
     assert page.read_text() == (root / "reports" / "external" / "benchmarks@exudyn.md").read_text()
+
+
+def test_a_card_on_an_external_solver_judges_its_runs_and_names_what_it_left_out(tmp_path, solvers):
+    """``studies card --solver``: the card's run-only sections from the stub's records (its
+    made-up tip is judged, not passed: the convergence plateau is its distance to the
+    continuum's gold), what the declaration does not take skipped and named (plane strain,
+    so the locking sweep; the pendulum), the sections that need the element's internals
+    listed as left out; a second run reuses every record."""
+    from studies.common.gold import gold_references
+    from studies.design.card_report import FEM_STATIC
+    from studies.engine.report import vec_error
+    from studies.external.card import elements_of, run_external_cards
+
+    path = declare(tmp_path, supports='formulations = ["plane-stress"]', extra='element = "StubCable"')
+    lines = []
+    [card] = run_external_cards(path, [], tmp_path / "out", tiny=True, log=lines.append)
+    assert card.name == "stub-ok-StubCable.md" and "0 reused" in lines[0] and "0 failed" in lines[0]
+    text = card.read_text()
+    for s in ("## Left out", "## 4.", "## 5.", "### Shear locking", "## 6.", "## 7.", "## 8.", "## 9.", "## 10."):
+        assert s in text, s
+    assert "1. contract checks" in text and "2. rank tests" in text and "## 1. Contract" not in text
+    assert "Volumetric locking: not run: stub-ok does not take formulations 'plane-strain'" in text
+    assert "## 6. Pendulum against the continuum\n\nNot run: stub-ok does not take analysis 'dynamic'" in text
+    L = paper.CANTILEVER["length"]
+    err = vec_error({"ux": 0.0, "uy": -1e-3 * L}, gold_references(FEM_STATIC)[("neo-hookean", "plane-stress")])
+    assert f"| NH | plane-stress | 16 | 0.00, {-1e-3 * L * 1e3:.2f} | {100 * err:.3f} % |" in text
+    recs = [json.loads(x) for x in (tmp_path / "out" / "data" / "card-stub-ok-StubCable.jsonl").read_text().splitlines()]
+    assert recs and {r["scene"]["ancf"]["element"] for r in recs} == {"StubCable"}
+    assert {r["scene"]["material"]["formulation"] for r in recs} == {"plane-stress"}
+    run_external_cards(path, [], tmp_path / "out", tiny=True, log=lines.append)
+    assert f"{len(recs)} reused, 0 computed" in lines[-1]
+    with pytest.raises(ValueError, match="name the elements to card"):
+        elements_of(load_declaration(declare(tmp_path, name="byname")), [])
+
+
+def test_the_committed_exudyn_card_is_its_records_card(tmp_path):
+    """``reports/external/cards/exudyn-ObjectANCFCable2D.md`` rendered again from its
+    committed records alone (no Exudyn run) is the committed card, line for line."""
+    import shutil
+    from pathlib import Path
+
+    from studies.external.card import render
+
+    root = Path(__file__).resolve().parents[1]
+    decl_path = root / "studies" / "peers" / "exudyn.toml"
+    (tmp_path / "data").mkdir()
+    for f in ("card-exudyn-ObjectANCFCable2D.jsonl", "benchmarks@exudyn.jsonl"):
+        shutil.copy(root / "reports" / "external" / "data" / f, tmp_path / "data")
+    solver = register_external(decl_path)
+    try:
+        card = render(solver.declaration, "ObjectANCFCable2D", tmp_path)
+    finally:
+        del SOLVERS[solver.name]
+    assert card.read_text() == (root / "reports" / "external" / "cards" / card.name).read_text()

@@ -541,7 +541,7 @@ def results(warn: Callable[[str], None], out: Path = RESULTS) -> dict[str, list[
     kinds: dict[str, list[str]] = {"summary": [], "peers": [], "reports": [], "tables": [], "cards": []}
     written = set()
     for src in (sorted(REPORTS.glob("*.md")) + sorted((REPORTS / "cards").glob("*.md"))
-                + sorted((REPORTS / "external").glob("*.md"))):
+                + sorted((REPORTS / "external").glob("*.md")) + sorted((REPORTS / "external" / "cards").glob("*.md"))):
         rel = src.relative_to(REPORTS)
         page = out / rel
         _write(page, render_report(src, page, figures, captions, warn))

@@ -167,12 +167,15 @@ def register_external(path: str | Path) -> ExternalSolver:
     return solver
 
 
-def retarget(cases: list[Case], solver: ExternalSolver, of: str = "ancf") -> tuple[list[Case], list[tuple[str, str]]]:
+def retarget(cases: list[Case], solver: ExternalSolver, of: str = "ancf", element: str | None = None,
+             study: str | None = None) -> tuple[list[Case], list[tuple[str, str]]]:
     """The cases of solver ``of`` run on ``solver`` instead, and (case name, reason) of
     each one it does not take (skipped, never run). A solver with an element of its own
-    (``solver.element``) gets that element's name in ``ancf.element`` (and in the scene's
-    name), and cases that then coincide run once."""
+    (``solver.element``), or ``element`` if given, gets that element's name in
+    ``ancf.element`` (and in the scene's name), and cases that then coincide run once. The
+    cases' study is ``<study>@<solver>`` (``study``: the cases' own by default)."""
     decl, out, skipped, seen = solver.declaration, [], [], set()
+    element = element or decl.element
     for c in cases:
         if c.solver != of:
             continue
@@ -181,12 +184,12 @@ def retarget(cases: list[Case], solver: ExternalSolver, of: str = "ancf") -> tup
             skipped.append((c.name, why))
             continue
         scene = c.scene
-        if decl.element and scene.get("ancf"):
+        if element and scene.get("ancf"):
             given = scene["ancf"].get("element", "")
-            scene = {**scene, "name": scene["name"].replace(given, decl.element) if given else scene["name"],
-                     "ancf": {**scene["ancf"], "element": decl.element}}
+            scene = {**scene, "name": scene["name"].replace(given, element) if given else scene["name"],
+                     "ancf": {**scene["ancf"], "element": element}}
         options = {k: v for k, v in c.options.items() if k != "imports"}
-        case = make_case(f"{c.study}@{decl.name}", decl.name, scene, options)
+        case = make_case(f"{study or c.study}@{decl.name}", decl.name, scene, options)
         if case not in seen:
             seen.add(case)
             out.append(case)
