@@ -98,13 +98,17 @@ bench-peers: setup
 	$(PY) -m studies peers work-precision --scene pendulum
 	$(PY) -m studies peers work-precision --scene thick
 
-# Exudyn through the external-solver protocol (studies/peers/exudyn.toml, in .venv-peers):
-# the benchmark suite's cases it takes and the cable's element card (the sections that need
-# only runs), its records in reports/external/data, its verdicts in
-# reports/external/benchmarks@exudyn.md and its card in reports/external/cards/
+# Exudyn through the external-solver protocol (in .venv-peers), its cable
+# (studies/peers/exudyn.toml) and its geometrically exact beam (exudyn-beam2d.toml): the
+# benchmark suite's and the dynamic benchmarks' cases each takes and each one's element card
+# (the sections that need only runs); records in reports/external/data, verdicts in
+# reports/external/*benchmarks@<solver>.md, cards in reports/external/cards/
 external-exudyn: setup
-	bash tools/setup_peers.sh && $(PY) -m studies external studies/peers/exudyn.toml benchmarks --out reports/external
-	$(PY) -m studies card --solver studies/peers/exudyn.toml --out reports/external
+	bash tools/setup_peers.sh
+	for d in exudyn exudyn-beam2d; do \
+		$(PY) -m studies external studies/peers/$$d.toml benchmarks dynamic-benchmarks --out reports/external || exit 1; \
+	done
+	$(PY) -m studies card --solver studies/peers/exudyn.toml --solver studies/peers/exudyn-beam2d.toml --out reports/external
 
 # The documentation site (Sphinx with MyST Markdown and furo, Debian's packages):
 # docs/ -> docs/_build/html; every warning is an error; the reference pages and the results

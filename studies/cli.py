@@ -293,9 +293,9 @@ def parser() -> argparse.ArgumentParser:
                    help="an element, 'paper' (the paper's four) or 'all' (every registered element, the "
                         "--import modules' too); with --solver, the elements it runs by name (none for a "
                         "solver with its own element)")
-    c.add_argument("--solver", metavar="DECLARATION",
+    c.add_argument("--solver", metavar="DECLARATION", action="append",
                    help="the card's run-only sections on an external solver declared in a TOML file "
-                        "(default --out reports/external)")
+                        "(repeatable; default --out reports/external)")
     c.add_argument("--import", dest="imports", action="append", default=[], metavar="MODULE",
                    help="a module to import first (it registers the user's element); repeatable")
     c.add_argument("--tiny", action="store_true", help="the CI grid")

@@ -22,6 +22,8 @@ from studies.engine.worker import execute
 from studies.external.declaration import load_declaration, unsupported
 from studies.external.protocol import ExternalSolver, register_external, retarget
 
+from .conftest import tiered
+
 STUB = '''
 """A stub solver: reads the scene, writes a record; its behaviour set by its argv."""
 import json, math, sys, time, tomllib
@@ -248,27 +250,32 @@ def test_the_benchmark_suite_on_a_solver_with_its_own_element_gives_its_verdicts
     assert "does not take loads 'end_moment'" in report
 
 
-def test_the_committed_exudyn_report_is_its_records_verdicts(tmp_path):
-    """``reports/external/benchmarks@exudyn.md`` rebuilt from its committed records alone
-    (no Exudyn run: the cases it skipped come from the declaration, the verdicts from the
-    records) is the committed page, line for line."""
+# the beam's pages in the full tier: its arc rows' tolerances are the suite's shooting (about 18 s)
+@pytest.mark.parametrize("name", tiered(["exudyn", "exudyn-beam2d"], lambda name: name == "exudyn-beam2d",
+                                        "test_the_committed_exudyn_reports_are_their_records_verdicts"))
+def test_the_committed_exudyn_reports_are_their_records_verdicts(tmp_path, name):
+    """``reports/external/benchmarks@<solver>.md`` and ``dynamic-benchmarks@<solver>.md`` of
+    the Exudyn declarations (the cable, the geometrically exact beam) rebuilt from their
+    committed records alone (no Exudyn run: the cases skipped come from the declaration, the
+    verdicts from the records) are the committed pages, line for line."""
     import shutil
     from pathlib import Path
 
     from studies.engine.catalog import load_catalog
-    from studies.external.verdicts import benchmark_report
+    from studies.external.verdicts import benchmark_report, dynamic_report
 
     root = Path(__file__).resolve().parents[1]
-    decl_path = root / "studies" / "peers" / "exudyn.toml"
+    catalog = load_catalog()
     (tmp_path / "data").mkdir()
-    shutil.copy(root / "reports" / "external" / "data" / "benchmarks@exudyn.jsonl", tmp_path / "data")
-    solver = register_external(decl_path)
+    solver = register_external(root / "studies" / "peers" / f"{name}.toml")
     try:
-        _, skipped = retarget(load_catalog()["benchmarks"].cases(), solver)
-        page = benchmark_report(tmp_path, solver.declaration, skipped)
+        for study, report in (("benchmarks", benchmark_report), ("dynamic-benchmarks", dynamic_report)):
+            shutil.copy(root / "reports" / "external" / "data" / f"{study}@{name}.jsonl", tmp_path / "data")
+            _, skipped = retarget(catalog[study].cases(), solver)
+            page = report(tmp_path, solver.declaration, skipped)
+            assert page.read_text() == (root / "reports" / "external" / page.name).read_text(), page.name
     finally:
         del SOLVERS[solver.name]
-    assert page.read_text() == (root / "reports" / "external" / "benchmarks@exudyn.md").read_text()
 
 
 def test_a_card_on_an_external_solver_judges_its_runs_and_names_what_it_left_out(tmp_path, solvers):
@@ -304,22 +311,28 @@ def test_a_card_on_an_external_solver_judges_its_runs_and_names_what_it_left_out
         elements_of(load_declaration(declare(tmp_path, name="byname")), [])
 
 
-def test_the_committed_exudyn_card_is_its_records_card(tmp_path):
-    """``reports/external/cards/exudyn-ObjectANCFCable2D.md`` rendered again from its
-    committed records alone (no Exudyn run) is the committed card, line for line."""
+# the beam's card in the full tier: its benchmark section's arc tolerances (about 15 s)
+@pytest.mark.parametrize("name, element", tiered([("exudyn", "ObjectANCFCable2D"),
+                                                  ("exudyn-beam2d", "ObjectBeamGeometricallyExact2D")],
+                                                 lambda name, element: name == "exudyn-beam2d",
+                                                 "test_the_committed_exudyn_cards_are_their_records_cards"))
+def test_the_committed_exudyn_cards_are_their_records_cards(tmp_path, name, element):
+    """``reports/external/cards/<solver>-<element>.md`` rendered again from its committed
+    records alone (no Exudyn run) is the committed card, line for line (the cost figure draws
+    every card of the directory: both cards' records are copied)."""
     import shutil
     from pathlib import Path
 
     from studies.external.card import render
 
     root = Path(__file__).resolve().parents[1]
-    decl_path = root / "studies" / "peers" / "exudyn.toml"
     (tmp_path / "data").mkdir()
-    for f in ("card-exudyn-ObjectANCFCable2D.jsonl", "benchmarks@exudyn.jsonl"):
+    for f in ("card-exudyn-ObjectANCFCable2D.jsonl", "card-exudyn-beam2d-ObjectBeamGeometricallyExact2D.jsonl",
+              f"benchmarks@{name}.jsonl"):
         shutil.copy(root / "reports" / "external" / "data" / f, tmp_path / "data")
-    solver = register_external(decl_path)
+    solver = register_external(root / "studies" / "peers" / f"{name}.toml")
     try:
-        card = render(solver.declaration, "ObjectANCFCable2D", tmp_path)
+        card = render(solver.declaration, element, tmp_path)
     finally:
         del SOLVERS[solver.name]
     assert card.read_text() == (root / "reports" / "external" / "cards" / card.name).read_text()

@@ -66,27 +66,31 @@ def elements_of(decl: Declaration, names: list[str]) -> list[str]:
     return names
 
 
-def run_external_cards(path: str | Path, names: list[str], out: Path, tiny: bool = False, force: bool = False,
+def run_external_cards(paths, names: list[str], out: Path, tiny: bool = False, force: bool = False,
                        dry: bool = False, log=print) -> list[Path]:
-    """Runs (or reuses) each card's cases on the declared solver, one after another in this
-    process (as :func:`.protocol.run_study`), and renders ``<out>/cards/<solver>-<element>.md``."""
-    solver = register_external(path)
-    decl, paths = solver.declaration, []
-    for element in elements_of(decl, names):
-        name = card_name(decl, element)
-        cs, skipped = card_cases(solver, element, tiny)
-        store = store_for(out, f"card-{name}")
-        if dry:
-            s = dry_run(f"card-{name}", cs, store, force)
-            log(f"card {name}: {s.cases} cases, {s.reused} reused, {s.computed} to compute; {len(skipped)} "
-                "skipped (not declared) (dry run)")
-            continue
-        s = run_cases(f"card-{name}", cs, store, "serial", 1, force=force, progress=False,
-                      timeout_s=decl.wall_time + 30.0)
-        log(f"card {name}: {s.cases} cases, {s.reused} reused, {s.computed} computed, {s.failed} failed; "
-            f"{len(skipped)} skipped (not declared)")
-        paths.append(render(decl, element, out, tiny))
-    return paths
+    """Runs (or reuses) each card's cases on each declared solver (``paths``: one declaration
+    or several), one after another in this process (as :func:`.protocol.run_study`), then
+    renders every card, ``<out>/cards/<solver>-<element>.md`` (after all runs: each card's
+    cost figure draws the others of ``out``)."""
+    made = []
+    for path in [paths] if isinstance(paths, (str, Path)) else paths:
+        solver = register_external(path)
+        decl = solver.declaration
+        for element in elements_of(decl, names):
+            name = card_name(decl, element)
+            cs, skipped = card_cases(solver, element, tiny)
+            store = store_for(out, f"card-{name}")
+            if dry:
+                s = dry_run(f"card-{name}", cs, store, force)
+                log(f"card {name}: {s.cases} cases, {s.reused} reused, {s.computed} to compute; {len(skipped)} "
+                    "skipped (not declared) (dry run)")
+                continue
+            s = run_cases(f"card-{name}", cs, store, "serial", 1, force=force, progress=False,
+                          timeout_s=decl.wall_time + 30.0)
+            log(f"card {name}: {s.cases} cases, {s.reused} reused, {s.computed} computed, {s.failed} failed; "
+                f"{len(skipped)} skipped (not declared)")
+            made.append((decl, element))
+    return [render(decl, element, out, tiny) for decl, element in made]
 
 
 def _not_run(skipped: list[tuple[str, str]]) -> list[str]:

@@ -201,7 +201,8 @@ def run_study(path: str | Path, study_names: list[str], out: Path, tiny: bool = 
     in this process (the engine's pool workers start afresh and would not know a solver
     registered from a declaration here; a command runs in a process of its own anyway), into
     ``out/data/<study>@<solver>.jsonl`` (and, for the benchmark suite, its verdicts:
-    :func:`studies.external.verdicts.benchmark_report`); returns {study: {"cases", "computed", "reused",
+    :func:`studies.external.verdicts.benchmark_report`, and for the dynamic benchmarks
+    :func:`~studies.external.verdicts.dynamic_report`); returns {study: {"cases", "computed", "reused",
     "failed", "skipped": [(name, reason)]}} and logs one line per study."""
     from ..engine.catalog import load_catalog
     from ..engine.scheduler import run_cases
@@ -223,9 +224,9 @@ def run_study(path: str | Path, study_names: list[str], out: Path, tiny: bool = 
             f"failed; {len(skipped)} skipped (not declared)")
         for case_name, why in skipped[:3]:
             log(f"  skipped: {case_name}: {why}")
-        if name == "benchmarks":
-            from .verdicts import benchmark_report
+        if name in ("benchmarks", "dynamic-benchmarks"):
+            from .verdicts import benchmark_report, dynamic_report
 
-            path = benchmark_report(out, solver.declaration, skipped, tiny)
-            log(f"  verdicts: {path}")
+            report = benchmark_report if name == "benchmarks" else dynamic_report
+            log(f"  verdicts: {report(out, solver.declaration, skipped, tiny)}")
     return summary

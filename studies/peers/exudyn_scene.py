@@ -1,9 +1,11 @@
 """Exudyn as an external solver of the harness (:mod:`studies.external`): a harness scene in,
-a record out, with Exudyn's ObjectANCFCable2D (runs in `.venv-peers`).
+a record out, with Exudyn's ObjectANCFCable2D or ObjectBeamGeometricallyExact2D, the one the
+scene's ``ancf.element`` names (runs in `.venv-peers`).
 
     .venv-peers/bin/python studies/peers/exudyn_scene.py SCENE.toml OUT.json
 
-Declared by ``studies/peers/exudyn.toml``. Imports exudyn, numpy, the standard library,
+Declared by ``studies/peers/exudyn.toml`` (the cable) and ``exudyn-beam2d.toml`` (the
+geometrically exact beam). Imports exudyn, numpy, the standard library,
 the peer's builders (:mod:`exudyn_pendulum` beside this file: :func:`add_cable`, the
 settings) and ``mechanics.laws`` (pure Python over numpy: the law's small-strain shear
 modulus), never ``ancf``.
@@ -21,6 +23,13 @@ scene's rho_inf and fixed step dt (Newmark's average acceleration for ``newmark`
 tip sampled at the output times. Anything else (another support, an end moment, the
 discrete gradient) is outside the model: the declaration leaves it out, so the harness
 skips it with the reason before calling this.
+
+The geometrically exact beam (Simo-Reissner, 2 nodes with position and rotation, shear
+deformable) takes the same section law at small strain and adds the shear stiffness
+kappa G A with G = mu and kappa = 5/6 (the card's Timoshenko reference uses the same), and
+the rotary inertia rho I. Its clamp and slide hold the first node's position and rotation,
+its pin and hinge the position (a beam's section stays straight: the hinge's face); the
+end moment is a torque on the last node (a constant couple in the plane is conservative).
 """
 from __future__ import annotations
 
@@ -43,7 +52,47 @@ def section(scene: dict) -> dict:
     law = get_law(m["law"])
     mu = law.shear_modulus({k: m[k] for k in law.constants})
     E, h, w = 3.0 * mu, b["height"], b["width"]
-    return {"E": E, "EA": E * h * w, "EI": E * w * h ** 3 / 12.0, "rhoA": m["density"] * h * w}
+    return {"E": E, "EA": E * h * w, "EI": E * w * h ** 3 / 12.0, "rhoA": m["density"] * h * w,
+            "kGA": 5.0 / 6.0 * mu * h * w, "rhoI": m["density"] * w * h ** 3 / 12.0}
+
+
+CABLE, BEAM = "ObjectANCFCable2D", "ObjectBeamGeometricallyExact2D"
+BEAM_SUPPORTS = {"clamp": (0, 1, 2), "slide": (0, 1, 2), "pin": (0, 1), "hinge": (0, 1)}   # of x, y, phi
+
+
+def add_beam(mbs, length: float, elements: int, sec: dict, gravity=None, support=(0, 1, 2), tip_force=None,
+             end_moment=None) -> list:
+    """A straight ObjectBeamGeometricallyExact2D beam from the origin along x (nodes
+    NodeRigidBody2D: x, y, phi), loaded and held as :func:`exudyn_pendulum.add_cable` holds the
+    cable (``support``: the first node's coordinates held), ``end_moment`` a torque on the
+    last node. Returns the node numbers."""
+    from exudyn.itemInterface import (CoordinateConstraint, Force, LoadMassProportional, MarkerBodyMass,
+                                      MarkerNodeCoordinate, MarkerNodePosition, MarkerNodeRigid, NodePointGround,
+                                      NodeRigidBody2D, ObjectBeamGeometricallyExact2D, Torque, VCoordinateConstraint,
+                                      VObjectBeamGeometricallyExact2D)
+    le = length / elements
+    nodes = [mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[i * le, 0.0, 0.0])) for i in range(elements + 1)]
+    for i in range(elements):
+        beam = mbs.AddObject(ObjectBeamGeometricallyExact2D(
+            nodeNumbers=[nodes[i], nodes[i + 1]], length=le, massPerLength=sec["rhoA"],
+            crossSectionInertia=sec["rhoI"], bendingStiffness=sec["EI"], axialStiffness=sec["EA"],
+            shearStiffness=sec["kGA"],
+            visualization=VObjectBeamGeometricallyExact2D(show=False)))
+        if gravity is not None:
+            m = mbs.AddMarker(MarkerBodyMass(bodyNumber=beam))
+            mbs.AddLoad(LoadMassProportional(markerNumber=m, loadVector=[gravity[0], gravity[1], 0.0]))
+    ground = mbs.AddNode(NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0]))
+    mg = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground, coordinate=0))
+    for c in support:
+        mc = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=c))
+        mbs.AddObject(CoordinateConstraint(markerNumbers=[mg, mc], visualization=VCoordinateConstraint(show=False)))
+    if tip_force is not None:
+        mt = mbs.AddMarker(MarkerNodePosition(nodeNumber=nodes[-1]))
+        mbs.AddLoad(Force(markerNumber=mt, loadVector=[tip_force[0], tip_force[1], 0.0]))
+    if end_moment is not None:
+        mr = mbs.AddMarker(MarkerNodeRigid(nodeNumber=nodes[-1]))
+        mbs.AddLoad(Torque(markerNumber=mr, loadVector=[0.0, 0.0, end_moment]))
+    return nodes
 
 
 def run(scene: dict) -> dict:
@@ -59,21 +108,28 @@ def run(scene: dict) -> dict:
     sec = section(scene)
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    # the clamp and the slide both hold the first node's position and its slope's direction
-    # (a cable's end face cannot turn, and has no thickness to hold)
-    support = {"clamp": CLAMP, "slide": CLAMP, "pin": PIN}[scene["supports"]["left"]]
-    gravity, force = loads.get("gravity"), loads.get("tip_force")
-    nodes = add_cable(mbs, L, n, EA=sec["EA"], EI=sec["EI"], rhoA=sec["rhoA"],
-                      gravity=tuple(gravity) if gravity else None, support=support,
-                      tip_force=tuple(force) if force else None)
+    gravity, force, moment = loads.get("gravity"), loads.get("tip_force"), loads.get("end_moment")
+    element = scene["ancf"]["element"]
+    if element == BEAM:
+        nodes = add_beam(mbs, L, n, sec, tuple(gravity) if gravity else None, BEAM_SUPPORTS[scene["supports"]["left"]],
+                         tuple(force) if force else None, moment)
+    else:
+        # the clamp and the slide both hold the first node's position and its slope's direction
+        # (a cable's end face cannot turn, and has no thickness to hold)
+        support = {"clamp": CLAMP, "slide": CLAMP, "pin": PIN}[scene["supports"]["left"]]
+        nodes = add_cable(mbs, L, n, EA=sec["EA"], EI=sec["EI"], rhoA=sec["rhoA"],
+                          gravity=tuple(gravity) if gravity else None, support=support,
+                          tip_force=tuple(force) if force else None)
+        sec = {k: sec[k] for k in ("E", "EA", "EI", "rhoA")}
     tip = mbs.AddSensor(SensorNode(nodeNumber=nodes[-1], outputVariableType=exu.OutputVariableType.Position,
                                    storeInternal=True, writeToFile=False))
     mbs.Assemble()
     rec = {"schema": "ancf-harness/record/1", "solver": "exudyn", "status": "failed", "reason": None,
            "tip": None, "ndof": int(mbs.systemData.ODE2Size()), "newton_iterations": None, "load_steps": None,
            "rejected_steps": None, "stable": None, "cpu_s": None, "wall_s": None, "setup_s": None,
-           "effects": ["elastic", *(["gravity"] if gravity else []), *(["tip_force"] if force else [])],
-           "scene": scene, "exudyn": {"version": exu.__version__, "element": "ObjectANCFCable2D", **sec}}
+           "effects": ["elastic", *(["gravity"] if gravity else []), *(["tip_force"] if force else []),
+                       *(["end_moment"] if moment is not None else [])],
+           "scene": scene, "exudyn": {"version": exu.__version__, "element": element, **sec}}
     t0, c0 = time.perf_counter(), time.process_time()
     if a["kind"] == "static":
         # Newton to the scene's relative tolerance, Exudyn's default absolute one (1e-10 N)
@@ -92,7 +148,10 @@ def run(scene: dict) -> dict:
         return rec
     data = np.asarray(mbs.GetSensorStoredData(tip))          # rows: t, x, y, z
     x, y = (float(v) for v in mbs.GetNodeOutput(nodes[-1], exu.OutputVariableType.Position)[:2])
-    rec.update(status="converged", reason=None, tip={"ux": x - L, "uy": y})
+    q = mbs.GetNodeOutput(nodes[-1], exu.OutputVariableType.Coordinates)     # displacements from the reference
+    # the end face's rotation: the beam's node angle (not wrapped), the cable's slope angle
+    rotation = float(q[2]) if element == BEAM else float(np.arctan2(q[3], 1.0 + q[2]))
+    rec.update(status="converged", reason=None, tip={"ux": x - L, "uy": y, "rotation": rotation})
     if a["kind"] == "dynamic":
         times = a.get("output_times") or [a["t_end"]]
         history = []

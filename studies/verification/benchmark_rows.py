@@ -140,9 +140,11 @@ def rows(ctx) -> list[Row]:
     return _beam_notes(out + bending_rows(ctx))
 
 
-def bending_rows(ctx) -> list[Row]:
+def bending_rows(ctx, solvers=None) -> list[Row]:
     """kappa = (theta(2 L) - theta(L)) / L of each pair of lengths (the end face's rotation:
-    the couple's end zone, the same in both, cancels) against the exact pure bending's."""
+    the couple's end zone, the same in both, cancels) against the exact pure bending's;
+    ``solvers(form)``: whose pairs (default: the grid's elements that run the form and its
+    continuum codes)."""
     g = ctx.study.grid
     recs = {r["scene"]["name"]: r for r in ctx.records()}
     out = []
@@ -152,7 +154,7 @@ def bending_rows(ctx) -> list[Row]:
                 continue
             for x in curvatures:
                 kappa = x / STRIP["height"]
-                for solver in _solvers(g, form):
+                for solver in (solvers or (lambda f: _solvers(g, f)))(form):
                     n1, n2 = g["bending_lengths"]
                     pair = [recs.get(bending_scene(g, law, form, x, n, solver)["name"]) for n in (n1, n2)]
                     val = None
