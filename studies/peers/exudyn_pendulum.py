@@ -66,9 +66,7 @@ def add_cable(mbs, length: float, elements: int, EA: float, EI: float, rhoA: flo
     ``support`` (:data:`PIN`, :data:`CLAMP`) held at their reference values by one
     CoordinateConstraint each to a ground node; ``tip_force`` (fx, fy) a Force on the last
     node's position (MarkerNodePosition; none if None). Returns the node numbers."""
-    from exudyn.itemInterface import (CoordinateConstraint, Force, LoadMassProportional, MarkerBodyMass,
-                                      MarkerNodeCoordinate, MarkerNodePosition, NodePoint2DSlope1,
-                                      NodePointGround, ObjectANCFCable2D, VCoordinateConstraint,
+    from exudyn.itemInterface import (LoadMassProportional, MarkerBodyMass, NodePoint2DSlope1, ObjectANCFCable2D,
                                       VObjectANCFCable2D)
     le = length / elements
     nodes = [mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[i * le, 0.0, 1.0, 0.0]))
@@ -80,6 +78,16 @@ def add_cable(mbs, length: float, elements: int, EA: float, EI: float, rhoA: flo
         if gravity is not None:
             m = mbs.AddMarker(MarkerBodyMass(bodyNumber=cable))
             mbs.AddLoad(LoadMassProportional(markerNumber=m, loadVector=[gravity[0], gravity[1], 0.0]))
+    hold_and_push(mbs, nodes, support, tip_force)
+    return nodes
+
+
+def hold_and_push(mbs, nodes: list, support: tuple, tip_force: tuple | None) -> None:
+    """The first node's coordinates ``support`` held at their reference values (one
+    CoordinateConstraint each to a ground node) and ``tip_force`` (fx, fy) a Force on the
+    last node's position (none if None): the support and tip load of every beam here."""
+    from exudyn.itemInterface import (CoordinateConstraint, Force, MarkerNodeCoordinate, MarkerNodePosition,
+                                      NodePointGround, VCoordinateConstraint)
     ground = mbs.AddNode(NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0]))
     mg = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground, coordinate=0))
     for c in support:
@@ -88,7 +96,6 @@ def add_cable(mbs, length: float, elements: int, EA: float, EI: float, rhoA: flo
     if tip_force is not None:
         mt = mbs.AddMarker(MarkerNodePosition(nodeNumber=nodes[-1]))
         mbs.AddLoad(Force(markerNumber=mt, loadVector=[tip_force[0], tip_force[1], 0.0]))
-    return nodes
 
 
 def common_settings(exu, s) -> None:

@@ -66,10 +66,9 @@ def add_beam(mbs, length: float, elements: int, sec: dict, gravity=None, support
     NodeRigidBody2D: x, y, phi), loaded and held as :func:`exudyn_pendulum.add_cable` holds the
     cable (``support``: the first node's coordinates held), ``end_moment`` a torque on the
     last node. Returns the node numbers."""
-    from exudyn.itemInterface import (CoordinateConstraint, Force, LoadMassProportional, MarkerBodyMass,
-                                      MarkerNodeCoordinate, MarkerNodePosition, MarkerNodeRigid, NodePointGround,
-                                      NodeRigidBody2D, ObjectBeamGeometricallyExact2D, Torque, VCoordinateConstraint,
-                                      VObjectBeamGeometricallyExact2D)
+    from exudyn.itemInterface import (LoadMassProportional, MarkerBodyMass, MarkerNodeRigid, NodeRigidBody2D,
+                                      ObjectBeamGeometricallyExact2D, Torque, VObjectBeamGeometricallyExact2D)
+    from exudyn_pendulum import hold_and_push
     le = length / elements
     nodes = [mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[i * le, 0.0, 0.0])) for i in range(elements + 1)]
     for i in range(elements):
@@ -81,14 +80,7 @@ def add_beam(mbs, length: float, elements: int, sec: dict, gravity=None, support
         if gravity is not None:
             m = mbs.AddMarker(MarkerBodyMass(bodyNumber=beam))
             mbs.AddLoad(LoadMassProportional(markerNumber=m, loadVector=[gravity[0], gravity[1], 0.0]))
-    ground = mbs.AddNode(NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0]))
-    mg = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground, coordinate=0))
-    for c in support:
-        mc = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=c))
-        mbs.AddObject(CoordinateConstraint(markerNumbers=[mg, mc], visualization=VCoordinateConstraint(show=False)))
-    if tip_force is not None:
-        mt = mbs.AddMarker(MarkerNodePosition(nodeNumber=nodes[-1]))
-        mbs.AddLoad(Force(markerNumber=mt, loadVector=[tip_force[0], tip_force[1], 0.0]))
+    hold_and_push(mbs, nodes, support, tip_force)
     if end_moment is not None:
         mr = mbs.AddMarker(MarkerNodeRigid(nodeNumber=nodes[-1]))
         mbs.AddLoad(Torque(markerNumber=mr, loadVector=[0.0, 0.0, end_moment]))
