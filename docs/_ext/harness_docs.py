@@ -459,9 +459,10 @@ def render_report(src: Path, page: Path, figures: dict, captions: dict[str, str]
             if caption is None:
                 caption = text.get("caption", "").format(stem=image.stem, element=image.stem.rsplit("-", 1)[0])
                 after = i + 1
-            if not caption:
+            if not caption:      # warned, and a figure with a body (docutils fails on an empty one)
                 warn(f"{rel}: figure {key} has neither a caption paragraph under it nor one in "
                      "docs/results/figures.toml")
+                caption = f"(no caption: {key})"
             legend = text.get("legend", "")
             if not legend:
                 warn(f"{rel}: figure {key} has no legend in docs/results/figures.toml")
