@@ -126,10 +126,14 @@ def _benchmarks(out: Path, decl: Declaration, tiny: bool) -> list[str]:
     lines += [f"{len(rows) - len(misses)} of {len(rows)} cases it ran pass (every case, its reference and "
               f"tolerance: `benchmarks@{decl.name}.md` beside the cards)."]
     if misses:
-        lines += ["", "| case | error | tolerance | verdict | cause |", "|---|---|---|---|---|"]
+        lines += ["", "Its misses:", "", "| case | error | tolerance | verdict |", "|---|---|---|---|"]
         lines += [f"| {r.case} | {'-' if r.error is None else format(r.error, '.2e')} | {r.tolerance:.2g} | "
-                  f"{r.verdict} | {decl.causes.get(r.case.split()[0]) or r.cause or 'cause not found'} |"
-                  for r in misses]
+                  f"{r.verdict} |" for r in misses]
+        causes = {}
+        for r in misses:     # one cause per kind of case, as the declaration gives it
+            causes.setdefault(r.case.split()[0], decl.causes.get(r.case.split()[0]) or r.cause or "cause not found")
+        lines += ["", "Why, per kind of case (`[causes]` of the declaration, as measured):", ""]
+        lines += [f"- {kind}: {why}" for kind, why in causes.items()]
     return lines + [""]
 
 
