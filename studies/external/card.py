@@ -87,8 +87,10 @@ def run_external_cards(paths, names: list[str], out: Path, tiny: bool = False, f
                 continue
             s = run_cases(f"card-{name}", cs, store, "serial", 1, force=force, progress=False,
                           timeout_s=decl.wall_time + 30.0)
-            log(f"card {name}: {s.cases} cases, {s.reused} reused, {s.computed} computed, {s.failed} failed; "
-                f"{len(skipped)} skipped (not declared)")
+            have = store.read()       # reused runs that failed count too: the card shows them
+            failed = sum(have[c.id]["status"] != "converged" for c in cs if c.id in have)
+            log(f"card {name}: {s.cases} cases, {s.reused} reused, {s.computed} computed, {failed} without a "
+                f"result; {len(skipped)} skipped (not declared)")
             made.append((decl, element))
     return [render(decl, element, out, tiny) for decl, element in made]
 
