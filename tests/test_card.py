@@ -232,8 +232,9 @@ def test_a_committed_card_renders_again_from_its_records(tmp_path):
     assert card.read_text() == (ROOT / "reports" / "cards" / "HB2n-12.md").read_text()
 
 
+@pytest.mark.slow(guard="test_a_committed_card_renders_again_from_its_records")
 def test_the_cables_tiny_card_runs_what_applies_and_says_why_for_the_rest(tmp_path):
-    """The quick tier's card: HC2n-8 on the tiny grid (about 10 s). It runs what applies to a
+    """The full tier's tiny card: HC2n-8 on the tiny grid (about 8 s). It runs what applies to a
     cable and no plane strain (its records: plane stress only), says why it skips the rest,
     and has its section model (1b: M(kappa) leaving EI kappa, the model error against the
     exact plane-stress bending) and its slenderness sweep (9) against the continuum gold;

@@ -93,6 +93,7 @@ def test_figure4_errors_are_distances_to_the_continuum_gold(tiny):
         assert errs == sorted(errs, reverse=True), (el, errs)
 
 
+@pytest.mark.slow(guard="test_figure4_errors_are_distances_to_the_continuum_gold")
 def test_without_the_continuum_gold_the_reference_is_the_finest_ancf_labelled_provisional(tiny, tmp_path, monkeypatch):
     out, cat = tiny
     assert pendulum.continuum_pendulum(tmp_path / "absent.json") == {}
