@@ -31,12 +31,11 @@ def benchmark_rows(out: Path, decl: Declaration, tiny: bool = False) -> list:
     """The benchmark rows of the solver's records, each labelled with the solver (and its
     own element, where it has one)."""
     from ..verification import benchmarks
+    from ..verification.benchmark_rows import bending_rows
 
     study = load_catalog(tiny=tiny)["benchmarks"]
     recs = list(store_for(out, f"benchmarks@{decl.name}").read().values())
     label = f"{decl.name} {decl.element}" if decl.element else decl.name
-    from ..verification.benchmark_rows import bending_rows
-
     ran = {r["scene"]["ancf"]["element"] for r in recs if r.get("scene", {}).get("ancf")}
     ctx = _Records(study, recs)
     rows = [r for r in benchmarks.rows(ctx) if r.solver in ran]
