@@ -30,6 +30,7 @@ from ..engine.scheduler import dry_run, run_cases
 from ..engine.store import store_for
 from .declaration import Declaration
 from .protocol import ExternalSolver, register_external, retarget
+from .verdicts import benchmark_rows, cause_of_miss, not_run_lines
 
 # the built-in element whose card's cases are the template (a planar section element: its
 # card has every run-only section but the cable's sweep, which is added)
@@ -95,13 +96,6 @@ def run_external_cards(paths, names: list[str], out: Path, tiny: bool = False, f
     return [render(decl, element, out, tiny) for decl, element in made]
 
 
-def _not_run(skipped: list[tuple[str, str]]) -> list[str]:
-    kinds: dict = {}
-    for case, why in skipped:
-        kinds.setdefault(why, []).append(case)
-    return [f"- {len(c)} runs: {why} (e.g. `{c[0]}`)" for why, c in sorted(kinds.items())]
-
-
 def _causes(recs: list[dict], decl: Declaration) -> list[str]:
     """Each kind of run (its name's first word) that failed, with the cause the declaration's
     ``[causes]`` gives for it, as measured ("cause not found" without one)."""
@@ -117,8 +111,6 @@ def _causes(recs: list[dict], decl: Declaration) -> list[str]:
 
 
 def _benchmarks(out: Path, decl: Declaration, tiny: bool) -> list[str]:
-    from .verdicts import benchmark_rows
-
     lines = ["## 10. The benchmark suite", ""]
     if not store_for(out, f"benchmarks@{decl.name}").read():
         return lines + [f"Not run here: `python -m studies external {decl.path.name} benchmarks --out {out}` "
@@ -133,7 +125,7 @@ def _benchmarks(out: Path, decl: Declaration, tiny: bool) -> list[str]:
                   f"{r.verdict} |" for r in misses]
         causes = {}
         for r in misses:     # one cause per kind of case, as the declaration gives it
-            causes.setdefault(r.case.split()[0], decl.causes.get(r.case.split()[0]) or r.cause or "cause not found")
+            causes.setdefault(r.case.split()[0], cause_of_miss(decl, r.case, r.cause))
         lines += ["", "Why, per kind of case (`[causes]` of the declaration, as measured):", ""]
         lines += [f"- {kind}: {why}" for kind, why in causes.items()]
     return lines + [""]
@@ -167,7 +159,7 @@ def render(decl: Declaration, element: str, out: Path, tiny: bool = False) -> Pa
             + f" The card's runs on the external solver `{decl.name}` (its declaration `{decl.path.name}`), "
             f"judged as an element's card judges them; {len(recs)} solver runs, {len(skipped)} of the card's "
             "runs outside its declaration.", "",
-            "## Left out", "", f"- {NEEDS_INTERNALS}.", *_not_run(skipped), ""]
+            "## Left out", "", f"- {NEEDS_INTERNALS}.", *not_run_lines(skipped, "runs"), ""]
     text = (head + _convergence(recs, refs, cards, name)
             + _locking(recs, refs, strain[0] if strain and not any(_is_locking(r) for r in recs) else None)
             + _shear_locking(recs)

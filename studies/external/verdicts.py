@@ -58,7 +58,6 @@ def benchmark_report(out: Path, decl: Declaration, skipped: list[tuple[str, str]
     miss with its cause (the declaration's ``[causes]``: {case kind: why}, else "cause not
     found"), and every case it was not run on with the reason."""
     rows = benchmark_rows(out, decl, tiny)
-    causes = decl.causes
     passed = sum(r.verdict == "pass" for r in rows)
     lines = [f"# {decl.name} on the harness's references", "",
              f"The benchmark suite's cases run on `{decl.name}` {decl.version} through its declaration "
@@ -70,7 +69,7 @@ def benchmark_report(out: Path, decl: Declaration, skipped: list[tuple[str, str]
     for r in rows:
         cause = ""
         if r.verdict != "pass":
-            cause = causes.get(r.case.split()[0]) or r.cause or "cause not found"
+            cause = cause_of_miss(decl, r.case, r.cause)
         lines.append(f"| {r.case} | {r.solver} | {r.quantity} | {_fmt(r.reference, '.6g')} | {_fmt(r.value, '.6g')} "
                      f"| {_fmt(r.error, '.2e')} | {r.tolerance:.2g} | {r.verdict} | {cause} |")
     lines += _not_run(skipped)
@@ -81,32 +80,17 @@ def benchmark_report(out: Path, decl: Declaration, skipped: list[tuple[str, str]
 
 
 def dynamic_rows(out: Path, decl: Declaration, element: str, tiny: bool = False) -> list[list]:
-    """[case, solver, quantity, reference, measured, relative error, tolerance, verdict] of the
-    solver's dynamic-benchmark records: the rigid swing and the clamped beam's frequency, each
-    scene found by the name the study gives it for ``element`` (the discrete gradient's
-    energy case is an element's integrator, not a solver's: not judged here)."""
-    from ..verification import dynamic_benchmarks as db
-    from ..verification.dynamics_stability import SWING_TOL, rigid_swing_reference, swing_time
+    """The dynamic benchmarks' rows (:func:`studies.verification.dynamic_benchmarks.rows`) of
+    the solver's records, for the scenes the study names after ``element`` that it ran (the
+    discrete gradient's energy case is an element's integrator, not a solver's: not judged
+    here), each labelled with the solver."""
+    from ..verification import dynamic_benchmarks
 
-    g = load_catalog(tiny=tiny)["dynamic-benchmarks"].grid
-    recs = {r["scene"]["name"]: r for r in store_for(out, f"dynamic-benchmarks@{decl.name}").read().values()}
-    label = f"{decl.name} {element}"
-    rows = []
-    rec = recs.get(db.swing_scene(g, element)["name"])
-    if rec is not None:
-        T = rigid_swing_reference()
-        ts = swing_time(rec) if rec.get("status") == "converged" else None
-        err = None if ts is None else ts / T - 1
-        rows.append(["rigid-swing", label, "swing time (s)", T, ts, err, SWING_TOL, db._verdict(err, SWING_TOL, rec)])
-    for ratio in g["ratios"]:
-        rec = recs.get(db.frequency_scene(g, ratio, element)["name"])
-        if rec is None:
-            continue
-        ref = db.frequency_reference(g, ratio)
-        om = db.measured_frequency(rec)
-        err = None if om is None else om / ref["timoshenko"] - 1
-        rows.append([f"clamped-frequency L/h {ratio:g}", label, "omega_1 (rad/s)", ref["timoshenko"], om, err,
-                     ref["tolerance"], db._verdict(err, ref["tolerance"], rec)])
+    study = load_catalog(tiny=tiny)["dynamic-benchmarks"]
+    recs = list(store_for(out, f"dynamic-benchmarks@{decl.name}").read().values())
+    rows = [r for r in dynamic_benchmarks.rows(_Records(study, recs), [element]) if r[-1] != "no record"]
+    for r in rows:
+        r[1] = f"{decl.name} {element}"
     return rows
 
 
@@ -125,7 +109,7 @@ def dynamic_report(out: Path, decl: Declaration, skipped: list[tuple[str, str]],
              "| case | solver | quantity | reference | measured | relative error | tolerance | verdict | cause of a miss |",
              "|---|---|---|---|---|---|---|---|---|"]
     for case, solver, quantity, ref, val, err, tol, verdict in rows:
-        cause = "" if verdict == "meets" else decl.causes.get(case.split()[0]) or "cause not found"
+        cause = "" if verdict == "meets" else cause_of_miss(decl, case)
         lines.append(f"| {case} | {solver} | {quantity} | {_fmt(ref, '.6g')} | {_fmt(val, '.6g')} | {_fmt(err, '+.2e')} "
                      f"| {tol:.2e} | {verdict} | {cause} |")
     lines += _not_run(skipped)
@@ -134,11 +118,19 @@ def dynamic_report(out: Path, decl: Declaration, skipped: list[tuple[str, str]],
     return path
 
 
-def _not_run(skipped: list[tuple[str, str]]) -> list[str]:
-    if not skipped:
-        return []
+def not_run_lines(skipped: list[tuple[str, str]], noun: str = "cases") -> list[str]:
+    """One line per reason of what was not run: how many, why, an example."""
     kinds: dict = {}
     for name, why in skipped:
         kinds.setdefault(why, []).append(name)
-    return (["", "Not run (outside the declaration):", ""]
-            + [f"- {len(names)} cases: {why} (e.g. `{names[0]}`)" for why, names in sorted(kinds.items())])
+    return [f"- {len(names)} {noun}: {why} (e.g. `{names[0]}`)" for why, names in sorted(kinds.items())]
+
+
+def _not_run(skipped: list[tuple[str, str]]) -> list[str]:
+    return ["", "Not run (outside the declaration):", "", *not_run_lines(skipped)] if skipped else []
+
+
+def cause_of_miss(decl: Declaration, case: str, found: str = "") -> str:
+    """Why the solver misses ``case``: the declaration's cause for its kind (its first word),
+    else the one the suite found (``found``), else "cause not found"."""
+    return decl.causes.get(case.split()[0]) or found or "cause not found"

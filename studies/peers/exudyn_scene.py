@@ -56,7 +56,7 @@ def section(scene: dict) -> dict:
             "kGA": 5.0 / 6.0 * mu * h * w, "rhoI": m["density"] * w * h ** 3 / 12.0}
 
 
-CABLE, BEAM = "ObjectANCFCable2D", "ObjectBeamGeometricallyExact2D"
+BEAM = "ObjectBeamGeometricallyExact2D"
 BEAM_SUPPORTS = {"clamp": (0, 1, 2), "slide": (0, 1, 2), "pin": (0, 1), "hinge": (0, 1)}   # of x, y, phi
 
 

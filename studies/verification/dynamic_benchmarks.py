@@ -271,25 +271,30 @@ def _verdict(err: float | None, tol: float, rec: dict | None) -> str:
     return "meets" if abs(err) <= tol else "misses"
 
 
-def rows(ctx) -> list[list]:
+def rows(ctx, solvers: list[str] | None = None) -> list[list]:
+    """[case, solver, quantity, reference, measured, relative error, tolerance, verdict] per
+    (case, solver); ``solvers``: whose scenes (by the names the study gives them; default the
+    grid's elements and codes), the discrete gradient's case for those of the grid's elements
+    that step it."""
     g = ctx.study.grid
     recs = {r["scene"]["name"]: r for r in ctx.records()}
+    solvers = _solvers(g) if solvers is None else solvers
     T = rigid_swing_reference()
     out = []
-    for s in _solvers(g):
+    for s in solvers:
         rec = recs.get(swing_scene(g, s)["name"])
         ts = swing_time(rec) if rec and rec.get("status") == "converged" else None
         err = None if ts is None else ts / T - 1
         out.append(["rigid-swing", s, "swing time (s)", T, ts, err, SWING_TOL, _verdict(err, SWING_TOL, rec)])
     for r in g["ratios"]:
         ref = frequency_reference(g, r)
-        for s in _solvers(g):
+        for s in solvers:
             rec = recs.get(frequency_scene(g, r, s)["name"])
             om = measured_frequency(rec) if rec else None
             err = None if om is None else om / ref["timoshenko"] - 1
             out.append([f"clamped-frequency L/h {r:g}", s, "omega_1 (rad/s)", ref["timoshenko"], om, err,
                         ref["tolerance"], _verdict(err, ref["tolerance"], rec)])
-    for e in dg_elements(g):
+    for e in (e for e in dg_elements(g) if e in solvers):
         rec = recs.get(dg_scene(g, e)["name"])
         dE = energy_change(rec) if rec else None
         tol = DG_PER_STEP * rec["steps"] if rec and rec.get("steps") else None
