@@ -621,3 +621,50 @@ def test_a_missed_target_is_measured_by_mode_and_by_the_parts_of_a_step(monkeypa
     said = "\n".join(scr.lines([cheap], recs + lin))
     assert "does not count at 1 %" in said and "64 elements at 5 ms failed (step below dt_min: det F <= 0)" in said
     assert "does not count" not in "\n".join(scr.lines([cheap], recs + lin[:-1]))     # every finer run reaches it
+
+
+def test_one_place_builds_exudyn_models():
+    """One way to run Exudyn: its nodes, objects, markers, loads and sensors are added in
+    ``studies/peers/exudyn_model.py`` alone; the adapter (``exudyn_scene.py``), the peer
+    benchmark's timed runs (``exudyn_pendulum.py``) and the published checks call it, and
+    the timed runs take the scene our solver runs, with the declaration's element."""
+    import re
+
+    from contract.errors import SceneError
+
+    peers = compare.ROOT / "studies" / "peers"
+    adds = re.compile(r"\.Add(Node|Object|Marker|Load|Sensor)\(|itemInterface")
+    builders = sorted(p.name for p in peers.glob("*.py") if adds.search(p.read_text()))
+    assert builders == ["exudyn_model.py"]
+    for script in ("exudyn_scene.py", "exudyn_pendulum.py", "exudyn_static.py"):
+        assert "exudyn_model" in (peers / script).read_text(), script
+    d = compare.pendulum_scene(2e-3, 0.8)
+    p = compare.peer_scene(d)
+    assert p["ancf"]["element"] == "ObjectANCFCable2D" and {**p, "ancf": d["ancf"]} == d
+    with pytest.raises(SceneError, match="exudyn: .*loads 'end_moment'"):
+        compare.peer_scene({**d, "loads": {**d["loads"], "end_moment": 1e-3}})
+
+
+def test_the_timed_runs_and_the_adapter_run_the_same_model():
+    """The pendulum as the peer benchmark times it (``exudyn_pendulum.py``, two warm runs)
+    and as the external-solver adapter runs it (``exudyn_scene.py``, one run through the
+    protocol) from the same scene: the same tip at every output time, to the last bit."""
+    from studies.engine.solvers import SOLVERS
+    from studies.engine.worker import execute
+    from studies.engine.case import make_case
+    from studies.external.protocol import register_external
+
+    if not compare.PEER_PYTHON.exists():
+        pytest.skip(f"SKIPPED, not run: {compare.PEER_PYTHON} does not exist (`bash tools/setup_peers.sh` makes it); "
+                    "the two routes to Exudyn need Exudyn")
+    d = compare.pendulum_scene(5e-3, 0.8)
+    d["ancf"]["elements"] = 8
+    timed = compare.peer(d, repeats=1)
+    solver = register_external(compare.DECLARATION)
+    try:
+        rec = execute(make_case("peers-one-way", solver.name, compare.peer_scene(d)))
+    finally:
+        del SOLVERS[solver.name]
+    assert rec["status"] == "converged", rec["reason"]
+    by_t = {h["t"]: (h["x"], h["y"]) for h in rec["tip_history"]}
+    assert [(h["t"], (h["x"], h["y"])) for h in timed["tip_history"]] == [(t, by_t[t]) for t in (0.1, 0.2, 0.3, 0.4, 0.5)]

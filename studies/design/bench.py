@@ -14,12 +14,8 @@ from __future__ import annotations
 import csv
 import io
 import itertools
-import json
-import os
 import statistics
-import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
@@ -34,10 +30,11 @@ from ancf.simulation import run_scene
 from contract import paper
 from contract.scene import FORMULATIONS, load_scene, scene_from_dict
 from mechanics.laws import LAWS
+from reference_fem.launch import scene_toml
 
 from ..common.pendulum_cases import LADDER, converged_rung, describe_dynamic, ladder, pendulum_dict
-from ..peers.compare import PEER_SCRIPT
-from ..peers.venv import PEER_PYTHON
+from ..peers.compare import PEER_SCRIPT, peer_scene, pendulum_scene
+from ..peers.venv import PEER_PYTHON, run_peer_script
 
 # The setting that reproduces the paper's Table 3 (README, "Reproducing Table 3").
 PAPER_SETTING = {"quadrature": (2, 2), "clamp": "all"}
@@ -211,17 +208,13 @@ def kernel_rows(calls: int = 100, repeats: int = 10, elements: int = KERNEL_ELEM
 
 
 def exudyn_kernel_row(elements: int = KERNEL_ELEMENTS) -> dict | None:
-    """Exudyn's cable in the same form (:func:`studies.peers.exudyn_pendulum.kernel_times`),
-    or None when .venv-peers is missing."""
+    """Exudyn's cable in the same form (:func:`studies.peers.exudyn_pendulum.kernel_times`, on
+    the compared pendulum with ``elements`` cables), or None when .venv-peers is missing."""
     if not PEER_PYTHON.exists():
         return None
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME")}
-    with tempfile.TemporaryDirectory(prefix="exudyn-kernels-") as cwd:
-        p = subprocess.run([str(PEER_PYTHON), str(PEER_SCRIPT), "--kernels", "--elements", str(elements)],
-                           cwd=cwd, env=env, capture_output=True, text=True)
-    if p.returncode != 0:
-        raise RuntimeError(f"peer script exited {p.returncode}: {p.stderr[-2000:]}")
-    out = json.loads([ln for ln in p.stdout.splitlines() if ln.strip()][-1])
+    d = pendulum_scene(1e-3, 0.8)
+    d["ancf"]["elements"] = elements
+    out = run_peer_script(PEER_SCRIPT, ["--kernels"], PEER_PYTHON, scene_toml(peer_scene(d)))
     row = {"solver": f"Exudyn {out['exudyn']}", "element": "ANCFCable2D", "law": "linear elastic",
            "formulation": "Euler-Bernoulli", "elements": out["elements"], "points_per_element": "",
            "calls": out["calls"], "repeats": out["repeats"],

@@ -40,7 +40,7 @@ def _compare(a) -> int:
     elements = a.element or ["HB2n-12", "HB2n-16"]
     p, os_ = None, [None] * len(elements)
     for _ in range(a.rounds):             # interleaved: the machine's speed drifts on a shared host
-        p = compare.pool(p, compare.peer(a.dt, a.rho_inf, a.repeats, a.peer_python, a.module),
+        p = compare.pool(p, compare.peer(compare.pendulum_scene(a.dt, a.rho_inf), a.repeats, a.peer_python, a.module),
                          {"solve_s": "solve_median_s", "solve_cpu_s": "solve_cpu_median_s", "build_s": "build_median_s"})
         os_ = [compare.pool(o, compare.ours(a.dt, a.rho_inf, a.repeats, element=e), {"wall_s": "wall_median_s",
                                                                                      "cpu_s": "cpu_median_s"})

@@ -7,10 +7,13 @@ ANCF cable pendulum, timed in the same run (``make bench-peers``).
 Ours: ``scenes/pendulum-yeoh-plane-stress.toml`` (32 x HB2n-12, plane-stress Yeoh,
 generalized-alpha; HB2n-16 by ``--element``) with the given dt and rho_inf; the wall
 and CPU times are the medians of the records' ``wall_s`` and ``cpu_s`` over ``--repeats`` warm runs of :func:`ancf.simulation.run_scene` in this
-process (one untimed run first: numba compilation, caches). Exudyn: the script
-``exudyn_pendulum.py`` beside this file, run with ``.venv-peers/bin/python`` (made by
-``tools/setup_peers.sh``), with the same dt, rho_inf and repeats; it prints its settings
-and the median wall and CPU times of its ``SolveDynamic`` calls as JSON on its last line.
+process (one untimed run first: numba compilation, caches). Exudyn: the same scene with the
+cable's element (:func:`peer_scene`, the element and features its declaration
+``studies/peers/exudyn.toml`` gives), timed by the script ``exudyn_pendulum.py`` beside this
+file with ``.venv-peers/bin/python`` (made by ``tools/setup_peers.sh``) and the same repeats;
+the script builds the scene's model as the adapter does (``exudyn_model.build``) and prints
+its settings and the median wall and CPU times of its ``SolveDynamic`` calls as JSON on its
+last line.
 The ratio is taken on both; on a shared machine the CPU ratio is the steadier one.
 
 The two models differ in physics: Exudyn's ObjectANCFCable2D is an Euler-Bernoulli,
@@ -27,7 +30,10 @@ import time
 from pathlib import Path
 
 from ancf.simulation import run_scene
+from contract.errors import SceneError
 from contract.scene import load_scene, scene_from_dict
+from reference_fem.launch import scene_toml
+from studies.external.declaration import load_declaration, unsupported
 
 from .exudyn_published import RECORD as PUBLISHED, published_markdown, read_record
 from .venv import PEER_PYTHON, parse_peer_output, run_peer_script  # noqa: F401  (the peer's venv, shared)
@@ -35,16 +41,23 @@ from .venv import PEER_PYTHON, parse_peer_output, run_peer_script  # noqa: F401 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "scenes" / "pendulum-yeoh-plane-stress.toml"
 PEER_SCRIPT = Path(__file__).with_name("exudyn_pendulum.py")
+DECLARATION = Path(__file__).with_name("exudyn.toml")         # the cable as an external solver
 TARGET_RATIO = 1.0          # at least as fast as Exudyn
 # at equal steps, HB2n-12 within half of Exudyn's time and HB2n-16 within 0.8 of it
 TARGETS = {"HB2n-12": 0.5, "HB2n-16": 0.8}
 
 
+def pendulum_scene(dt: float, rho_inf: float, scene_path: Path = SCENE) -> dict:
+    """The compared scene (:data:`SCENE`) at this step and spectral radius, as a dict."""
+    d = load_scene(scene_path).to_dict()
+    d["analysis"].update(dt=dt, rho_inf=rho_inf)
+    return d
+
+
 def ours(dt: float, rho_inf: float, repeats: int = 5, scene_path: Path = SCENE, element: str | None = None) -> dict:
     """Time our pendulum: {'wall_s': [...], 'wall_median_s', 'first_run_s', 'setup_s',
     'steps', 'newton_iterations', 'ndof', 'elements', 'element', 'tip_history'}."""
-    d = load_scene(scene_path).to_dict()
-    d["analysis"].update(dt=dt, rho_inf=rho_inf)
+    d = pendulum_scene(dt, rho_inf, scene_path)
     if element:
         d["ancf"]["element"] = element
     scene = scene_from_dict(d)
@@ -69,15 +82,24 @@ def ours(dt: float, rho_inf: float, repeats: int = 5, scene_path: Path = SCENE, 
     }
 
 
-def peer(dt: float, rho_inf: float, repeats: int = 5, python: Path = PEER_PYTHON,
-         module: str = "fast", elements: int = 32, height: float | None = None, newton: str = "modified") -> dict:
-    """Run the Exudyn script in .venv-peers (in a scratch directory, so that nothing it
-    might write lands in the repository) and return its JSON output."""
-    args = ["--dt", repr(dt), "--rho-inf", repr(rho_inf), "--repeats", str(repeats), "--module", module,
-            "--elements", str(elements), "--newton", newton]
-    if height is not None:
-        args += ["--height", repr(height)]
-    return run_peer_script(PEER_SCRIPT, args, python)
+def peer_scene(scene: dict) -> dict:
+    """Our scene as Exudyn's cable runs it: the element of its declaration
+    (:data:`DECLARATION`) in ``ancf.element``; a scene with a feature the declaration does
+    not take is refused (SceneError, the declaration's reason), as the engine skips it."""
+    decl = load_declaration(DECLARATION)
+    why = unsupported(decl, scene)
+    if why:
+        raise SceneError(f"{decl.name}: {why}")
+    return {**scene, "ancf": {**scene["ancf"], "element": decl.element}}
+
+
+def peer(scene: dict, repeats: int = 5, python: Path = PEER_PYTHON, module: str = "fast",
+         newton: str = "modified") -> dict:
+    """Time Exudyn's run of ``scene`` (:func:`peer_scene`) in .venv-peers (the script in a
+    scratch directory, so that nothing it might write lands in the repository) and return
+    its JSON output; ``newton``: the script's ``--newton``."""
+    args = ["--repeats", str(repeats), "--module", module, "--newton", newton]
+    return run_peer_script(PEER_SCRIPT, args, python, scene_toml(peer_scene(scene)))
 
 
 def tip_differences(ours_tips: list[dict], peer_tips: list[dict]) -> list[dict]:
@@ -189,10 +211,12 @@ diagram (`peers_work_precision.md`).
 - `tools/setup_peers.sh` (idempotent) makes a separate venv `.venv-peers` (no system site
   packages) with `exudyn` and `numpy`; it never touches `.venv`.
 - `studies/peers/exudyn_pendulum.py` runs inside `.venv-peers` and imports only exudyn, numpy
-  and the standard library. The model: `ObjectANCFCable2D` elements (Euler-Bernoulli, linear
-  elastic), E = 6 C10 (the small-strain modulus of incompressible plane-stress Yeoh), pinned by
-  two `CoordinateConstraint`s (slope free), gravity by `LoadMassProportional`, from horizontal
-  at rest, 0.5 s at a fixed step. Each timed repetition builds a fresh system outside the timed
+  and the standard library. It takes our scene with the cable's element and builds its model
+  as the adapter of `studies/peers/exudyn.toml` does (`exudyn_model.build`, one way to run
+  Exudyn): `ObjectANCFCable2D` elements (Euler-Bernoulli, linear elastic), E = 6 C10 (the
+  small-strain modulus of incompressible plane-stress Yeoh), pinned by two
+  `CoordinateConstraint`s (slope free), gravity by `LoadMassProportional`, from horizontal at
+  rest, 0.5 s at a fixed step. Each timed repetition builds a fresh system outside the timed
   region and times `SolveDynamic` alone.
 - Ours: `scenes/pendulum-yeoh-plane-stress.toml` (plane-stress Yeoh, generalized-alpha) at the
   same dt and rho_inf, the records' `wall_s` and `cpu_s` (the solve alone) of warm runs of

@@ -3,8 +3,8 @@
 
     .venv-peers/bin/python studies/peers/exudyn_static.py --cases CASES_JSON [--module fast|regular]
 
-Imports only exudyn, numpy, the standard library and the pendulum's builders beside this
-file (``exudyn_pendulum``: :func:`add_cable`, :func:`static_settings`), never ``ancf``:
+Imports only exudyn, numpy, the standard library and the builders beside this file
+(``exudyn_model``: :func:`add_cable`, :func:`static_settings`), never ``ancf``:
 this file runs in the separate venv that ``tools/setup_peers.sh`` creates. The cases come
 as JSON on the command line (:func:`studies.peers.exudyn_published.cases`, as data:
 model, static tolerances, whether to solve a second time); each is built by
@@ -18,21 +18,21 @@ import json
 import platform
 import sys
 
-import exudyn_pendulum as pendulum      # beside this file (the script's directory is on sys.path)
+import exudyn_model as model      # beside this file (the script's directory is on sys.path)
 
 
 def solve(exu, case: dict) -> dict:
-    """One case built by the pendulum's builder and solved by SolveStatic: the free end's
+    """One case built by the harness's cable builder and solved by SolveStatic: the free end's
     displacement {'ux', 'uy'} (GetNodeOutput Displacement of the last node: the example's
     last node's ODE2 coordinates) and the static solver's counters."""
     m = case["model"]
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    support = {"pin": pendulum.PIN, "clamp": pendulum.CLAMP}[m["support"]]
-    nodes = pendulum.add_cable(mbs, m["length"], m["elements"], EA=m["EA"], EI=m["EI"], rhoA=m["rhoA"],
-                               gravity=m["gravity"], support=support, tip_force=m["tip_force"])
+    support = {"pin": model.PIN, "clamp": model.CLAMP}[m["support"]]
+    nodes = model.add_cable(mbs, m["length"], m["elements"], EA=m["EA"], EI=m["EI"], rhoA=m["rhoA"],
+                            gravity=m["gravity"], support=support, tip_force=m["tip_force"])
     mbs.Assemble()
-    s = pendulum.static_settings(exu, case["static"]["relative_tolerance"], case["static"]["absolute_tolerance"])
+    s = model.static_settings(exu, case["static"]["relative_tolerance"], case["static"]["absolute_tolerance"])
     second = case.get("second_solve", False)   # as the example's author: SolveStatic again from the result
     try:
         mbs.SolveStatic(s, updateInitialValues=second)       # raises exudyn.SolverError when it fails

@@ -28,14 +28,19 @@ def parse_peer_output(stdout: str) -> dict:
     return out
 
 
-def run_peer_script(script: Path, args: list[str], python: Path = PEER_PYTHON) -> dict:
+def run_peer_script(script: Path, args: list[str], python: Path = PEER_PYTHON, scene: str | None = None) -> dict:
     """Run a peer script of this directory with ``python`` (.venv-peers), in a scratch
     directory (nothing it might write lands in the repository) and without our venv's
-    environment, and return the JSON on its last line (:func:`parse_peer_output`)."""
+    environment, and return the JSON on its last line (:func:`parse_peer_output`).
+    ``scene``: a scene file's text, written to the scratch directory and given to the
+    script as its first argument."""
     if not Path(python).exists():
         raise SystemExit(f"{python} not found: run `bash tools/setup_peers.sh` first")
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME")}
     with tempfile.TemporaryDirectory(prefix="exudyn-peer-") as cwd:
+        if scene is not None:
+            (Path(cwd) / "scene.toml").write_text(scene)
+            args = ["scene.toml", *args]
         p = subprocess.run([str(python), str(script), *args], cwd=cwd, env=env, capture_output=True, text=True)
     if p.returncode != 0:
         raise RuntimeError(f"peer script exited {p.returncode}:\n{p.stdout[-2000:]}\n{p.stderr[-2000:]}")

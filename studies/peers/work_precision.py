@@ -103,8 +103,7 @@ def exudyn(n: int, dt: float, rho_inf: float, repeats: int, python: Path, scene:
            element: str = "ANCFCable2D") -> dict:
     """The cable's run of a point; ``element``, a key of :data:`CABLE_SETTINGS`, names its Newton."""
     try:
-        p = peer(dt, rho_inf, repeats, python, elements=n, height=SCENES[scene]["height"],
-                 newton=CABLE_SETTINGS[element])
+        p = peer(scene_dict(element, n, dt, rho_inf, scene), repeats, python, newton=CABLE_SETTINGS[element])
     except RuntimeError as e:
         return {"status": "failed", "reason": str(e).splitlines()[0][:300], "time_s": None, "cpu_s": None,
                 "tip_history": None}
