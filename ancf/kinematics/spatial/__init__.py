@@ -1,0 +1,25 @@
+"""Spatial (3D) ANCF beam elements: the element layer of the third kinematics.
+
+A spatial element is data (:class:`.spec.SpatialSpec`): basis polynomials in (x, y, z), node
+positions along the beam and the nodal coordinate kinds at each node (r, r_x, r_y, r_z,
+r_yy, r_yz, r_zz, ...); its shape functions are derived from them (:mod:`.spec`). Its energy
+is the registered law's on the full deformation gradient, F = sum_k q_k (x) grad N_k, with
+nothing planar in between (:mod:`.energy`: the law's psi(I1bar, I2bar) plus the volumetric
+penalty alpha/2 (J - 1)^2, stress and tangent by second-order forward derivatives in the
+invariants, the same law function the planar solver and the continuum codes evaluate).
+:mod:`.beam` assembles a straight beam of them: energy, internal force and tangent.
+
+Built in (:mod:`.elements`, :data:`SPATIAL_ELEMENTS`): the fully parameterised 3243, the
+3333 and the 3363 (names as in Obrezkov et al. 2022), each with its source.
+
+What is here is the element layer and its contract checks (``tests/test_spatial_elements.py``:
+shape functions, patch and rigid-motion tests, Taylor tests, the plane-strain limit against
+the planar formulation). Not here yet, and so not in any scene: the spatial family's
+registration as a kinematics of :mod:`ancf.kinematics`, its supports, end face and loads,
+the 3D scene keys of :mod:`contract`, the static and dynamic solves, the lock-free element
+and the default quadrature from rank tests.
+"""
+from __future__ import annotations
+
+from .elements import SPATIAL_ELEMENTS, get_spatial_element  # noqa: F401
+from .spec import SpatialSpec  # noqa: F401

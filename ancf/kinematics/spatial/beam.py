@@ -1,0 +1,161 @@
+"""A straight beam of spatial elements: its strain energy, internal force and tangent.
+
+The beam lies along x from 0 to ``length``, its section ``height`` (y) by ``width`` (z)
+centred on the axis, cut into ``elements`` equal elements that share their end nodes (a
+three-node element's middle node is its own). Its coordinates are q (n_global, 3), the
+nodal vectors of every node in turn (node-major, kinds in the element's order); flattened,
+component i of vector m is entry 3 m + i. The energy is the integral of
+:func:`.energy.stress`'s W over the reference volume by a Gauss rule of ``points``
+(along, across the height, across the width), a product rule on each element; the force is
+its gradient, the tangent its Hessian (dense: this is the reference layer, not the
+compiled loop).
+
+An element with a pressure basis (``SpatialSpec.pressure``, p_k) takes the penalty on the
+element-wise L2 projection of J - 1: alpha / 2 b^T M^-1 b with b_k = int p_k (J - 1) dV and
+M = int p p^T dV (the law's isochoric part stays pointwise), the mixed u-p form with its
+pressure alpha M^-1 b condensed per element.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Mapping
+
+import numpy as np
+
+from .energy import invariant_derivatives, stress
+from .spec import SpatialSpec
+
+
+def gauss_box(points: tuple[int, int, int]) -> tuple[np.ndarray, np.ndarray]:
+    """Points (npts, 3) in xi in [0, 1], eta, zeta in [-1/2, 1/2] and weights summing to 1."""
+    rules = [np.polynomial.legendre.leggauss(n) for n in points]
+    xs = [(rules[0][0] + 1.0) / 2.0, rules[1][0] / 2.0, rules[2][0] / 2.0]
+    ws = [r[1] / 2.0 for r in rules]
+    X = np.stack(np.meshgrid(*xs, indexing="ij"), axis=-1).reshape(-1, 3)
+    W = np.einsum("i,j,k->ijk", *ws).ravel()
+    return X, W
+
+
+@dataclass(frozen=True)
+class SpatialBeam:
+    spec: SpatialSpec
+    length: float
+    height: float
+    width: float
+    elements: int
+    law: str
+    constants: Mapping[str, float] = field(hash=False)
+    alpha: float                        # the volumetric penalty, Pa
+    points: tuple[int, int, int] = (4, 3, 3)
+
+    @property
+    def le(self) -> float:
+        return self.length / self.elements
+
+    @property
+    def nodes(self) -> int:
+        """Nodes of the whole beam."""
+        return self.elements * (len(self.spec.nodes) - 1) + 1
+
+    @property
+    def n_global(self) -> int:
+        return self.nodes * len(self.spec.kinds)
+
+    @property
+    def dof(self) -> int:
+        return 3 * self.n_global
+
+    @cached_property
+    def _table(self):
+        X, w = gauss_box(self.points)
+        N, dN = self.spec.tabulate(X[:, 0], X[:, 1], X[:, 2], self.le, self.height, self.width)
+        return N, dN, w * self.le * self.height * self.width
+
+    @cached_property
+    def _pressure(self):
+        """(p at the points (npts, n_p), M^-1) of the pressure basis, or None."""
+        if not self.spec.pressure:
+            return None
+        X, _ = gauss_box(self.points)
+        _, _, w = self._table
+        p = self.spec.pressure_tabulate(X[:, 0], X[:, 1], X[:, 2], self.le, self.height, self.width)
+        return p, np.linalg.inv(np.einsum("q,qk,ql->kl", w, p, p))
+
+    @property
+    def _pointwise_alpha(self) -> float:
+        return 0.0 if self.spec.pressure else self.alpha
+
+    def _projected(self, F: np.ndarray) -> dict:
+        """The projected penalty at one element's points: its energy alpha / 2 b^T M^-1 b,
+        the pressure alpha M^-1 b at the points (``pressure``, npts: the stress is
+        pressure x dJ/dF), dJ/dF, d2J/dF2, the basis p and M^-1."""
+        p, Minv = self._pressure
+        _, _, w = self._table
+        inv, d, dd = invariant_derivatives(F)
+        b = np.einsum("q,qk,q->k", w, p, inv[2] - 1.0)
+        lam = self.alpha * Minv @ b
+        return {"energy": 0.5 * b @ lam, "pressure": p @ lam, "dJ": d[2], "ddJ": dd[2], "p": p, "Minv": Minv}
+
+    def element_rows(self, e: int) -> np.ndarray:
+        """Global shape-function indices of element ``e``'s local ones."""
+        k = len(self.spec.kinds)
+        first = e * (len(self.spec.nodes) - 1)
+        return np.array([(first + a) * k + b for a in range(len(self.spec.nodes)) for b in range(k)])
+
+    def node_positions(self) -> np.ndarray:
+        """x of every node of the beam."""
+        xs = [0.0]
+        for e in range(self.elements):
+            xs += [(e + xi) * self.le for xi in self.spec.nodes[1:]]
+        return np.array(xs)
+
+    def reference(self) -> np.ndarray:
+        """q (n_global, 3) of the straight unstressed beam."""
+        return np.concatenate([self.spec.reference_coordinates(x) for x in self.node_positions()])
+
+    def gradients(self, q: np.ndarray, e: int) -> np.ndarray:
+        """F (npts, 3, 3) at element ``e``'s quadrature points."""
+        _, dN, _ = self._table
+        return np.einsum("mi,pmJ->piJ", np.asarray(q).reshape(-1, 3)[self.element_rows(e)], dN)
+
+    def energy(self, q: np.ndarray) -> float:
+        """The strain energy (J)."""
+        _, _, w = self._table
+        total = 0.0
+        for e in range(self.elements):
+            F = self.gradients(q, e)
+            total += w @ stress(self.law, self.constants, self._pointwise_alpha, F, tangent=False)[0]
+            if self._pressure is not None:
+                total += self._projected(F)["energy"]
+        return float(total)
+
+    def force(self, q: np.ndarray) -> np.ndarray:
+        """dE/dq (dof,), N."""
+        _, dN, w = self._table
+        f = np.zeros((self.n_global, 3))
+        for e in range(self.elements):
+            F = self.gradients(q, e)
+            _, P, _ = stress(self.law, self.constants, self._pointwise_alpha, F, tangent=False)
+            if self._pressure is not None:
+                pr = self._projected(F)
+                P = P + pr["pressure"][:, None, None] * pr["dJ"]
+            np.add.at(f, self.element_rows(e), np.einsum("p,piJ,pmJ->mi", w, P, dN))
+        return f.ravel()
+
+    def tangent(self, q: np.ndarray) -> np.ndarray:
+        """d2E/dq2 (dof, dof), N/m."""
+        _, dN, w = self._table
+        K = np.zeros((self.n_global, 3, self.n_global, 3))
+        for e in range(self.elements):
+            F = self.gradients(q, e)
+            _, _, A = stress(self.law, self.constants, self._pointwise_alpha, F)
+            rows = self.element_rows(e)
+            Ke = np.einsum("p,pmJ,piJkL,pnL->mink", w, dN, A, dN)
+            if self._pressure is not None:
+                pr = self._projected(F)
+                G = np.einsum("p,pk,piJ,pmJ->kmi", w, pr["p"], pr["dJ"], dN)      # db_k / dq_mi
+                Ke += self.alpha * np.einsum("kmi,kl,lnj->minj", G, pr["Minv"], G)
+                Ke += np.einsum("p,pmJ,piJkL,pnL->mink", w * pr["pressure"], dN, pr["ddJ"], dN)
+            K[np.ix_(rows, range(3), rows, range(3))] += Ke
+        return K.reshape(self.dof, self.dof)

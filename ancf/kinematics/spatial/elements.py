@@ -1,0 +1,48 @@
+"""The built-in spatial elements, registered by name (:data:`SPATIAL_ELEMENTS`), names in the
+"abcd" classification of Obrezkov, Matikainen and Kireeva (Nonlinear Dyn. 2022,
+doi:10.1007/s11071-022-07518-z), as the LUT solver reads it: the second digit the nodes,
+the middle ones the vectors per node, the last the dimension (3243: 2 nodes, 4 vectors,
+3D).
+Each basis is the one its source writes, checked against the LUT group's open solver
+(LUT-CoSmart/ANCF-Beam-based-Solver, ElementTensors/Matlab/FF_<name>.m: the deformation
+gradient in the nodal vectors).
+"""
+from __future__ import annotations
+
+from contract.registry import Registry
+
+from .spec import SpatialSpec
+
+SPATIAL_ELEMENTS: Registry[SpatialSpec] = Registry("ancf.element", "spatial element")
+
+
+def register_spatial_element(spec: SpatialSpec) -> SpatialSpec:
+    import sys
+
+    return SPATIAL_ELEMENTS.register(spec.name, spec, sys._getframe(1).f_globals.get("__name__", "__main__"))
+
+
+def get_spatial_element(name: str) -> SpatialSpec:
+    return SPATIAL_ELEMENTS.lookup(name)
+
+
+# fully parameterised: position and three slopes at two nodes, cubic along x, linear across
+register_spatial_element(SpatialSpec(
+    "3243", ("1", "x", "y", "z", "x*y", "x*z", "x^2", "x^3"), (0.0, 1.0), ("r", "r_x", "r_y", "r_z"),
+    "Shabana & Yakoub 2001 (J. Mech. Des. 123); Gerstmayr & Shabana 2006 (Nonlinear Dyn. 45)"))
+# shear deformable, three nodes with position and the two transverse slopes, quadratic along x
+register_spatial_element(SpatialSpec(
+    "3333", ("1", "x", "x^2", "y", "x*y", "x^2*y", "z", "x*z", "x^2*z"), (0.0, 0.5, 1.0), ("r", "r_y", "r_z"),
+    "Nachbagauer, Gruber & Gerstmayr 2013 (J. Comput. Nonlinear Dyn. 8)"))
+# the 3333 with the transverse second derivatives: a section that deforms quadratically
+register_spatial_element(SpatialSpec(
+    "3363", ("1", "x", "x^2", "y", "x*y", "x^2*y", "z", "x*z", "x^2*z",
+             "y*z", "x*y*z", "x^2*y*z", "y^2", "x*y^2", "x^2*y^2", "z^2", "x*z^2", "x^2*z^2"),
+    (0.0, 0.5, 1.0), ("r", "r_y", "r_z", "r_yz", "r_yy", "r_zz"),
+    "Obrezkov, Matikainen & Kireeva 2022 (Nonlinear Dyn.; the LUT solver's 3363)"))
+# this harness: the 3363 with the penalty on the element-wise projection of J - 1 onto
+# {1, x} x {1, y, z}, the planar HB2n-40p's idea carried into the section
+register_spatial_element(SpatialSpec(
+    "3363p", SPATIAL_ELEMENTS["3363"].basis, (0.0, 0.5, 1.0), SPATIAL_ELEMENTS["3363"].kinds,
+    "this harness: the 3363 with an element pressure {1, x} x {1, y, z}", pressure=("1", "x", "y", "x*y", "z", "x*z")))
+BUILTIN = SPATIAL_ELEMENTS.freeze_builtin()
