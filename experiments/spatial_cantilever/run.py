@@ -1,0 +1,71 @@
+"""The paper's cantilever in 3D (160 x 5 x 7 mm, the clamped face, gravity) on the spatial
+ANCF elements (ancf.kinematics.spatial), against the 3D continuum's gold
+(reports/data/solid3d/fem_cantilever_3d.json: DOLFINx Q2/Q1 hexahedra, exactly
+incompressible, Richardson-extrapolated). Appends one JSON line per run to res.jsonl here
+and skips the runs it holds.
+
+    .venv/bin/python experiments/spatial_cantilever/run.py LAW ELEMENT COUNTS [--penalty PA] [--iterations N]
+
+ELEMENT a registered spatial element, COUNTS comma-separated element counts. The law's
+constants and density are the paper's (contract.paper), the penalty the paper's 1000 MPa
+unless given; the rule (4, 3, 3) points (along, across the height, across the width);
+10 load steps, Newton to 1e-8 of the load or to a correction of 1e-12 L, 100 iterations
+per increment unless given.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ancf.kinematics.spatial import SPATIAL_ELEMENTS
+from ancf.kinematics.spatial.beam import SpatialBeam
+from ancf.kinematics.spatial.statics import clamp_rows, gravity_load, solve_static
+from contract import paper
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+GOLD = ROOT / "reports" / "data" / "solid3d" / "fem_cantilever_3d.json"
+POINTS = (4, 3, 3)
+
+
+def main() -> None:
+    a = argparse.ArgumentParser()
+    a.add_argument("law")
+    a.add_argument("element", choices=list(SPATIAL_ELEMENTS))
+    a.add_argument("counts")
+    a.add_argument("--penalty", type=float, default=paper.PENALTY)
+    a.add_argument("--iterations", type=int, default=100, help="Newton iterations per increment")
+    a = a.parse_args()
+    gold = json.loads(GOLD.read_text())["cases"][f"{a.law}/3d"]
+    m = paper.materials()[a.law]
+    c = {k: v for k, v in m.items() if k != "density"}
+    L, h, w = paper.CANTILEVER["length"], paper.CANTILEVER["height"], paper.CANTILEVER["width"]
+    out = HERE / "res.jsonl"
+    have = {(r["law"], r["element"], r["elements"], r["penalty"], r.get("iterations", 100))
+            for r in map(json.loads, out.read_text().splitlines())} if out.exists() else set()
+    for n in (int(x) for x in a.counts.split(",")):
+        if (a.law, a.element, n, a.penalty, a.iterations) in have:
+            continue
+        b = SpatialBeam(SPATIAL_ELEMENTS[a.element], L, h, w, n, a.law, c, a.penalty, POINTS)
+        t0 = time.perf_counter()
+        res = solve_static(b, gravity_load(b, m["density"], (0.0, -paper.GRAVITY, 0.0)), clamp_rows(b),
+                           load_steps=10, max_iterations=a.iterations)
+        tip = res.tip(b)
+        g = gold["tip"]
+        err = None if tip is None else float(np.hypot(tip["ux"] - g["ux"], tip["uy"] - g["uy"]) / L)
+        rec = {"law": a.law, "element": a.element, "elements": n, "penalty": a.penalty, "iterations": a.iterations,
+               "points": POINTS,
+               "dof": b.dof, "status": res.status, "reason": res.reason, "tip": tip, "gold": g,
+               "gold_error_estimate_m": gold["error_estimate_m"], "error_over_L": err,
+               "newton_iterations": res.newton_iterations, "seconds": time.perf_counter() - t0}
+        with out.open("a") as f:
+            f.write(json.dumps(rec) + "\n")
+        print(json.dumps(rec), flush=True)
+
+
+if __name__ == "__main__":
+    main()
