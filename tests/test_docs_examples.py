@@ -33,7 +33,7 @@ TUTORIALS = ROOT / "docs" / "tutorials"
 PAGES = sorted(p for p in TUTORIALS.glob("*.md") if p.name != "index.md")
 # pages whose runs include the default continuum backend (DOLFINx)
 CONTINUUM_PAGES = {"first-scene", "your-law"}
-SLOW_PAGES = {"your-element", "your-law"}
+SLOW_PAGES = {"your-element", "your-law", "first-scene"}
 FENCE = re.compile(r"^(`{3,})\s*(\{[a-z-]+\})?\s*([A-Za-z0-9_-]*)(.*)$")
 NOT_RUN = re.compile(r"<!--\s*not run:\s*(.+?)\s*-->")
 RUNS = ("python", "sh")
@@ -125,7 +125,7 @@ def test_the_tutorials_have_runnable_blocks():
                 assert b["skip"].strip(), f"{page.name}:{b['line']}: 'not run' without a reason"
 
 
-# the element and law tutorials (about 15 s and 4 s: their compiles and runs) run in the full tier;
+# the element, law and first-scene tutorials (about 15, 4 and 8 s: their compiles and runs) run in the full tier;
 # the other tutorials keep the steps' runner in the quick one
 @pytest.mark.parametrize("page", tiered(PAGES, lambda p: p.stem in SLOW_PAGES,
                                         "test_a_tutorial_runs_as_written"), ids=[p.stem for p in PAGES])

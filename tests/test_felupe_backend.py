@@ -78,8 +78,10 @@ def test_a_law_from_the_table_needs_no_backend_code():
     assert abs(rec["tip"]["ux"]) < abs(nh["tip"]["ux"])
 
 
+# the mixed plane strain in the full tier (about 4 s), plane stress stays quick
 @pytest.mark.dolfinx
-@pytest.mark.parametrize("model, inc", [("plane-strain", "mixed"), ("plane-stress", None)])
+@pytest.mark.parametrize("model, inc", tiered([("plane-strain", "mixed"), ("plane-stress", None)],
+                                              lambda model, inc: inc == "mixed", "test_tip_force_as_dolfinx"))
 def test_tip_force_as_dolfinx(model, inc):
     """The tip traction (consistent nodal forces: Simpson on the end face) with gravity:
     the same tip as DOLFINx on the same mesh."""

@@ -376,7 +376,9 @@ def test_dolfinx_and_felupe_agree_on_the_same_mesh():
     assert "end_moment" in a["effects"] and "end_moment" in b["effects"]
 
 
-@pytest.mark.parametrize("backend", ["dolfinx", "felupe"])
+# DOLFINx's case in the full tier (about 5 s), FElupe's stays quick
+@pytest.mark.parametrize("backend", tiered(["dolfinx", "felupe"], lambda b: b == "dolfinx",
+                                           "test_3d_with_plane_strain_sides_is_the_2d_plane_strain_answer"))
 def test_3d_with_plane_strain_sides_is_the_2d_plane_strain_answer(backend):
     """The 3D model's couple (weight 1 / (h^3 w / 12), the full moment) on 10 x 2 x 1 Q2/Q1
     hexahedra with u_z = 0 on the side faces holds the 2D plane-strain solution exactly (its

@@ -31,6 +31,8 @@ def test_records_of_todays_code_reproduce(out):
     assert res.ok and len(res.checked) == 3 and res.candidates == 3 and res.stale == 0
 
 
+# in the full tier (about 3 s); today's records reproducing keeps the comparison in the quick one
+@pytest.mark.slow(guard="test_records_of_todays_code_reproduce")
 def test_a_record_the_code_does_not_reproduce_is_named_with_its_field(out, tmp_path):
     out, cases = out
     data = tmp_path / "data"

@@ -4,8 +4,8 @@ As for a planar element (:mod:`ancf.core.spec`), everything follows from the bas
 polynomials, the node positions along the element and the kinds of nodal coordinate: the
 nodal-coordinate matrix A[m, j] = functional_m(basis_j) is built and inverted in the
 dimensionless coordinates xi = x / l_e, eta = y / h, zeta = z / w (the section is h high in
-y and w wide in z, centred on the axis), then scaled to physical units. A kind is "r" or
-"r_" followed by its derivatives, x's before y's before z's ("r_x", "r_yz", "r_zz"); its
+y and w wide in z, centred on the axis), then scaled to physical units. A kind is ``r`` or
+``r_`` followed by its derivatives, x's before y's before z's (``r_x``, ``r_yz``, ``r_zz``); its
 functional is that derivative of the position at the node, on the beam's axis
 (eta = zeta = 0). Local shape function m is node m // len(kinds), kind m % len(kinds); the
 element's coordinates are q (n_shape, 3), r(X) = sum_m N_m(X) q_m.
