@@ -111,9 +111,9 @@ def test_a_solver_that_fails_ends_the_case_with_a_status_and_a_reason(tmp_path, 
 
 def test_a_solver_that_hangs_is_stopped_at_its_wall_time(tmp_path, solvers):
     t0 = time.perf_counter()
-    rec = run(solvers(declare(tmp_path, "hang", wall=0.5)))
+    rec = run(solvers(declare(tmp_path, "hang", wall=0.25)))
     assert time.perf_counter() - t0 < 10.0
-    assert rec["status"] == "failed" and "past its wall time of 0.5 s" in rec["reason"]
+    assert rec["status"] == "failed" and "past its wall time of 0.25 s" in rec["reason"]
 
 
 def test_what_a_solver_does_not_declare_is_skipped_with_the_reason(tmp_path, solvers):
@@ -284,7 +284,7 @@ def test_a_card_on_an_external_solver_judges_its_runs_and_names_what_it_left_out
     made-up tip is judged, not passed: the convergence plateau is its distance to the
     continuum's gold), what the declaration does not take skipped and named (plane strain,
     so the locking sweep; the pendulum), the sections that need the element's internals
-    listed as left out; a second run reuses every record."""
+    listed as left out; a second run would reuse every record (its dry run)."""
     from studies.common.gold import gold_references
     from studies.design.card_report import FEM_STATIC
     from studies.engine.report import vec_error
@@ -306,8 +306,8 @@ def test_a_card_on_an_external_solver_judges_its_runs_and_names_what_it_left_out
     recs = [json.loads(x) for x in (tmp_path / "out" / "data" / "card-stub-ok-StubCable.jsonl").read_text().splitlines()]
     assert recs and {r["scene"]["ancf"]["element"] for r in recs} == {"StubCable"}
     assert {r["scene"]["material"]["formulation"] for r in recs} == {"plane-stress"}
-    run_external_cards(path, [], tmp_path / "out", tiny=True, log=lines.append)
-    assert f"{len(recs)} reused, 0 computed" in lines[-1]
+    run_external_cards(path, [], tmp_path / "out", tiny=True, dry=True, log=lines.append)
+    assert f"{len(recs)} reused, 0 to compute" in lines[-1]
     with pytest.raises(ValueError, match="name the elements to card"):
         elements_of(load_declaration(declare(tmp_path, name="byname")), [])
 
