@@ -10,7 +10,9 @@ invariants, the same law function the planar solver and the continuum codes eval
 :mod:`.beam` assembles a straight beam of them: energy, internal force and tangent.
 
 Built in (:mod:`.elements`, :data:`SPATIAL_ELEMENTS`): the fully parameterised 3243, the
-3333 and the 3363 (names as in Obrezkov et al. 2022), each with its source.
+3333 and the 3363 (names as in Obrezkov et al. 2022), each with its source, and the 3363p of
+this harness (the 3363 with an element pressure). :mod:`.statics` holds a beam clamped under
+its weight; ``experiments/spatial_cantilever`` measures them against the 3D continuum.
 
 What is here is the element layer and its contract checks (``tests/test_spatial_elements.py``:
 shape functions, patch and rigid-motion tests, Taylor tests, the plane-strain limit against
