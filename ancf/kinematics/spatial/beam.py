@@ -23,7 +23,7 @@ from typing import Mapping
 
 import numpy as np
 
-from .energy import invariant_derivatives, stress
+from .energy import density, invariant_derivatives, stress
 from .spec import SpatialSpec
 
 
@@ -86,16 +86,18 @@ class SpatialBeam:
     def _pointwise_alpha(self) -> float:
         return 0.0 if self.spec.pressure else self.alpha
 
-    def _projected(self, F: np.ndarray) -> dict:
-        """The projected penalty at one element's points: its energy alpha / 2 b^T M^-1 b,
-        the pressure alpha M^-1 b at the points (``pressure``, npts: the stress is
-        pressure x dJ/dF), dJ/dF, d2J/dF2, the basis p and M^-1."""
+    def _projected(self, F: np.ndarray, order: int) -> dict:
+        """The projected penalty at one element's points, to ``order`` (0: its energy
+        alpha / 2 b^T M^-1 b; 1: also the pressure alpha M^-1 b at the points, ``pressure``
+        (npts: the stress is pressure x dJ/dF), and dJ/dF; 2: also d2J/dF2), with the basis p
+        and M^-1."""
         p, Minv = self._pressure
         _, _, w = self._table
-        inv, d, dd = invariant_derivatives(F)
+        inv, d, dd = invariant_derivatives(F, order)
         b = np.einsum("q,qk,q->k", w, p, inv[2] - 1.0)
         lam = self.alpha * Minv @ b
-        return {"energy": 0.5 * b @ lam, "pressure": p @ lam, "dJ": d[2], "ddJ": dd[2], "p": p, "Minv": Minv}
+        return {"energy": 0.5 * b @ lam, "pressure": p @ lam, "dJ": None if d is None else d[2],
+                "ddJ": None if dd is None else dd[2], "p": p, "Minv": Minv}
 
     def element_rows(self, e: int) -> np.ndarray:
         """Global shape-function indices of element ``e``'s local ones."""
@@ -125,9 +127,9 @@ class SpatialBeam:
         total = 0.0
         for e in range(self.elements):
             F = self.gradients(q, e)
-            total += w @ stress(self.law, self.constants, self._pointwise_alpha, F, tangent=False)[0]
+            total += w @ density(self.law, self.constants, self._pointwise_alpha, F)
             if self._pressure is not None:
-                total += self._projected(F)["energy"]
+                total += self._projected(F, 0)["energy"]
         return float(total)
 
     def force(self, q: np.ndarray) -> np.ndarray:
@@ -138,7 +140,7 @@ class SpatialBeam:
             F = self.gradients(q, e)
             _, P, _ = stress(self.law, self.constants, self._pointwise_alpha, F, tangent=False)
             if self._pressure is not None:
-                pr = self._projected(F)
+                pr = self._projected(F, 1)
                 P = P + pr["pressure"][:, None, None] * pr["dJ"]
             np.add.at(f, self.element_rows(e), np.einsum("p,piJ,pmJ->mi", w, P, dN))
         return f.ravel()
@@ -153,7 +155,7 @@ class SpatialBeam:
             rows = self.element_rows(e)
             Ke = np.einsum("p,pmJ,piJkL,pnL->mink", w, dN, A, dN)
             if self._pressure is not None:
-                pr = self._projected(F)
+                pr = self._projected(F, 2)
                 G = np.einsum("p,pk,piJ,pmJ->kmi", w, pr["p"], pr["dJ"], dN)      # db_k / dq_mi
                 Ke += self.alpha * np.einsum("kmi,kl,lnj->minj", G, pr["Minv"], G)
                 Ke += np.einsum("p,pmJ,piJkL,pnL->mink", w * pr["pressure"], dN, pr["ddJ"], dN)

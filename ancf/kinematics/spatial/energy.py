@@ -127,9 +127,10 @@ for _i, _j, _k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
     _EPS[_i, _j, _k], _EPS[_i, _k, _j] = 1.0, -1.0
 
 
-def invariant_derivatives(F: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def invariant_derivatives(F: np.ndarray, order: int = 2) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
     """The invariants (3, npts), their derivatives in F (3, npts, 3, 3) and second
-    derivatives (3, npts, 3, 3, 3, 3) (index order i J k L of F_iJ, F_kL):
+    derivatives (3, npts, 3, 3, 3, 3) (index order i J k L of F_iJ, F_kL), up to ``order``
+    (the ones above it None: an energy needs no derivative, a force no second one):
 
     dI1 = 2 F,  dI2 = 2 (I1 F - F C),  dJ = cof F = (1/2) eps_ikm eps_JLM F_kL F_mM,
     d2I1 = 2 delta_ik delta_JL,
@@ -141,10 +142,14 @@ def invariant_derivatives(F: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
     I1 = np.einsum("pij,pij->p", F, F)
     I2 = 0.5 * (I1 ** 2 - np.einsum("pij,pij->p", C, C))
     J = np.linalg.det(F)
+    if order == 0:
+        return np.stack([I1, I2, J]), None, None
     d = np.empty((3, n, 3, 3))
     d[0] = 2.0 * F
     d[1] = 2.0 * (I1[:, None, None] * F - F @ C)
     d[2] = 0.5 * np.einsum("ikm,JLM,pkL,pmM->piJ", _EPS, _EPS, F, F)
+    if order == 1:
+        return np.stack([I1, I2, J]), d, None
     eye = np.eye(3)
     dd = np.zeros((3, n, 3, 3, 3, 3))
     dd[0] = 2.0 * np.einsum("ik,JL->iJkL", eye, eye)[None]
@@ -155,11 +160,17 @@ def invariant_derivatives(F: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
     return np.stack([I1, I2, J]), d, dd
 
 
+def density(law: str, constants: Mapping[str, float], alpha: float, F: np.ndarray) -> np.ndarray:
+    """W (npts) alone at deformation gradients F (npts, 3, 3)."""
+    inv, _, _ = invariant_derivatives(np.asarray(F, float), 0)
+    return density_jet(law, constants, alpha, *inv).D[0]
+
+
 def stress(law: str, constants: Mapping[str, float], alpha: float, F: np.ndarray, tangent: bool = True):
     """W (npts), the first Piola stress P = dW/dF (npts, 3, 3) and, with ``tangent``, its
     derivative A = d2W/dF2 (npts, 3, 3, 3, 3) at deformation gradients F (npts, 3, 3)."""
     F = np.asarray(F, float)
-    inv, d, dd = invariant_derivatives(F)
+    inv, d, dd = invariant_derivatives(F, 2 if tangent else 1)
     W = density_jet(law, constants, alpha, *inv)
     g, H = W.gradient(), W.hessian()
     P = np.einsum("ap,apiJ->piJ", g, d)
