@@ -92,7 +92,10 @@ class _Increment:
         K = self.beam.tangent(self.q.reshape(-1, 3))[np.ix_(self.free, self.free)]
         d = 1.0 / np.sqrt(np.abs(np.diag(K)))
         dq = np.zeros_like(self.q)
-        dq[self.free] = -d * np.linalg.solve(d[:, None] * K * d[None, :], d * self.r[self.free])
+        try:
+            dq[self.free] = -d * np.linalg.solve(d[:, None] * K * d[None, :], d * self.r[self.free])
+        except np.linalg.LinAlgError:       # not an ArithmeticError: the shared loop would let it through
+            raise ArithmeticError("singular tangent") from None
         s = 1.0
         if self.line_search:
             p0, slope = self.potential(self.q), self.r @ dq
