@@ -4,11 +4,14 @@ ANCF elements (ancf.kinematics.spatial), against the 3D continuum's gold
 incompressible, Richardson-extrapolated). Appends one JSON line per run to res.jsonl here
 and skips the runs it holds.
 
-    .venv/bin/python experiments/spatial_cantilever/run.py LAW ELEMENT COUNTS [--penalty PA] [--iterations N]
+    .venv/bin/python experiments/spatial_cantilever/run.py LAW ELEMENT COUNTS [--penalty PA] [--iterations N] [--points P,P,P]
 
-ELEMENT a registered spatial element, COUNTS comma-separated element counts. The law's
+ELEMENT a registered spatial element or a trial of the Hermite-section family,
+``H<degree>p<pressure degree>`` (ancf.kinematics.spatial.elements.hermite_section: cubic
+Hermite along, the complete section of that degree, the pressure {1, x} x the complete
+section of its degree; ``H2`` without a pressure), COUNTS comma-separated element counts. The law's
 constants and density are the paper's (contract.paper), the penalty the paper's 1000 MPa
-unless given; the rule (4, 3, 3) points (along, across the height, across the width);
+unless given; the rule (4, 3, 3) points (along, across the height, across the width) unless given;
 10 load steps, Newton to 1e-8 of the load or to a correction of 1e-12 L, 100 iterations
 per increment unless given.
 """
@@ -22,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from ancf.kinematics.spatial import SPATIAL_ELEMENTS
+from ancf.kinematics.spatial.elements import hermite_section
 from ancf.kinematics.spatial.beam import SpatialBeam
 from ancf.kinematics.spatial.statics import clamp_rows, gravity_load, solve_static
 from contract import paper
@@ -30,35 +34,53 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 GOLD = ROOT / "reports" / "data" / "solid3d" / "fem_cantilever_3d.json"
 POINTS = (4, 3, 3)
+# the static loop a record comes from: the first, damped Newton, and the full steps with the
+# force's round-off floor on the residual (ancf.kinematics.spatial.statics); a run is
+# repeated under a new loop, the old record kept
+LOOP = "full-newton"
+
+
+def element(name: str):
+    """A registered spatial element, or H<degree>[p<degree>] of the Hermite-section family."""
+    if name in SPATIAL_ELEMENTS:
+        return SPATIAL_ELEMENTS[name]
+    head, _, p = name[1:].partition("p")
+    if not name.startswith("H") or not head.isdigit() or (p and not p.isdigit()):
+        raise SystemExit(f"element {name!r}: one of {list(SPATIAL_ELEMENTS)} or H<degree>[p<degree>]")
+    return hermite_section(name, int(head), int(p) if p else None, "trial")
 
 
 def main() -> None:
     a = argparse.ArgumentParser()
     a.add_argument("law")
-    a.add_argument("element", choices=list(SPATIAL_ELEMENTS))
+    a.add_argument("element", help=f"one of {list(SPATIAL_ELEMENTS)} or H<degree>[p<degree>]")
     a.add_argument("counts")
     a.add_argument("--penalty", type=float, default=paper.PENALTY)
     a.add_argument("--iterations", type=int, default=100, help="Newton iterations per increment")
+    a.add_argument("--points", default=",".join(map(str, POINTS)), help="Gauss points along, across h, across w")
     a = a.parse_args()
+    points = tuple(int(v) for v in a.points.split(","))
+    spec = element(a.element)
     gold = json.loads(GOLD.read_text())["cases"][f"{a.law}/3d"]
     m = paper.materials()[a.law]
     c = {k: v for k, v in m.items() if k != "density"}
     L, h, w = paper.CANTILEVER["length"], paper.CANTILEVER["height"], paper.CANTILEVER["width"]
     out = HERE / "res.jsonl"
-    have = {(r["law"], r["element"], r["elements"], r["penalty"], r.get("iterations", 100))
+    have = {(r["law"], r["element"], r["elements"], r["penalty"], r.get("iterations", 100), tuple(r["points"]),
+             r.get("loop", "damped"))
             for r in map(json.loads, out.read_text().splitlines())} if out.exists() else set()
     for n in (int(x) for x in a.counts.split(",")):
-        if (a.law, a.element, n, a.penalty, a.iterations) in have:
+        if (a.law, a.element, n, a.penalty, a.iterations, points, LOOP) in have:
             continue
-        b = SpatialBeam(SPATIAL_ELEMENTS[a.element], L, h, w, n, a.law, c, a.penalty, POINTS)
+        b = SpatialBeam(spec, L, h, w, n, a.law, c, a.penalty, points)
         t0 = time.perf_counter()
         res = solve_static(b, gravity_load(b, m["density"], (0.0, -paper.GRAVITY, 0.0)), clamp_rows(b),
                            load_steps=10, max_iterations=a.iterations)
         tip = res.tip(b)
         g = gold["tip"]
         err = None if tip is None else float(np.hypot(tip["ux"] - g["ux"], tip["uy"] - g["uy"]) / L)
-        rec = {"law": a.law, "element": a.element, "elements": n, "penalty": a.penalty, "iterations": a.iterations,
-               "points": POINTS,
+        rec = {"law": a.law, "element": a.element, "elements": n, "penalty": a.penalty, "iterations": a.iterations, "loop": LOOP,
+               "points": points, "rejected_steps": res.rejected_steps,
                "dof": b.dof, "status": res.status, "reason": res.reason, "tip": tip, "gold": g,
                "gold_error_estimate_m": gold["error_estimate_m"], "error_over_L": err,
                "newton_iterations": res.newton_iterations, "seconds": time.perf_counter() - t0}

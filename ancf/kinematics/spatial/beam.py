@@ -23,7 +23,7 @@ from typing import Mapping
 
 import numpy as np
 
-from .energy import density, invariant_derivatives, stress
+from .energy import density, density_jet, invariant_derivatives, stress
 from .spec import SpatialSpec
 
 
@@ -143,6 +143,23 @@ class SpatialBeam:
                 pr = self._projected(F, 1)
                 P = P + pr["pressure"][:, None, None] * pr["dJ"]
             np.add.at(f, self.element_rows(e), np.einsum("p,piJ,pmJ->mi", w, P, dN))
+        return f.ravel()
+
+    def force_magnitude(self, q: np.ndarray) -> np.ndarray:
+        """The internal force assembled from the magnitudes of its terms (dof,), N: per point
+        sum_k |dW/dI_k| |dI_k/dF| (the chain rule's terms in the invariants I1, I2, J) plus the
+        penalty's alpha (|J| + 1) |cof F| (its two terms alpha J cof F and alpha cof F, whose
+        difference is the stress: its round-off is eps times this, whatever J - 1 is), against
+        |dN| w. eps times its norm over the free dofs is the size of the force's round-off."""
+        _, dN, w = self._table
+        f = np.zeros((self.n_global, 3))
+        for e in range(self.elements):
+            F = self.gradients(q, e)
+            inv, d, _ = invariant_derivatives(F, 1)
+            g = density_jet(self.law, self.constants, self._pointwise_alpha, *inv).gradient()
+            Pm = np.einsum("ap,apiJ->piJ", np.abs(g), np.abs(d))
+            Pm = Pm + self.alpha * (np.abs(inv[2]) + 1.0)[:, None, None] * np.abs(d[2])
+            np.add.at(f, self.element_rows(e), np.einsum("p,piJ,pmJ->mi", w, Pm, np.abs(dN)))
         return f.ravel()
 
     def tangent(self, q: np.ndarray) -> np.ndarray:

@@ -26,6 +26,32 @@ def get_spatial_element(name: str) -> SpatialSpec:
     return SPATIAL_ELEMENTS.lookup(name)
 
 
+def _monomial(i: int, j: int, k: int) -> str:
+    return "*".join([f"{v}^{p}" if p > 1 else v for v, p in zip("xyz", (i, j, k)) if p]) or "1"
+
+
+def section_modes(degree: int) -> list[tuple[int, int]]:
+    """The complete polynomial section of a degree: (power of y, power of z), by degree."""
+    return [(d - b, b) for d in range(degree + 1) for b in range(d + 1)]
+
+
+def hermite_section(name: str, degree: int, pressure_degree: int | None = None, reference: str = "") -> SpatialSpec:
+    """Two nodes, cubic Hermite along the beam, the complete section of ``degree`` in (y, z):
+    at each node the section's field y^a z^b and its slope along the beam, kinds
+    r_<y^a z^b> and r_x<y^a z^b> (r, r_x, r_y, r_xy, r_z, r_xz, r_yy, ...), so that the
+    position and the section's shape are C1 between elements. With ``pressure_degree`` an
+    element pressure {1, x} x the complete section of that degree."""
+    modes = section_modes(degree)
+    kinds = []
+    for a, b in modes:
+        d = "y" * a + "z" * b
+        kinds += ["r_" + d if d else "r", "r_x" + d]
+    basis = tuple(_monomial(i, a, b) for i in range(4) for a, b in modes)
+    pressure = () if pressure_degree is None else tuple(
+        _monomial(i, a, b) for i in range(2) for a, b in section_modes(pressure_degree))
+    return SpatialSpec(name, basis, (0.0, 1.0), tuple(kinds), reference, pressure=pressure)
+
+
 # fully parameterised: position and three slopes at two nodes, cubic along x, linear across
 register_spatial_element(SpatialSpec(
     "3243", ("1", "x", "y", "z", "x*y", "x*z", "x^2", "x^3"), (0.0, 1.0), ("r", "r_x", "r_y", "r_z"),

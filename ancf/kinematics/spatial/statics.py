@@ -18,8 +18,10 @@
   insists on descent crawls back to the constraint where Newton's full steps converge
   (measured, 3363p x 2, the paper's cantilever at a tenth of its load: 8 full steps to
   5e-9 of the load against more than 30 damped ones). An increment converges at
-  |residual| <= rtol t |f|, or when Newton's correction is below ``xtol`` of the beam's
-  length: the residual's round-off (a stiff penalty's eps alpha h w, with terms of P of
+  |residual| <= max(rtol t |f|, ROUNDOFF_FLOOR eps |f_int|_terms) (the planar statics' floor,
+  :data:`ancf.solvers.statics.ROUNDOFF_FLOOR`, on the force assembled from the magnitudes of
+  its terms, :meth:`.beam.SpatialBeam.force_magnitude`, at the reference state), or when
+  Newton's correction is below ``xtol`` of the beam's length: the residual's round-off (a stiff penalty's eps alpha h w, with terms of P of
   order mu that cancel) can lie above rtol |f| under gravity while the corrections fall
   quadratically to round-off (3333 x 4 at a tenth of the load: corrections 7e-4, 2e-7,
   2e-11, 1e-14 m, the residual stalling at 5e-11 to 1e-10 N against rtol |f| = 4e-11 N).
@@ -35,6 +37,7 @@ from mechanics.load_path import Attempt, PathCounts, PathFailure, follow
 from mechanics.newton import newton
 from mechanics.time_loop import StepFailure
 
+from ...solvers.statics import ROUNDOFF_FLOOR
 from .beam import SpatialBeam
 from .spec import kind_orders
 
@@ -111,6 +114,8 @@ def solve_static(beam: SpatialBeam, f_ext: np.ndarray, fixed: np.ndarray, load_s
     module doc)."""
     free = np.setdiff1d(np.arange(beam.dof), fixed)
     scale = float(np.linalg.norm(f_ext)) or 1.0
+    # never below the force's own round-off (the planar statics' rule and margin)
+    floor = ROUNDOFF_FLOOR * np.finfo(float).eps * float(np.linalg.norm(beam.force_magnitude(beam.reference())[free]))
     state = {"q": beam.reference().ravel(), "dq": None}
     small = lambda system, r, dw: dw <= xtol * beam.length
 
@@ -121,7 +126,7 @@ def solve_static(beam: SpatialBeam, f_ext: np.ndarray, fixed: np.ndarray, load_s
         for start, line_search in ((guess, False), (q, True)):
             system = _Increment(beam, free, start, t1 * f_ext, line_search)
             try:
-                its, _ = newton(system, t1 * scale, rtol, max_iterations, small)
+                its, _ = newton(system, max(t1 * scale, floor / rtol), rtol, max_iterations, small)
             except StepFailure as e:
                 spent, reason = spent + e.iterations, str(e)
                 continue
