@@ -170,11 +170,15 @@ class SpatialBeam:
             F = self.gradients(q, e)
             _, _, A = stress(self.law, self.constants, self._pointwise_alpha, F)
             rows = self.element_rows(e)
-            Ke = np.einsum("p,pmJ,piJkL,pnL->mink", w, dN, A, dN)
             if self._pressure is not None:
                 pr = self._projected(F, 2)
-                G = np.einsum("p,pk,piJ,pmJ->kmi", w, pr["p"], pr["dJ"], dN)      # db_k / dq_mi
-                Ke += self.alpha * np.einsum("kmi,kl,lnj->minj", G, pr["Minv"], G)
-                Ke += np.einsum("p,pmJ,piJkL,pnL->mink", w * pr["pressure"], dN, pr["ddJ"], dN)
+                A = A + pr["pressure"][:, None, None, None, None] * pr["ddJ"]
+            # sum_p w dN_mJ A_iJkL dN_nL in two BLAS-sized contractions (a single four-operand
+            # einsum loops over every index at once: 16 s for a quartic section's 8 elements)
+            T = np.einsum("pmJ,piJkL->pmikL", dN, A) * w[:, None, None, None, None]
+            Ke = np.tensordot(T, dN, axes=([0, 4], [0, 2])).transpose(0, 1, 3, 2)
+            if self._pressure is not None:
+                G = np.einsum("pk,piJ,pmJ->kmi", w[:, None] * pr["p"], pr["dJ"], dN)      # db_k / dq_mi
+                Ke += self.alpha * np.einsum("kmi,kn->min", G, pr["Minv"] @ G.reshape(len(G), -1)).reshape(Ke.shape)
             K[np.ix_(rows, range(3), rows, range(3))] += Ke
         return K.reshape(self.dof, self.dof)
