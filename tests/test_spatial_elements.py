@@ -239,3 +239,20 @@ def test_the_residual_tolerance_respects_the_forces_roundoff():
         tail.append(system.residual_norm())
     assert "no convergence" in str(e.value)
     assert 0.01 * floor < min(tail) and max(tail) < ROUNDOFF_FLOOR * floor, (tail, floor)
+
+
+@pytest.mark.parametrize("name", ELEMENTS)
+def test_the_default_rule_is_the_cheapest_that_passes_the_rank_test(name):
+    """Each element's default rule passes the small-strain rank test (no zero-energy mode
+    beyond the six rigid ones, no deformation mode seen below MU_MIN of its exact energy) at
+    every l_e / h of the sweep, and each rule with one point fewer in one direction fails at
+    one of them (the planar rules' contract, tests/test_rank.py, in 3D)."""
+    from ancf.kinematics.spatial.rank import passes
+
+    spec = SPATIAL_ELEMENTS[name]
+    rule = spec.default_rule()
+    assert passes(spec, rule)
+    for a in range(3):
+        cheaper = tuple(n - (i == a) for i, n in enumerate(rule))
+        if min(cheaper) >= 1:
+            assert not passes(spec, cheaper), cheaper

@@ -10,16 +10,19 @@ invariants, the same law function the planar solver and the continuum codes eval
 :mod:`.beam` assembles a straight beam of them: energy, internal force and tangent.
 
 Built in (:mod:`.elements`, :data:`SPATIAL_ELEMENTS`): the fully parameterised 3243, the
-3333 and the 3363 (names as in Obrezkov et al. 2022), each with its source, and the 3363p of
-this harness (the 3363 with an element pressure). :mod:`.statics` holds a beam clamped under
-its weight; ``experiments/spatial_cantilever`` measures them against the 3D continuum.
+3333 and the 3363 (names as in Obrezkov et al. 2022), each with its source, the 3363p of
+this harness (the 3363 with an element pressure) and its lock-free HS2n-72p (cubic Hermite
+along, the complete quadratic section, the element pressure {1, x} x {1, y, z}; the family
+:func:`.elements.hermite_section`). Each has a default rule chosen by the rank test
+(:mod:`.rank`). :mod:`.statics` holds a beam clamped under its weight;
+``experiments/spatial_cantilever`` measures them against the 3D continuum.
 
 What is here is the element layer and its contract checks (``tests/test_spatial_elements.py``:
 shape functions, patch and rigid-motion tests, Taylor tests, the plane-strain limit against
-the planar formulation). Not here yet, and so not in any scene: the spatial family's
-registration as a kinematics of :mod:`ancf.kinematics`, its supports, end face and loads,
-the 3D scene keys of :mod:`contract`, the static and dynamic solves, the lock-free element
-and the default quadrature from rank tests.
+the planar formulation, the rank test of the default rule, the force's round-off floor). Not
+here yet, and so not in any scene: the spatial family's registration as a kinematics of
+:mod:`ancf.kinematics`, its supports, end face and loads, the 3D scene keys of
+:mod:`contract`, the dynamic solves and a compiled assembly.
 """
 from __future__ import annotations
 

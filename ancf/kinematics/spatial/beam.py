@@ -47,7 +47,11 @@ class SpatialBeam:
     law: str
     constants: Mapping[str, float] = field(hash=False)
     alpha: float                        # the volumetric penalty, Pa
-    points: tuple[int, int, int] = (4, 3, 3)
+    points: tuple[int, int, int] | None = None      # the Gauss rule; None: the element's default_rule
+
+    def __post_init__(self):
+        if self.points is None:
+            object.__setattr__(self, "points", self.spec.default_rule())
 
     @property
     def le(self) -> float:

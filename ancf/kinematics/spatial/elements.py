@@ -2,7 +2,10 @@
 "abcd" classification of Obrezkov, Matikainen and Kireeva (Nonlinear Dyn. 2022,
 doi:10.1007/s11071-022-07518-z), as the LUT solver reads it: the second digit the nodes,
 the middle ones the vectors per node, the last the dimension (3243: 2 nodes, 4 vectors,
-3D).
+3D). The default rule of each is the cheapest product rule that passes the rank test at
+every l_e / h of :data:`.rank.ASPECTS` (tests/test_spatial_elements.py: it passes, every
+rule with a point fewer in one direction fails): the rule exact for the squared basis for
+all but the 3243, whose cubic along passes with three points.
 Each basis is the one its source writes, checked against the LUT group's open solver
 (LUT-CoSmart/ANCF-Beam-based-Solver, ElementTensors/Matlab/FF_<name>.m: the deformation
 gradient in the nodal vectors).
@@ -55,7 +58,8 @@ def hermite_section(name: str, degree: int, pressure_degree: int | None = None, 
 # fully parameterised: position and three slopes at two nodes, cubic along x, linear across
 register_spatial_element(SpatialSpec(
     "3243", ("1", "x", "y", "z", "x*y", "x*z", "x^2", "x^3"), (0.0, 1.0), ("r", "r_x", "r_y", "r_z"),
-    "Shabana & Yakoub 2001 (J. Mech. Des. 123); Gerstmayr & Shabana 2006 (Nonlinear Dyn. 45)"))
+    "Shabana & Yakoub 2001 (J. Mech. Des. 123); Gerstmayr & Shabana 2006 (Nonlinear Dyn. 45)",
+    quadrature=(3, 2, 2)))
 # shear deformable, three nodes with position and the two transverse slopes, quadratic along x
 register_spatial_element(SpatialSpec(
     "3333", ("1", "x", "x^2", "y", "x*y", "x^2*y", "z", "x*z", "x^2*z"), (0.0, 0.5, 1.0), ("r", "r_y", "r_z"),
@@ -71,4 +75,9 @@ register_spatial_element(SpatialSpec(
 register_spatial_element(SpatialSpec(
     "3363p", SPATIAL_ELEMENTS["3363"].basis, (0.0, 0.5, 1.0), SPATIAL_ELEMENTS["3363"].kinds,
     "this harness: the 3363 with an element pressure {1, x} x {1, y, z}", pressure=("1", "x", "y", "x*y", "z", "x*z")))
+# this harness: cubic Hermite along, the complete quadratic section (r, r_y, r_z, r_yy, r_yz,
+# r_zz and their slopes along the beam at two nodes, 72 dof), the pressure {1, x} x {1, y, z}:
+# the lock-free spatial element (experiments/spatial_cantilever/REPORT.md)
+register_spatial_element(hermite_section(
+    "HS2n-72p", 2, 1, "this harness: the planar HB2n-40p's Hermite section and element pressure, in 3D"))
 BUILTIN = SPATIAL_ELEMENTS.freeze_builtin()

@@ -40,6 +40,9 @@ class SpatialSpec:
     # L2 projection of J - 1 onto it per element instead of at every point (the u-p mixed
     # form with its pressure condensed, as the planar lock-free elements); empty: pointwise
     pressure: tuple[str, ...] = ()
+    # the Gauss points (along, across h, across w) of the element's energy when a run names
+    # none, chosen by the rank test (:mod:`.rank`); None: the rule exact for the squared basis
+    quadrature: tuple[int, int, int] | None = None
 
     def __post_init__(self):
         for k in self.kinds:
@@ -62,6 +65,10 @@ class SpatialSpec:
     @property
     def dof(self) -> int:
         return 3 * self.n_shape
+
+    def default_rule(self) -> tuple[int, int, int]:
+        """The declared rule, or the one exact for the squared basis (d + 1 points for degree d)."""
+        return tuple(self.quadrature) if self.quadrature else tuple(d + 1 for d in self.degree())
 
     def degree(self) -> tuple[int, int, int]:
         """Highest power of x, y and z in the basis."""
