@@ -10,7 +10,7 @@ HERE = Path(__file__).resolve().parent
 
 rows = [json.loads(x) for x in (HERE / "res.jsonl").read_text().splitlines()]
 print("| element | law | elements | dof | rule | penalty (Pa) | loop | tip ux (mm) | tip uy (mm) | error (%) | Newton "
-      "(most per increment) | s |")
+      "iterations (cap per increment) | s |")
 print("|---|---|---|---|---|---|---|---|---|---|---|---|")
 key = lambda r: (r["element"], r["law"], r["penalty"], r["elements"], r.get("loop", "damped"), r.get("iterations", 100))
 for r in sorted(rows, key=key):
