@@ -23,8 +23,8 @@ LAW_CONSTANTS = {"neo-hookean": {"C10": 0.5e6}, "mooney-rivlin": {"C10": 0.4e6, 
 ELEMENTS = list(SPATIAL_ELEMENTS)
 
 
-def beam(name: str, law: str = "mooney-rivlin", elements: int = 2) -> SpatialBeam:
-    return SpatialBeam(SPATIAL_ELEMENTS[name], L, H, W, elements, law, LAW_CONSTANTS[law], ALPHA)
+def beam(name: str, law: str = "mooney-rivlin", elements: int = 2, grading: float = 1.0) -> SpatialBeam:
+    return SpatialBeam(SPATIAL_ELEMENTS[name], L, H, W, elements, law, LAW_CONSTANTS[law], ALPHA, grading=grading)
 
 
 def rotation(rng) -> np.ndarray:
@@ -71,9 +71,9 @@ def test_a_homogeneous_deformation_is_exact_and_its_force_is_the_surface_tractio
     """r = F0 X + c: F = F0 at every point, the energy W(F0) V with W from the law's psi
     on invariants taken by numpy, and the internal force the work-equivalent of the
     surface traction P0 n (a Gauss rule on the beam's six faces, exact for the
-    polynomials)."""
+    polynomials). On a graded beam (three elements, each 0.6 times the one before it)."""
     rng = np.random.default_rng(7)
-    b = beam(name)
+    b = beam(name, elements=3, grading=0.6)
     F0 = np.eye(3) + 0.15 * rng.standard_normal((3, 3))
     q = homogeneous(b, F0, rng.standard_normal(3) * 1e-3)
     for e in range(b.elements):
@@ -92,7 +92,7 @@ def test_a_homogeneous_deformation_is_exact_and_its_force_is_the_surface_tractio
     # the end faces x = 0 (n = -e_x) and x = L (n = +e_x)
     for e, xi, sign in ((0, 0.0, -1.0), (b.elements - 1, 1.0, 1.0)):
         Y, Z = np.meshgrid(g / 2, g / 2, indexing="ij")
-        N, _ = b.spec.tabulate(np.full(Y.size, xi), Y.ravel(), Z.ravel(), b.le, H, W)
+        N, _ = b.spec.tabulate(np.full(Y.size, xi), Y.ravel(), Z.ravel(), b.lengths[e], H, W)
         wa = np.outer(wg, wg).ravel() / 4 * H * W
         np.add.at(f, b.element_rows(e), np.einsum("p,pm,i->mi", wa, N, sign * P0[:, 0]))
     # the lateral faces of every element: y = +-h/2 (n = +-e_y), z = +-w/2 (n = +-e_z)
@@ -104,8 +104,8 @@ def test_a_homogeneous_deformation_is_exact_and_its_force_is_the_surface_tractio
                 pts = [X1.ravel(), None, None]
                 pts[axis] = np.full(X1.size, s / 2)
                 pts[3 - axis] = T.ravel()
-                N, _ = b.spec.tabulate(*pts, b.le, H, W)
-                np.add.at(f, b.element_rows(e), np.einsum("p,pm,i->mi", wa * b.le * size, N, s * P0[:, axis]))
+                N, _ = b.spec.tabulate(*pts, b.lengths[e], H, W)
+                np.add.at(f, b.element_rows(e), np.einsum("p,pm,i->mi", wa * b.lengths[e] * size, N, s * P0[:, axis]))
     scale = np.abs(P0).max() * H * W
     assert np.allclose(b.force(q).reshape(-1, 3), f, rtol=0.0, atol=1e-10 * scale)
 

@@ -4,14 +4,15 @@ ANCF elements (ancf.kinematics.spatial), against the 3D continuum's gold
 incompressible, Richardson-extrapolated). Appends one JSON line per run to res.jsonl here
 and skips the runs it holds.
 
-    .venv/bin/python experiments/spatial_cantilever/run.py LAW ELEMENT COUNTS [--penalty PA] [--iterations N] [--points P,P,P]
+    .venv/bin/python experiments/spatial_cantilever/run.py LAW ELEMENT COUNTS [--penalty PA] [--iterations N] [--points P,P,P] [--grading G]
 
 ELEMENT a registered spatial element or a trial of the Hermite-section family,
 ``H<degree>p<pressure degree>`` (ancf.kinematics.spatial.elements.hermite_section: cubic
 Hermite along, the complete section of that degree, the pressure {1, x} x the complete
 section of its degree; ``H2`` without a pressure), COUNTS comma-separated element counts. The law's
 constants and density are the paper's (contract.paper), the penalty the paper's 1000 MPa
-unless given; the rule (4, 3, 3) points (along, across the height, across the width) unless given;
+unless given; the element's default rule (its points along, across the height, across the width) unless given;
+equal elements, or with ``--grading G`` each G times as long as the one before it from the clamp;
 10 load steps, Newton to 1e-8 of the load or to a correction of 1e-12 L, 100 iterations
 per increment unless given.
 """
@@ -33,7 +34,6 @@ from contract import paper
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 GOLD = ROOT / "reports" / "data" / "solid3d" / "fem_cantilever_3d.json"
-POINTS = (4, 3, 3)
 # the static loop a record comes from: the first, damped Newton, and the full steps with the
 # force's round-off floor on the residual (ancf.kinematics.spatial.statics); a run is
 # repeated under a new loop, the old record kept
@@ -57,22 +57,23 @@ def main() -> None:
     a.add_argument("counts")
     a.add_argument("--penalty", type=float, default=paper.PENALTY)
     a.add_argument("--iterations", type=int, default=100, help="Newton iterations per increment")
-    a.add_argument("--points", default=",".join(map(str, POINTS)), help="Gauss points along, across h, across w")
+    a.add_argument("--points", help="Gauss points along, across h, across w (default: the element's default rule)")
+    a.add_argument("--grading", type=float, default=1.0, help="each element this times as long as the one before it")
     a = a.parse_args()
-    points = tuple(int(v) for v in a.points.split(","))
     spec = element(a.element)
+    points = tuple(int(v) for v in a.points.split(",")) if a.points else spec.default_rule()
     gold = json.loads(GOLD.read_text())["cases"][f"{a.law}/3d"]
     m = paper.materials()[a.law]
     c = {k: v for k, v in m.items() if k != "density"}
     L, h, w = paper.CANTILEVER["length"], paper.CANTILEVER["height"], paper.CANTILEVER["width"]
     out = HERE / "res.jsonl"
     have = {(r["law"], r["element"], r["elements"], r["penalty"], r.get("iterations", 100), tuple(r["points"]),
-             r.get("loop", "damped"))
+             r.get("loop", "damped"), r.get("grading", 1.0))
             for r in map(json.loads, out.read_text().splitlines())} if out.exists() else set()
     for n in (int(x) for x in a.counts.split(",")):
-        if (a.law, a.element, n, a.penalty, a.iterations, points, LOOP) in have:
+        if (a.law, a.element, n, a.penalty, a.iterations, points, LOOP, a.grading) in have:
             continue
-        b = SpatialBeam(spec, L, h, w, n, a.law, c, a.penalty, points)
+        b = SpatialBeam(spec, L, h, w, n, a.law, c, a.penalty, points, a.grading)
         t0 = time.perf_counter()
         res = solve_static(b, gravity_load(b, m["density"], (0.0, -paper.GRAVITY, 0.0)), clamp_rows(b),
                            load_steps=10, max_iterations=a.iterations)
@@ -80,7 +81,8 @@ def main() -> None:
         g = gold["tip"]
         err = None if tip is None else float(np.hypot(tip["ux"] - g["ux"], tip["uy"] - g["uy"]) / L)
         rec = {"law": a.law, "element": a.element, "elements": n, "penalty": a.penalty, "iterations": a.iterations, "loop": LOOP,
-               "points": points, "rejected_steps": res.rejected_steps,
+               "points": points, "grading": a.grading, "first_element_m": float(b.lengths[0]),
+               "rejected_steps": res.rejected_steps,
                "dof": b.dof, "status": res.status, "reason": res.reason, "tip": tip, "gold": g,
                "gold_error_estimate_m": gold["error_estimate_m"], "error_over_L": err,
                "newton_iterations": res.newton_iterations, "seconds": time.perf_counter() - t0}

@@ -14,8 +14,12 @@ Built in (:mod:`.elements`, :data:`SPATIAL_ELEMENTS`): the fully parameterised 3
 this harness (the 3363 with an element pressure) and its lock-free HS2n-72p (cubic Hermite
 along, the complete quadratic section, the element pressure {1, x} x {1, y, z}; the family
 :func:`.elements.hermite_section`). Each has a default rule chosen by the rank test
-(:mod:`.rank`). :mod:`.statics` holds a beam clamped under its weight;
-``experiments/spatial_cantilever`` measures them against the 3D continuum.
+(:mod:`.rank`). :mod:`.beam` takes equal or graded elements; :mod:`.statics` holds the
+supports (the clamp, the free-warping support of torsion), gravity, a dead traction and a
+small-twist torque on the end face, and the static solve; ``experiments/spatial_cantilever``
+measures the elements against the 3D continuum, ``experiments/spatial_torsion`` against
+Saint-Venant's torsion (``tests/test_spatial_torsion.py``: the torsion constants and every
+element's uniform twist).
 
 What is here is the element layer and its contract checks (``tests/test_spatial_elements.py``:
 shape functions, patch and rigid-motion tests, Taylor tests, the plane-strain limit against

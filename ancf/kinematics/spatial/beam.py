@@ -1,8 +1,9 @@
 """A straight beam of spatial elements: its strain energy, internal force and tangent.
 
 The beam lies along x from 0 to ``length``, its section ``height`` (y) by ``width`` (z)
-centred on the axis, cut into ``elements`` equal elements that share their end nodes (a
-three-node element's middle node is its own). Its coordinates are q (n_global, 3), the
+centred on the axis, cut into ``elements`` elements that share their end nodes (a
+three-node element's middle node is its own), equal ones or, with ``grading`` g, each g
+times as long as the one before it from x = 0 (g < 1: finer towards the clamp). Its coordinates are q (n_global, 3), the
 nodal vectors of every node in turn (node-major, kinds in the element's order); flattened,
 component i of vector m is entry 3 m + i. The energy is the integral of
 :func:`.energy.stress`'s W over the reference volume by a Gauss rule of ``points``
@@ -48,13 +49,25 @@ class SpatialBeam:
     constants: Mapping[str, float] = field(hash=False)
     alpha: float                        # the volumetric penalty, Pa
     points: tuple[int, int, int] | None = None      # the Gauss rule; None: the element's default_rule
+    grading: float = 1.0                # each element this times as long as the one before it
 
     def __post_init__(self):
         if self.points is None:
             object.__setattr__(self, "points", self.spec.default_rule())
+        if not self.grading > 0.0:
+            raise ValueError(f"grading: a ratio of element lengths above 0, got {self.grading!r}")
+
+    @cached_property
+    def lengths(self) -> np.ndarray:
+        """The elements' lengths from x = 0 (m)."""
+        r = self.grading ** np.arange(self.elements)
+        return self.length * r / r.sum()
 
     @property
     def le(self) -> float:
+        """The element length of a beam of equal elements."""
+        if self.grading != 1.0:
+            raise ValueError("le: a graded beam's elements differ; see lengths")
         return self.length / self.elements
 
     @property
@@ -71,32 +84,45 @@ class SpatialBeam:
         return 3 * self.n_global
 
     @cached_property
-    def _table(self):
+    def _tables(self) -> dict:
+        """(N, dN, weights) at the rule's points of an element of each length."""
         X, w = gauss_box(self.points)
-        N, dN = self.spec.tabulate(X[:, 0], X[:, 1], X[:, 2], self.le, self.height, self.width)
-        return N, dN, w * self.le * self.height * self.width
+        out = {}
+        for le in dict.fromkeys(self.lengths):
+            N, dN = self.spec.tabulate(X[:, 0], X[:, 1], X[:, 2], le, self.height, self.width)
+            out[le] = (N, dN, w * le * self.height * self.width)
+        return out
+
+    def table(self, e: int):
+        """(N (npts, n), dN (npts, n, 3), weights (npts,)) of element ``e``."""
+        return self._tables[self.lengths[e]]
 
     @cached_property
-    def _pressure(self):
-        """(p at the points (npts, n_p), M^-1) of the pressure basis, or None."""
+    def _pressures(self) -> dict | None:
         if not self.spec.pressure:
             return None
         X, _ = gauss_box(self.points)
-        _, _, w = self._table
-        p = self.spec.pressure_tabulate(X[:, 0], X[:, 1], X[:, 2], self.le, self.height, self.width)
-        return p, np.linalg.inv(np.einsum("q,qk,ql->kl", w, p, p))
+        out = {}
+        for le, (_, _, w) in self._tables.items():
+            p = self.spec.pressure_tabulate(X[:, 0], X[:, 1], X[:, 2], le, self.height, self.width)
+            out[le] = p, np.linalg.inv(np.einsum("q,qk,ql->kl", w, p, p))
+        return out
+
+    def _pressure(self, e: int):
+        """(p at the points (npts, n_p), M^-1) of element ``e``'s pressure basis, or None."""
+        return None if self._pressures is None else self._pressures[self.lengths[e]]
 
     @property
     def _pointwise_alpha(self) -> float:
         return 0.0 if self.spec.pressure else self.alpha
 
-    def _projected(self, F: np.ndarray, order: int) -> dict:
+    def _projected(self, F: np.ndarray, e: int, order: int) -> dict:
         """The projected penalty at one element's points, to ``order`` (0: its energy
         alpha / 2 b^T M^-1 b; 1: also the pressure alpha M^-1 b at the points, ``pressure``
         (npts: the stress is pressure x dJ/dF), and dJ/dF; 2: also d2J/dF2), with the basis p
         and M^-1."""
-        p, Minv = self._pressure
-        _, _, w = self._table
+        p, Minv = self._pressure(e)
+        _, _, w = self.table(e)
         inv, d, dd = invariant_derivatives(F, order)
         b = np.einsum("q,qk,q->k", w, p, inv[2] - 1.0)
         lam = self.alpha * Minv @ b
@@ -111,9 +137,10 @@ class SpatialBeam:
 
     def node_positions(self) -> np.ndarray:
         """x of every node of the beam."""
+        ends = np.concatenate([[0.0], np.cumsum(self.lengths)])
         xs = [0.0]
         for e in range(self.elements):
-            xs += [(e + xi) * self.le for xi in self.spec.nodes[1:]]
+            xs += [ends[e] + xi * self.lengths[e] for xi in self.spec.nodes[1:]]
         return np.array(xs)
 
     def reference(self) -> np.ndarray:
@@ -122,29 +149,29 @@ class SpatialBeam:
 
     def gradients(self, q: np.ndarray, e: int) -> np.ndarray:
         """F (npts, 3, 3) at element ``e``'s quadrature points."""
-        _, dN, _ = self._table
+        _, dN, _ = self.table(e)
         return np.einsum("mi,pmJ->piJ", np.asarray(q).reshape(-1, 3)[self.element_rows(e)], dN)
 
     def energy(self, q: np.ndarray) -> float:
         """The strain energy (J)."""
-        _, _, w = self._table
         total = 0.0
         for e in range(self.elements):
+            _, dN, w = self.table(e)
             F = self.gradients(q, e)
             total += w @ density(self.law, self.constants, self._pointwise_alpha, F)
-            if self._pressure is not None:
-                total += self._projected(F, 0)["energy"]
+            if self._pressures is not None:
+                total += self._projected(F, e, 0)["energy"]
         return float(total)
 
     def force(self, q: np.ndarray) -> np.ndarray:
         """dE/dq (dof,), N."""
-        _, dN, w = self._table
         f = np.zeros((self.n_global, 3))
         for e in range(self.elements):
+            _, dN, w = self.table(e)
             F = self.gradients(q, e)
             _, P, _ = stress(self.law, self.constants, self._pointwise_alpha, F, tangent=False)
-            if self._pressure is not None:
-                pr = self._projected(F, 1)
+            if self._pressures is not None:
+                pr = self._projected(F, e, 1)
                 P = P + pr["pressure"][:, None, None] * pr["dJ"]
             np.add.at(f, self.element_rows(e), np.einsum("p,piJ,pmJ->mi", w, P, dN))
         return f.ravel()
@@ -155,9 +182,9 @@ class SpatialBeam:
         penalty's alpha (|J| + 1) |cof F| (its two terms alpha J cof F and alpha cof F, whose
         difference is the stress: its round-off is eps times this, whatever J - 1 is), against
         |dN| w. eps times its norm over the free dofs is the size of the force's round-off."""
-        _, dN, w = self._table
         f = np.zeros((self.n_global, 3))
         for e in range(self.elements):
+            _, dN, w = self.table(e)
             F = self.gradients(q, e)
             inv, d, _ = invariant_derivatives(F, 1)
             g = density_jet(self.law, self.constants, self._pointwise_alpha, *inv).gradient()
@@ -168,20 +195,20 @@ class SpatialBeam:
 
     def tangent(self, q: np.ndarray) -> np.ndarray:
         """d2E/dq2 (dof, dof), N/m."""
-        _, dN, w = self._table
         K = np.zeros((self.n_global, 3, self.n_global, 3))
         for e in range(self.elements):
+            _, dN, w = self.table(e)
             F = self.gradients(q, e)
             _, _, A = stress(self.law, self.constants, self._pointwise_alpha, F)
             rows = self.element_rows(e)
-            if self._pressure is not None:
-                pr = self._projected(F, 2)
+            if self._pressures is not None:
+                pr = self._projected(F, e, 2)
                 A = A + pr["pressure"][:, None, None, None, None] * pr["ddJ"]
             # sum_p w dN_mJ A_iJkL dN_nL in two BLAS-sized contractions (a single four-operand
             # einsum loops over every index at once: 16 s for a quartic section's 8 elements)
             T = np.einsum("pmJ,piJkL->pmikL", dN, A) * w[:, None, None, None, None]
             Ke = np.tensordot(T, dN, axes=([0, 4], [0, 2])).transpose(0, 1, 3, 2)
-            if self._pressure is not None:
+            if self._pressures is not None:
                 G = np.einsum("pk,piJ,pmJ->kmi", w[:, None] * pr["p"], pr["dJ"], dN)      # db_k / dq_mi
                 Ke += self.alpha * np.einsum("kmi,kn->min", G, pr["Minv"] @ G.reshape(len(G), -1)).reshape(Ke.shape)
             K[np.ix_(rows, range(3), rows, range(3))] += Ke

@@ -1,10 +1,13 @@
-"""Static equilibrium of a spatial beam: the clamp, gravity, and Newton along a load path.
+"""Static equilibrium of a spatial beam: the supports, the loads, and Newton along a load path.
 
 - The clamp (:func:`clamp_rows`) holds the first node's coordinates that describe the end
   face itself, every kind without an x derivative (r, r_y, r_z, r_yy, ...): the face's
   position field r(0, y, z) stays the reference one, as the continuum's clamped face; the
   slopes along the beam (r_x) stay free.
-- Gravity (:func:`gravity_load`): the dead load of rho g on the volume, f_m = int rho g N_m dV.
+- Gravity (:func:`gravity_load`): the dead load of rho g on the volume, f_m = int rho g N_m dV;
+  a dead traction on the free end face (:func:`end_face_load`), a torque about the axis by
+  one (:func:`end_torque_load`, small twists), and the section's rotation about the axis at a
+  node (:func:`section_rotation`); the free-warping support of torsion (:func:`free_warping_rows`).
 - :func:`solve_static`: the load along t: 0 -> 1 by the shared load-path rule
   (:func:`mechanics.load_path.follow`: adaptive increments, cut when one fails), each
   increment by the shared Newton loop (:func:`mechanics.newton.newton`) on the free
@@ -48,14 +51,58 @@ def clamp_rows(beam: SpatialBeam) -> np.ndarray:
     return np.array([3 * m + i for m in kinds for i in range(3)])
 
 
+def free_warping_rows(beam: SpatialBeam) -> np.ndarray:
+    """The dof indices of a support that holds the first node's section rigidly to first order
+    and nothing more: its r, r_y and r_z (six rigid motions and the section's stretches and
+    shears held), its higher section fields (r_yy, r_yz, ...) and slopes along the beam free,
+    so that the face may warp and distort (Saint-Venant's free end, for torsion)."""
+    held = [beam.spec.kinds.index(k) for k in ("r", "r_y", "r_z")]
+    return np.array([3 * m + i for m in held for i in range(3)])
+
+
 def gravity_load(beam: SpatialBeam, density: float, g=(0.0, -9.81, 0.0)) -> np.ndarray:
     """f (dof,) of the body force density * g (N), by the beam's own rule."""
-    N, _, w = beam._table
     f = np.zeros((beam.n_global, 3))
-    per = np.einsum("p,pm->m", w, N)
     for e in range(beam.elements):
+        N, _, w = beam.table(e)
+        per = np.einsum("p,pm->m", w, N)
         np.add.at(f, beam.element_rows(e), np.outer(per, density * np.asarray(g, float)))
     return f.ravel()
+
+
+def end_face_load(beam: SpatialBeam, traction) -> np.ndarray:
+    """f (dof,) of a dead traction on the free end face x = L (N): f_m = int t(y, z) N_m dA,
+    ``traction`` a function of the face's points y, z (arrays, m) giving t (npts, 3) in Pa, by
+    the beam's rule across the section (exact for a traction of degree one on the squared
+    basis's rule)."""
+    gy, wy = np.polynomial.legendre.leggauss(beam.points[1])
+    gz, wz = np.polynomial.legendre.leggauss(beam.points[2])
+    Y, Z = (a.ravel() / 2.0 for a in np.meshgrid(gy, gz, indexing="ij"))
+    wa = np.outer(wy, wz).ravel() / 4.0 * beam.height * beam.width
+    e = beam.elements - 1
+    N, _ = beam.spec.tabulate(np.ones(Y.size), Y, Z, beam.lengths[e], beam.height, beam.width)
+    t = np.asarray(traction(Y * beam.height, Z * beam.width), float).reshape(Y.size, 3)
+    f = np.zeros((beam.n_global, 3))
+    np.add.at(f, beam.element_rows(e), np.einsum("p,pm,pi->mi", wa, N, t))
+    return f.ravel()
+
+
+def end_torque_load(beam: SpatialBeam, torque: float) -> np.ndarray:
+    """f (dof,) of a torque about the beam's axis on the free end face, as the dead traction
+    t = (torque / I_p) (0, -z, y) (the circular bar's shear stress; any traction with this
+    resultant twists the beam alike away from the end, Saint-Venant's principle), I_p the
+    section's polar moment h w (h^2 + w^2) / 12. A dead traction: for small twists only (it
+    does not turn with the face)."""
+    ip = beam.height * beam.width * (beam.height ** 2 + beam.width ** 2) / 12.0
+    return end_face_load(beam, lambda y, z: (torque / ip) * np.column_stack([0.0 * y, -z, y]))
+
+
+def section_rotation(beam: SpatialBeam, q: np.ndarray, node: int) -> float:
+    """The section's rotation about x at a node (rad): the angle of the rotation nearest the
+    in-plane part of (r_y, r_z), atan2(a_zy - a_yz, a_yy + a_zz) with a = [r_y r_z] in (y, z)."""
+    k = len(beam.spec.kinds)
+    ry, rz = (np.asarray(q).reshape(-1, 3)[node * k + beam.spec.kinds.index(n)] for n in ("r_y", "r_z"))
+    return float(np.arctan2(ry[2] - rz[1], ry[1] + rz[2]))
 
 
 @dataclass
