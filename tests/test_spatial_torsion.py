@@ -59,3 +59,20 @@ def test_a_bar_under_its_sections_saint_venant_traction_twists_uniformly(name):
     xs = b.node_positions()
     angles = np.array([section_rotation(b, res.q, n) for n in range(b.nodes)])
     assert np.allclose(angles, rate * xs, rtol=0.0, atol=1e-6 * rate * L)
+
+
+@pytest.mark.parametrize("name", list(SPATIAL_ELEMENTS))
+def test_the_end_torque_is_a_pure_torque(name):
+    """The torque's nodal forces on the straight beam: no resultant (their sum over the
+    position coordinates, whose shape functions sum to one) and the moment sum_m q_m x f_m
+    (= int X x t dA, as r = sum_m N_m q_m) the torque about x, to round-off."""
+    from ancf.kinematics.spatial.statics import end_torque_load
+
+    b = SpatialBeam(SPATIAL_ELEMENTS[name], L, H, W, 2, "neo-hookean", {"C10": MU / 2}, 1e9, grading=0.5)
+    T = 0.3
+    f = end_torque_load(b, T).reshape(-1, 3)
+    k = len(b.spec.kinds)
+    r = b.spec.kinds.index("r")
+    assert np.abs(f[r::k].sum(axis=0)).max() < 1e-12 * T / H
+    moment = np.cross(b.reference(), f).sum(axis=0)
+    assert np.allclose(moment, [T, 0.0, 0.0], rtol=0.0, atol=1e-12 * T)
