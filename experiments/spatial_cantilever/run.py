@@ -7,9 +7,10 @@ and skips the runs it holds.
     .venv/bin/python experiments/spatial_cantilever/run.py LAW ELEMENT COUNTS [--penalty PA] [--iterations N] [--points P,P,P] [--grading G]
 
 ELEMENT a registered spatial element or a trial of the Hermite-section family,
-``H<degree>p<pressure degree>`` (ancf.kinematics.spatial.elements.hermite_section: cubic
+``H<degree>p<pressure degree>[w]`` (ancf.kinematics.spatial.elements.hermite_section: cubic
 Hermite along, the complete section of that degree, the pressure {1, x} x the complete
-section of its degree; ``H2`` without a pressure), COUNTS comma-separated element counts. The law's
+section of its degree; ``H2`` without a pressure; a trailing ``w`` adds the section modes
+y^3 z and y z^3, the next torsion warping), COUNTS comma-separated element counts. The law's
 constants and density are the paper's (contract.paper), the penalty the paper's 1000 MPa
 unless given; the element's default rule (its points along, across the height, across the width) unless given;
 equal elements, or with ``--grading G`` each G times as long as the one before it from the clamp;
@@ -41,19 +42,32 @@ LOOP = "full-newton"
 
 
 def element(name: str):
-    """A registered spatial element, or H<degree>[p<degree>] of the Hermite-section family."""
+    """A registered spatial element, or H<degree>[p<degree>][w] of the Hermite-section family
+    (``w``: with the torsion warping modes y^3 z and y z^3 added to the section)."""
     if name in SPATIAL_ELEMENTS:
         return SPATIAL_ELEMENTS[name]
+    if name.endswith("w"):
+        element(name[:-1])              # the base name's check
+        return hermite_section(name, base_degree(name[:-1]), base_pressure(name[:-1]), "trial", ((3, 1), (1, 3)))
     head, _, p = name[1:].partition("p")
     if not name.startswith("H") or not head.isdigit() or (p and not p.isdigit()):
-        raise SystemExit(f"element {name!r}: one of {list(SPATIAL_ELEMENTS)} or H<degree>[p<degree>]")
+        raise SystemExit(f"element {name!r}: one of {list(SPATIAL_ELEMENTS)} or H<degree>[p<degree>][w]")
     return hermite_section(name, int(head), int(p) if p else None, "trial")
+
+
+def base_degree(name: str) -> int:
+    return int(name[1:].partition("p")[0])
+
+
+def base_pressure(name: str) -> int | None:
+    p = name[1:].partition("p")[2]
+    return int(p) if p else None
 
 
 def main() -> None:
     a = argparse.ArgumentParser()
     a.add_argument("law")
-    a.add_argument("element", help=f"one of {list(SPATIAL_ELEMENTS)} or H<degree>[p<degree>]")
+    a.add_argument("element", help=f"one of {list(SPATIAL_ELEMENTS)} or H<degree>[p<degree>][w]")
     a.add_argument("counts")
     a.add_argument("--penalty", type=float, default=paper.PENALTY)
     a.add_argument("--iterations", type=int, default=100, help="Newton iterations per increment")

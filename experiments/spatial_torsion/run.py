@@ -7,13 +7,13 @@ rate is read between the nodes at L / 4 and 3 L / 4, far from the clamp's and th
 face's end zones, and gives the bar's torsion constant J = T / (mu rate) (mu = 2 C10, neo-
 Hookean, the paper's C10; the paper's penalty). Each element's J is set beside the bound of
 its section (the Saint-Venant energy minimised over the warping its section holds: the
-complete polynomials of the section's degree) and the exact J. Appends a JSON line per run
+span of its section's monomials) and the exact J. Appends a JSON line per run
 to res.jsonl here and skips the runs it holds.
 
     .venv/bin/python experiments/spatial_torsion/run.py ELEMENT COUNTS [--penalty PA] [--support clamp|free-warping]
 
 ELEMENT a registered spatial element or a trial of the Hermite-section family
-(``H<degree>p<pressure degree>``, as experiments/spatial_cantilever/run.py reads it), COUNTS
+(``H<degree>p<pressure degree>[w]``, as experiments/spatial_cantilever/run.py reads it), COUNTS
 comma-separated element counts, multiples of 4; the support the clamp unless given
 (``free-warping``: the face's r, r_y, r_z held, its warping and distortion free,
 ancf.kinematics.spatial.statics.free_warping_rows).
@@ -41,6 +41,11 @@ sys.path.insert(0, str(HERE.parent / "spatial_cantilever"))
 from run import element  # noqa: E402
 
 
+def section_modes(spec) -> list[tuple[int, int]]:
+    """The section's monomials y^a z^b (its kinds without x)."""
+    return [kind_orders(k)[1:] for k in spec.kinds if kind_orders(k)[0] == 0]
+
+
 def section_degree(spec) -> int:
     """The degree to which the element's section is complete (its kinds without x)."""
     have = {kind_orders(k)[1:] for k in spec.kinds if kind_orders(k)[0] == 0}
@@ -52,7 +57,7 @@ def section_degree(spec) -> int:
 
 def main() -> None:
     a = argparse.ArgumentParser()
-    a.add_argument("element", help=f"one of {list(SPATIAL_ELEMENTS)} or H<degree>[p<degree>]")
+    a.add_argument("element", help=f"one of {list(SPATIAL_ELEMENTS)} or H<degree>[p<degree>][w]")
     a.add_argument("counts")
     a.add_argument("--penalty", type=float, default=paper.PENALTY)
     a.add_argument("--support", choices=SUPPORTS, default="clamp")
@@ -62,7 +67,7 @@ def main() -> None:
     c10 = paper.materials()["neo-hookean"]["C10"]
     mu = 2.0 * c10
     d = section_degree(spec)
-    bound, exact = torsion.polynomial_warping(h, w, d), torsion.saint_venant_rectangle(h, w)
+    bound, exact = torsion.warping_bound(h, w, section_modes(spec)), torsion.saint_venant_rectangle(h, w)
     out = HERE / "res.jsonl"
     have = {(r["element"], r["elements"], r["penalty"], r.get("support", "clamp")) for r in map(json.loads, out.read_text().splitlines())} if out.exists() else set()
     for n in (int(x) for x in a.counts.split(",")):

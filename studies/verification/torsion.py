@@ -6,7 +6,8 @@ small twist), exact and within a polynomial section.
   sides, J = a^3 b / 3 (1 - (192 a / (pi^5 b)) sum_{n odd} tanh(n pi b / (2 a)) / n^5));
   :data:`TIMOSHENKO_GOODIER_TABLE` holds the book's table of k1 = J / (a^3 b), which the
   series is checked against;
-- :func:`polynomial_warping` and :func:`quadratic_warping`: J of the same bar when the warping
+- :func:`polynomial_warping` (:func:`warping_bound` for any set of monomials) and
+  :func:`quadratic_warping`: J of the same bar when the warping
   psi (the axial displacement per twist rate, u_x = dtheta/dx psi(y, z)) is restricted to the
   polynomials in (y, z) of a degree, as in a beam element whose section is complete to that
   degree: the Saint-Venant energy mu/2 (dtheta/dx)^2 int (psi_y - z)^2 + (psi_z + y)^2 dA
@@ -51,16 +52,25 @@ def quadratic_warping(h: float, w: float) -> float:
 
 def polynomial_warping(h: float, w: float, degree: int) -> float:
     """J with the warping in the complete polynomials of ``degree`` in (y, z) (see the
-    module doc): the least-squares minimum of int (psi_y - z)^2 + (psi_z + y)^2 dA by a
-    Gauss rule exact for it, in the coordinates scaled to the unit square (well conditioned
-    to degree 12)."""
+    module doc)."""
     if degree < 0:
         raise ValueError(f"degree: a polynomial degree of 0 or more, got {degree!r}")
+    return warping_bound(h, w, [(a, c) for a in range(degree + 1) for c in range(degree + 1 - a)])
+
+
+def warping_bound(h: float, w: float, modes) -> float:
+    """J with the warping in the span of the monomials y^a z^c, (a, c) in ``modes`` (see
+    the module doc): the least-squares minimum of int (psi_y - z)^2 + (psi_z + y)^2 dA by a
+    Gauss rule exact for it, on Legendre products in the coordinates scaled to the unit
+    square (the same span as the monomials when the modes hold (a - 2, c) and (a, c - 2)
+    with (a, c), as a complete section does and y^3 z, y z^3 added to one of degree two;
+    well conditioned to degree 12)."""
+    mons = [(a, c) for a, c in modes if a + c >= 1]
+    degree = max([a + c for a, c in mons], default=0)
     g, wg = np.polynomial.legendre.leggauss(degree + 2)
     s, t = (a.ravel() for a in np.meshgrid(g, g, indexing="ij"))       # y = s h / 2, z = t w / 2
     wt = np.outer(wg, wg).ravel() * h * w / 4.0
     y, z = s * h / 2.0, t * w / 2.0
-    mons = [(a, c) for a in range(degree + 1) for c in range(degree + 1 - a) if a + c >= 1]
     if not mons:
         return polar_moment(h, w)
     # d/dy and d/dz of the Legendre products P_a(s) P_c(t)

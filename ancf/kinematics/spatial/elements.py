@@ -38,13 +38,15 @@ def section_modes(degree: int) -> list[tuple[int, int]]:
     return [(d - b, b) for d in range(degree + 1) for b in range(d + 1)]
 
 
-def hermite_section(name: str, degree: int, pressure_degree: int | None = None, reference: str = "") -> SpatialSpec:
+def hermite_section(name: str, degree: int, pressure_degree: int | None = None, reference: str = "",
+                    extra: tuple[tuple[int, int], ...] = ()) -> SpatialSpec:
     """Two nodes, cubic Hermite along the beam, the complete section of ``degree`` in (y, z):
     at each node the section's field y^a z^b and its slope along the beam, kinds
     r_<y^a z^b> and r_x<y^a z^b> (r, r_x, r_y, r_xy, r_z, r_xz, r_yy, ...), so that the
-    position and the section's shape are C1 between elements. With ``pressure_degree`` an
-    element pressure {1, x} x the complete section of that degree."""
-    modes = section_modes(degree)
+    position and the section's shape are C1 between elements; ``extra`` adds section modes
+    (a, b) beyond the complete ones (y^3 z and y z^3: the next torsion warping). With
+    ``pressure_degree`` an element pressure {1, x} x the complete section of that degree."""
+    modes = section_modes(degree) + [m for m in extra if m not in section_modes(degree)]
     kinds = []
     for a, b in modes:
         d = "y" * a + "z" * b
