@@ -6,7 +6,8 @@ small twist), exact and within a polynomial section.
   sides, J = a^3 b / 3 (1 - (192 a / (pi^5 b)) sum_{n odd} tanh(n pi b / (2 a)) / n^5));
   :data:`TIMOSHENKO_GOODIER_TABLE` holds the book's table of k1 = J / (a^3 b), which the
   series is checked against;
-- :func:`polynomial_warping` (:func:`warping_bound` for any set of monomials) and
+- :func:`polynomial_warping` (:func:`warping_bound` for any set of monomials, :func:`warping_state`
+  its state) and
   :func:`quadratic_warping`: J of the same bar when the warping
   psi (the axial displacement per twist rate, u_x = dtheta/dx psi(y, z)) is restricted to the
   polynomials in (y, z) of a degree, as in a beam element whose section is complete to that
@@ -60,24 +61,46 @@ def polynomial_warping(h: float, w: float, degree: int) -> float:
 
 def warping_bound(h: float, w: float, modes) -> float:
     """J with the warping in the span of the monomials y^a z^c, (a, c) in ``modes`` (see
-    the module doc): the least-squares minimum of int (psi_y - z)^2 + (psi_z + y)^2 dA by a
-    Gauss rule exact for it, on Legendre products in the coordinates scaled to the unit
-    square (the same span as the monomials when the modes hold (a - 2, c) and (a, c - 2)
-    with (a, c), as a complete section does and y^3 z, y z^3 added to one of degree two;
-    well conditioned to degree 12)."""
+    the module doc; :func:`warping_state`)."""
+    return warping_state(h, w, modes)[0]
+
+
+def warping_state(h: float, w: float, modes):
+    """(J, shear) of the Saint-Venant state with the warping in the span of the monomials
+    y^a z^c, (a, c) in ``modes``: the least-squares minimum of int (psi_y - z)^2 +
+    (psi_z + y)^2 dA by a Gauss rule exact for it, on Legendre products in the coordinates
+    scaled to the unit square (the same span as the monomials when the modes hold (a - 2, c)
+    and (a, c - 2) with (a, c), as a complete section does and y^3 z, y z^3 added to one of
+    degree two; well conditioned to degree 12). ``shear(y, z)`` gives (psi_y - z, psi_z + y)
+    at points: the state's shear stresses (sigma_xy, sigma_xz) per mu dtheta/dx, the
+    traction its end faces carry."""
     mons = [(a, c) for a, c in modes if a + c >= 1]
     degree = max([a + c for a, c in mons], default=0)
+    # d/dy and d/dz of the Legendre products P_a(s) P_c(t), y = s h / 2, z = t w / 2
+    P = lambda k, x, d: np.polynomial.legendre.Legendre.basis(k).deriv(d)(x)
+
+    def derivatives(y, z):
+        s, t = 2.0 * np.asarray(y, float) / h, 2.0 * np.asarray(z, float) / w
+        Dy = np.array([P(a, s, 1) * (2.0 / h) * P(c, t, 0) for a, c in mons]).reshape(len(mons), -1)
+        Dz = np.array([P(a, s, 0) * P(c, t, 1) * (2.0 / w) for a, c in mons]).reshape(len(mons), -1)
+        return Dy, Dz
+
     g, wg = np.polynomial.legendre.leggauss(degree + 2)
-    s, t = (a.ravel() for a in np.meshgrid(g, g, indexing="ij"))       # y = s h / 2, z = t w / 2
+    s, t = (a.ravel() for a in np.meshgrid(g, g, indexing="ij"))
     wt = np.outer(wg, wg).ravel() * h * w / 4.0
     y, z = s * h / 2.0, t * w / 2.0
-    if not mons:
-        return polar_moment(h, w)
-    # d/dy and d/dz of the Legendre products P_a(s) P_c(t)
-    P = lambda k, x, d: np.polynomial.legendre.Legendre.basis(k).deriv(d)(x)
-    Dy = np.array([P(a, s, 1) * (2.0 / h) * P(c, t, 0) for a, c in mons]).reshape(len(mons), -1)
-    Dz = np.array([P(a, s, 0) * P(c, t, 1) * (2.0 / w) for a, c in mons]).reshape(len(mons), -1)
-    K = (Dy * wt) @ Dy.T + (Dz * wt) @ Dz.T
-    rhs = (Dy * wt) @ z - (Dz * wt) @ y
-    coef = np.linalg.lstsq(K, rhs, rcond=None)[0]
-    return float(wt @ ((coef @ Dy - z) ** 2 + (coef @ Dz + y) ** 2))
+    coef = np.zeros(len(mons))
+    if mons:
+        Dy, Dz = derivatives(y, z)
+        K = (Dy * wt) @ Dy.T + (Dz * wt) @ Dz.T
+        coef = np.linalg.lstsq(K, (Dy * wt) @ z - (Dz * wt) @ y, rcond=None)[0]
+
+    def shear(y, z):
+        y, z = np.asarray(y, float).ravel(), np.asarray(z, float).ravel()
+        if not mons:
+            return -z, y
+        Dy, Dz = derivatives(y, z)
+        return coef @ Dy - z, coef @ Dz + y
+
+    gy, gz = shear(y, z)
+    return float(wt @ (gy ** 2 + gz ** 2)), shear

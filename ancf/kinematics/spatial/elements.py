@@ -84,4 +84,9 @@ register_spatial_element(SpatialSpec(
 # its 5 x 7 mm section (experiments/spatial_cantilever, experiments/spatial_torsion)
 register_spatial_element(hermite_section(
     "HS2n-72p", 2, 1, "this harness: the planar HB2n-40p's Hermite section and element pressure, in 3D"))
+# this harness: HS2n-72p's section with the torsion warping modes y^3 z and y z^3 added (16
+# vectors per node, 96 dof): the cubic section's bending limit, 0.075 % stiff on the clamped
+# cantilever, and the quartic's torsion, 0.24 % stiff on the 5 x 7 mm section
+register_spatial_element(hermite_section(
+    "HS2n-96p", 2, 1, "this harness: HS2n-72p with the torsion warping modes y^3 z and y z^3", ((3, 1), (1, 3))))
 BUILTIN = SPATIAL_ELEMENTS.freeze_builtin()
