@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from ancf.kinematics.spatial import SPATIAL_ELEMENTS
-from ancf.kinematics.spatial.elements import hermite_section
+from ancf.kinematics.spatial.elements import TORSION_MODES, hermite_section
 from ancf.kinematics.spatial.beam import SpatialBeam
 from ancf.kinematics.spatial.statics import clamp_rows, gravity_load, solve_static
 from contract import paper
@@ -46,22 +46,11 @@ def element(name: str):
     (``w``: with the torsion warping modes y^3 z and y z^3 added to the section)."""
     if name in SPATIAL_ELEMENTS:
         return SPATIAL_ELEMENTS[name]
-    if name.endswith("w"):
-        element(name[:-1])              # the base name's check
-        return hermite_section(name, base_degree(name[:-1]), base_pressure(name[:-1]), "trial", ((3, 1), (1, 3)))
-    head, _, p = name[1:].partition("p")
-    if not name.startswith("H") or not head.isdigit() or (p and not p.isdigit()):
+    base, extra = (name[:-1], TORSION_MODES) if name.endswith("w") else (name, ())
+    head, _, p = base[1:].partition("p")
+    if not base.startswith("H") or not head.isdigit() or (p and not p.isdigit()):
         raise SystemExit(f"element {name!r}: one of {list(SPATIAL_ELEMENTS)} or H<degree>[p<degree>][w]")
-    return hermite_section(name, int(head), int(p) if p else None, "trial")
-
-
-def base_degree(name: str) -> int:
-    return int(name[1:].partition("p")[0])
-
-
-def base_pressure(name: str) -> int | None:
-    p = name[1:].partition("p")[2]
-    return int(p) if p else None
+    return hermite_section(name, int(head), int(p) if p else None, "trial", extra)
 
 
 def main() -> None:

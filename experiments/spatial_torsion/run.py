@@ -30,7 +30,6 @@ import numpy as np
 
 from ancf.kinematics.spatial import SPATIAL_ELEMENTS
 from ancf.kinematics.spatial.beam import SpatialBeam
-from ancf.kinematics.spatial.spec import kind_orders
 from ancf.kinematics.spatial.statics import clamp_rows, end_torque_load, free_warping_rows, section_rotation, solve_static
 from contract import paper
 from studies.verification import torsion
@@ -41,14 +40,9 @@ sys.path.insert(0, str(HERE.parent / "spatial_cantilever"))
 from run import element  # noqa: E402
 
 
-def section_modes(spec) -> list[tuple[int, int]]:
-    """The section's monomials y^a z^b (its kinds without x)."""
-    return [kind_orders(k)[1:] for k in spec.kinds if kind_orders(k)[0] == 0]
-
-
 def section_degree(spec) -> int:
-    """The degree to which the element's section is complete (its kinds without x)."""
-    have = {kind_orders(k)[1:] for k in spec.kinds if kind_orders(k)[0] == 0}
+    """The degree to which the element's section is complete."""
+    have = set(spec.section_monomials)
     d = 0
     while all((d + 1 - b, b) in have for b in range(d + 2)):
         d += 1
@@ -67,9 +61,10 @@ def main() -> None:
     c10 = paper.materials()["neo-hookean"]["C10"]
     mu = 2.0 * c10
     d = section_degree(spec)
-    bound, exact = torsion.warping_bound(h, w, section_modes(spec)), torsion.saint_venant_rectangle(h, w)
+    bound, exact = torsion.warping_bound(h, w, spec.section_monomials), torsion.saint_venant_rectangle(h, w)
     out = HERE / "res.jsonl"
-    have = {(r["element"], r["elements"], r["penalty"], r.get("support", "clamp")) for r in map(json.loads, out.read_text().splitlines())} if out.exists() else set()
+    have = {(r["element"], r["elements"], r["penalty"], r.get("support", "clamp"))
+            for r in map(json.loads, out.read_text().splitlines())} if out.exists() else set()
     for n in (int(x) for x in a.counts.split(",")):
         if n % 4:
             raise SystemExit(f"counts: multiples of 4 (nodes at L / 4 and 3 L / 4), got {n}")

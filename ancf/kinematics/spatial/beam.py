@@ -4,8 +4,8 @@ The beam lies along x from 0 to ``length``, its section ``height`` (y) by ``widt
 centred on the axis, cut into ``elements`` elements that share their end nodes (a
 three-node element's middle node is its own), equal ones or, with ``grading`` g, each g
 times as long as the one before it from x = 0 (g > 1: finer towards the clamp at x = 0).
-Its coordinates are q (n_global, 3), the nodal vectors of every node in turn (node-major, kinds in the element's order); flattened,
-component i of vector m is entry 3 m + i. The energy is the integral of
+Its coordinates are q (n_global, 3), the nodal vectors of every node in turn (node-major,
+kinds in the element's order); flattened, component i of vector m is entry 3 m + i. The energy is the integral of
 :func:`.energy.stress`'s W over the reference volume by a Gauss rule of ``points``
 (along, across the height, across the width), a product rule on each element; the force is
 its gradient, the tangent its Hessian (dense: this is the reference layer, not the

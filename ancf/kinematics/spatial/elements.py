@@ -38,6 +38,10 @@ def section_modes(degree: int) -> list[tuple[int, int]]:
     return [(d - b, b) for d in range(degree + 1) for b in range(d + 1)]
 
 
+# the section modes after the quadratic that carry a rectangle's torsion warping (odd in y and z)
+TORSION_MODES = ((3, 1), (1, 3))
+
+
 def hermite_section(name: str, degree: int, pressure_degree: int | None = None, reference: str = "",
                     extra: tuple[tuple[int, int], ...] = ()) -> SpatialSpec:
     """Two nodes, cubic Hermite along the beam, the complete section of ``degree`` in (y, z):
@@ -46,7 +50,8 @@ def hermite_section(name: str, degree: int, pressure_degree: int | None = None, 
     position and the section's shape are C1 between elements; ``extra`` adds section modes
     (a, b) beyond the complete ones (y^3 z and y z^3: the next torsion warping). With
     ``pressure_degree`` an element pressure {1, x} x the complete section of that degree."""
-    modes = section_modes(degree) + [m for m in extra if m not in section_modes(degree)]
+    modes = section_modes(degree)
+    modes += [m for m in extra if m not in modes]
     kinds = []
     for a, b in modes:
         d = "y" * a + "z" * b
@@ -88,5 +93,5 @@ register_spatial_element(hermite_section(
 # vectors per node, 96 dof): the cubic section's bending limit, 0.075 % stiff on the clamped
 # cantilever, and the quartic's torsion, 0.24 % stiff on the 5 x 7 mm section
 register_spatial_element(hermite_section(
-    "HS2n-96p", 2, 1, "this harness: HS2n-72p with the torsion warping modes y^3 z and y z^3", ((3, 1), (1, 3))))
+    "HS2n-96p", 2, 1, "this harness: HS2n-72p with the torsion warping modes y^3 z and y z^3", TORSION_MODES))
 BUILTIN = SPATIAL_ELEMENTS.freeze_builtin()

@@ -66,6 +66,11 @@ class SpatialSpec:
     def dof(self) -> int:
         return 3 * self.n_shape
 
+    @property
+    def section_monomials(self) -> list[tuple[int, int]]:
+        """The section's fields y^a z^b as (a, b): the kinds without an x derivative."""
+        return [kind_orders(k)[1:] for k in self.kinds if kind_orders(k)[0] == 0]
+
     def default_rule(self) -> tuple[int, int, int]:
         """The declared rule, or the one exact for the squared basis (d + 1 points for degree d)."""
         return tuple(self.quadrature) if self.quadrature else tuple(d + 1 for d in self.degree())
