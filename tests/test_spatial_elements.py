@@ -147,6 +147,29 @@ def test_the_force_is_the_energys_gradient_and_the_tangent_the_forces(name, law)
     assert np.abs(K - K.T).max() < 1e-12 * np.abs(K).max()
 
 
+@pytest.mark.parametrize("name", ELEMENTS)
+def test_the_banded_tangent_is_the_dense_one(name):
+    """The band storage the statics solve holds the dense tangent's entries exactly, on a
+    graded beam of three elements (its half-bandwidth: an element's dof span), and the
+    band's solve is the Jacobi-scaled dense solve's to round-off (the kinds' scales differ by
+    many decades, r_yyyz's in 1/m^3: an unscaled dense solve is the less accurate one)."""
+    rng = np.random.default_rng(7)
+    b = beam(name, elements=3, grading=1.3)
+    q = b.reference() + 1e-4 * rng.standard_normal((b.n_global, 3))
+    K, B = b.tangent(q), b.tangent_banded(q)
+    assert B.b == 3 * len(b.spec.kinds) * len(b.spec.nodes) - 1        # an element's dof span
+    assert np.array_equal(B.to_sparse().toarray(), K)
+    fixed = np.arange(3 * len(b.spec.kinds))
+    free = np.setdiff1d(np.arange(b.dof), fixed)
+    r = rng.standard_normal(b.dof)
+    r[fixed] = 0.0
+    x = B.constrain(fixed).solve(r)
+    Kf = K[np.ix_(free, free)]
+    d = 1.0 / np.sqrt(np.abs(np.diag(Kf)))          # the dense solve the statics took, Jacobi-scaled alike
+    assert np.allclose(x[free], d * np.linalg.solve(d[:, None] * Kf * d[None, :], d * r[free]), rtol=1e-8, atol=0)
+    assert not x[fixed].any()
+
+
 @pytest.mark.parametrize("law", sorted(LAWS.builtin))
 def test_a_plane_strain_is_the_planar_solvers_plane_strain(law):
     """F = [[F2, 0], [0, 1]]: the 3D density, stress and tangent equal the planar

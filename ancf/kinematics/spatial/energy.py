@@ -96,7 +96,8 @@ class Jet3:
         if p == 1:
             return self
         x = self.D[0]
-        return self.compose(x ** p, p * x ** (p - 1), p * (p - 1) * x ** (p - 2))
+        with np.errstate(invalid="ignore", divide="ignore"):   # x <= 0 outside a law's domain: not a number
+            return self.compose(x ** p, p * x ** (p - 1), p * (p - 1) * x ** (p - 2))
 
     def log(self) -> "Jet3":
         """log and its derivatives; not a number where x <= 0 (outside a law's domain)."""

@@ -11,8 +11,9 @@
 - :func:`solve_static`: the load along t: 0 -> 1 by the shared load-path rule
   (:func:`mechanics.load_path.follow`: adaptive increments, cut when one fails), each
   increment by the shared Newton loop (:func:`mechanics.newton.newton`) on the free
-  coordinates (the dense tangent, scaled by its diagonal: the kinds' units differ, r in m,
-  r_yy in 1/m), from a secant predictor, with full steps; only an increment whose full
+  coordinates (the banded tangent's LU, scaled by its diagonal: the kinds' units differ, r in
+  m, r_yy in 1/m; :meth:`ancf.core.banded.Banded.solve`), from a secant predictor, with full
+  steps; only an increment whose full
   Newton fails is retried from the last equilibrium with a backtracking line search on the
   total potential E(q) - t f.q (a state outside the law's domain, det F <= 0 included, has
   no energy and is backed out of). Full steps first, because a stiff penalty makes the
@@ -129,6 +130,9 @@ class _Increment:
 
     def __init__(self, beam: SpatialBeam, free: np.ndarray, q: np.ndarray, f: np.ndarray, line_search: bool):
         self.beam, self.free, self.q, self.f, self.line_search = beam, free, q.copy(), f, line_search
+        self.held = np.ones(beam.dof, bool)
+        self.held[free] = False
+        self.fixed = np.flatnonzero(self.held)
 
     def potential(self, q: np.ndarray) -> float:
         e = self.beam.energy(q.reshape(-1, 3))
@@ -139,11 +143,9 @@ class _Increment:
         return float(np.linalg.norm(self.r[self.free]))
 
     def newton_update(self) -> float:
-        K = self.beam.tangent(self.q.reshape(-1, 3))[np.ix_(self.free, self.free)]
-        d = 1.0 / np.sqrt(np.abs(np.diag(K)))
-        dq = np.zeros_like(self.q)
+        K = self.beam.tangent_banded(self.q.reshape(-1, 3)).constrain(self.fixed)
         try:
-            dq[self.free] = -d * np.linalg.solve(d[:, None] * K * d[None, :], d * self.r[self.free])
+            dq = -K.solve(np.where(self.held, 0.0, self.r))
         except np.linalg.LinAlgError:       # not an ArithmeticError: the shared loop would let it through
             raise ArithmeticError("singular tangent") from None
         s = 1.0
