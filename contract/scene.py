@@ -38,10 +38,6 @@ NEWTON_RTOL = (1e-15, 1e-3)
 MAX_ITERATIONS = 1000
 MAX_LOAD_STEPS = 10 ** 6
 MAX_STEPS = 10 ** 7          # default bound of a dynamic run's accepted steps
-# a dynamic scene's integrator when it names none: generalized-alpha in Arnold and Bruls's form
-# (forces at the step's ends), which holds the stiff and near-rigid pendulums where Chung and
-# Hulbert's form ("generalized-alpha") is stopped (reports/stability.md)
-DEFAULT_INTEGRATOR = "arnold-bruls"
 MAX_GAUSS = 64               # Gauss points per direction (exact to degree 127)
 MAX_NESTING = 32             # tables and arrays inside one another (a scene uses at most 3)
 # The scene language's formulations and whether a scene in that formulation carries a
@@ -111,7 +107,7 @@ KEYS = (
     Key("analysis", "dt_min", ("positive",), "s", None, "dynamic"),
     Key("analysis", "tolerance", ("positive",), "", None, "dynamic"),
     Key("analysis", "output_times", ("times",), "s", None, "dynamic"),
-    Key("analysis", "integrator", ("name", "integrator"), "", DEFAULT_INTEGRATOR, "dynamic"),
+    Key("analysis", "integrator", ("name", "integrator"), "", "generalized-alpha", "dynamic"),
     Key("analysis", "rho_inf", ("range", 0.0, 1.0), "", 0.5, "dynamic"),
     Key("analysis", "energy_limit", ("limit",), "J", None, "dynamic"),
     Key("analysis", "max_steps", ("positive int",), "", None, "dynamic"),

@@ -1,19 +1,10 @@
 """The generalized-alpha family of both solvers: coefficients, predictor and update.
 
-Chung and Hulbert's method (``generalized-alpha``) solves
+Chung and Hulbert's method solves
 
     M a_(n+1-alpha_m) + f_int(u_(n+1-alpha_f)) = Q,  x_(n+1-alpha) = (1 - alpha) x_(n+1) + alpha x_n,
 
-with Newmark's relations between u, v and a (beta, gamma). Arnold and Bruls's form
-(``arnold-bruls``, the default of a scene) has the same coefficients and takes the
-equations of motion at t_(n+1), M acc_(n+1) + f_int(u_(n+1)) = Q, with a the
-pseudo-acceleration, (1 - alpha_m) a_(n+1) + alpha_m a_n = (1 - alpha_f) acc_(n+1) +
-alpha_f acc_n; with M acc_k = Q - f_int(u_k) at both ends of the step that is
-
-    M a_(n+1-alpha_m) + (1 - alpha_f) f_int(u_(n+1)) + alpha_f f_int(u_n) = Q:
-
-the forces at configurations the body passes through (:data:`FORCES_AT_ENDS`), never at
-the chord u_(n+1-alpha_f) between two rotated configurations, which is strained. Written once here and used by
+with Newmark's relations between u, v and a (beta, gamma). Written once here and used by
 ANCF's Python steppers (:mod:`ancf.solvers.integrators`), its compiled step
 (:mod:`ancf.solvers.compiled_steps`, which compiles :func:`predict` and :func:`update` as they
 are) and the continuum's stepper (:mod:`reference_fem.stepper`). The functions are
@@ -39,19 +30,8 @@ def newmark(rho_inf: float = 1.0) -> dict:
     return {"alpha_m": 0.0, "alpha_f": 0.0, "gamma": 0.5, "beta": 0.25}
 
 
-def arnold_bruls(rho_inf: float) -> dict:
-    """Chung and Hulbert's coefficients (:func:`generalized_alpha`); the steppers take the
-    forces at the step's ends (:data:`FORCES_AT_ENDS`). Source: M. Arnold and O. Bruls
-    (2007), Convergence of the generalized-alpha scheme for constrained mechanical
-    systems, Multibody Syst. Dyn. 18, 185-202."""
-    return generalized_alpha(rho_inf)
-
-
 # the methods of the family, by the name scenes give them
-METHODS = {"arnold-bruls": arnold_bruls, "generalized-alpha": generalized_alpha, "newmark": newmark}
-# the methods whose step takes the forces at u_n and u_(n+1), weighted alpha_f and 1 - alpha_f
-# (the multiplier of a constraint with them: each end's own), instead of at u_(n+1-alpha_f)
-FORCES_AT_ENDS = frozenset({"arnold-bruls"})
+METHODS = {"generalized-alpha": generalized_alpha, "newmark": newmark}
 
 
 def coefficients(method: str, rho_inf: float) -> dict:

@@ -6,9 +6,7 @@ backend's dynamic problem (``dynamic_model(scene, settings)`` of
 ``positions``.
 
 - The methods, their coefficients, the predictor and the update are the shared ones of
-  :mod:`mechanics.alpha_family` (Arnold-Bruls, generalized-alpha, Newmark), which ANCF
-  steps too; a method of :data:`mechanics.alpha_family.FORCES_AT_ENDS` has the backend
-  take the forces at u_n and u_(n+1) instead of at u_(n+1-alpha_f);
+  :mod:`mechanics.alpha_family` (generalized-alpha, Newmark), which ANCF steps too;
 - Newton with the consistent Jacobian (the backend's derivative of the step residual:
   (1 - alpha_m) / (beta dt^2) M + (1 - alpha_f) K, plus the pressure rows); predictor
   a_(n+1) = a_n; converged when ||R|| <= rtol (||Q|| + ||M a_n||) (ANCF's scale) or when
@@ -43,12 +41,11 @@ def alpha_family() -> dict:
 
 
 class ContinuumStepper:
-    def __init__(self, problem, method: str = "arnold-bruls", rho_inf: float = 0.8,
+    def __init__(self, problem, method: str = "generalized-alpha", rho_inf: float = 0.8,
                  newton_rtol: float = 1e-8, max_iterations: int = 25, beam=None):
         self.problem, self.method, self.rho_inf = problem, method, rho_inf
         self.newton_rtol, self.max_iterations = newton_rtol, max_iterations
         self.coef = family.coefficients(method, rho_inf)
-        self.forces_at_ends = method in family.FORCES_AT_ENDS
         self.beam = beam
         geometry = problem.geometry
         self.tip_point = geometry.tip_point(beam)
@@ -76,8 +73,7 @@ class ContinuumStepper:
         u_pred = family.predict(s.u, s.v, s.a, dt)
         try:
             u, its = self.problem.solve_step(s.u, s.a, u_pred, u_pred, b * dt * dt, am, af,
-                                             self.newton_rtol, self.max_iterations, self._small_correction,
-                                             self.forces_at_ends)
+                                             self.newton_rtol, self.max_iterations, self._small_correction)
         except StepFailure as e:
             return None, e.iterations
         a, v = family.update(u, u_pred, s.v, s.a, dt, b, g)

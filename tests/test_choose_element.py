@@ -33,8 +33,8 @@ def test_the_cable_runs_plane_stress_only_and_the_tables_say_why():
     assert "cantilever-yeoh-plane-strain-HB2n-16-4-qdef-face" in names
     assert not any("plane-strain-HC2n-8" in n for n in names)
     dyn = [n for n in names if n.startswith("pendulum-")]            # the ladder 8, 4 ms; no `paper` cable
-    assert dyn == ["pendulum-yeoh-plane-stress-HC2n-8-8-dt0.008-arnold-bruls-rho0.5-t0.5",
-                   "pendulum-yeoh-plane-stress-HC2n-8-8-dt0.004-arnold-bruls-rho0.5-t0.5"]
+    assert dyn == ["pendulum-yeoh-plane-stress-HC2n-8-8-dt0.008-generalized-alpha-rho0.5-t0.5",
+                   "pendulum-yeoh-plane-stress-HC2n-8-8-dt0.004-generalized-alpha-rho0.5-t0.5"]
     (why,) = ce.absent(g)
     assert why.startswith("HC2n-8 has no `plane-strain` cells: a cable integrates the law's incompressible uniaxial "
                           "energy over its section (free lateral faces), so plane stress alone")

@@ -13,7 +13,7 @@ from ancf.simulation import run_scene
 from mechanics.time_loop import integrate
 from contract import paper
 from contract.errors import SceneError
-from contract.scene import DEFAULT_INTEGRATOR, scene_from_dict
+from contract.scene import scene_from_dict
 from studies.verification.dynamics_stability import STUDY as STABILITY, SWING_TOL, swing_time
 
 PENDULUM = paper.PENDULUM
@@ -179,7 +179,7 @@ def test_arnold_bruls_holds_the_near_rigid_pendulum_that_chung_hulbert_heats(rho
     (measured 2e-5) and its energy never rises (numerical dissipation only)."""
     from studies.verification.closed_forms import rigid_swing_time
 
-    s = pendulum_scene(n=16, t_end=0.3, dt=1e-3, rho_inf=rho, integrator="generalized-alpha")
+    s = pendulum_scene(n=16, t_end=0.3, dt=1e-3, rho_inf=rho)
     s["analysis"]["output_times"] = list(np.round(np.arange(0, 0.3001, 0.005), 12))
     for k in ("C10", "C20", "C30"):
         s["material"][k] *= NEAR_RIGID
@@ -233,7 +233,7 @@ def test_dynamic_effects_and_record():
     assert [h["t"] for h in rec["tip_history"]] == pytest.approx(np.linspace(0, 0.1, 6))
     h0 = rec["tip_history"][0]
     assert (h0["x"], h0["y"]) == (pytest.approx(0.35), pytest.approx(0.0))
-    assert rec["integrator"]["name"] == DEFAULT_INTEGRATOR == "arnold-bruls"
+    assert rec["integrator"]["name"] == "generalized-alpha"
 
 
 def test_steps_are_clipped_to_output_times():
@@ -266,7 +266,7 @@ def test_stiff_penalty_generalized_alpha_fails_honestly_discrete_gradient_conser
     reason energy-growth, nulls not NaN. The discrete-gradient scheme conserves the
     energy to round-off (measured 5e-13 J over 0.5 s) on the same case."""
     C10 = paper.materials()["yeoh"]["C10"]
-    s = pendulum_scene(form=form, t_end=0.2, integrator="generalized-alpha")
+    s = pendulum_scene(form=form, t_end=0.2)
     s["material"]["penalty"] = 1e5 * C10
     rec, _ = run_scene(scene_from_dict(s))
     assert rec["status"] == "failed" and rec["reason"].startswith("energy-growth")
@@ -282,7 +282,7 @@ def test_stiff_penalty_generalized_alpha_fails_honestly_discrete_gradient_conser
 def test_large_step_discrete_gradient_stays_bounded():
     """Ten times the converged step (1e-2 s): generalized-alpha gains energy and is
     stopped; the discrete gradient keeps it to round-off."""
-    rec, _ = run_scene(scene_from_dict(pendulum_scene(t_end=0.3, dt=1e-2, integrator="generalized-alpha")))
+    rec, _ = run_scene(scene_from_dict(pendulum_scene(t_end=0.3, dt=1e-2)))
     assert rec["status"] == "failed" and "energy-growth" in rec["reason"]
     rec, _ = run_scene(scene_from_dict(pendulum_scene(t_end=0.3, dt=1e-2, integrator="discrete-gradient")))
     assert rec["status"] == "converged" and _energy_drift(rec) < 1e-10

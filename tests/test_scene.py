@@ -117,7 +117,7 @@ def test_defaults_are_filled_and_the_scene_round_trips():
 def test_dynamic_scene_round_trips():
     d = mutated("analysis", {"kind": "dynamic", "t_end": 0.5, "dt": 1e-3, "output_times": [0.1, 0.5]})
     s = scene_from_dict(d)
-    assert s.analysis.rho_inf == 0.5 and s.analysis.integrator == "arnold-bruls"   # the default: Arnold and Bruls's form
+    assert s.analysis.rho_inf == 0.5 and s.analysis.integrator == "generalized-alpha"
     assert scene_from_dict(s.to_dict()) == s
 
 

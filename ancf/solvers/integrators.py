@@ -225,7 +225,11 @@ class ArnoldBruls(GeneralizedAlpha):
     constraints)."""
 
     name = "arnold-bruls"
-    forces_at_ends = name in alpha_family.FORCES_AT_ENDS
+    forces_at_ends = True
+
+    @classmethod
+    def coefficients(cls, rho_inf: float) -> dict:
+        return alpha_family.generalized_alpha(rho_inf)
 
 
 class Newmark(GeneralizedAlpha):
@@ -337,6 +341,6 @@ class _AlphaStep:
 
 
 INTEGRATORS: Registry[type[Integrator]] = Registry("analysis.integrator", "integrator")
-for _cls in (ArnoldBruls, GeneralizedAlpha, Newmark, DiscreteGradient):   # the default first
+for _cls in (GeneralizedAlpha, ArnoldBruls, Newmark, DiscreteGradient):
     INTEGRATORS.register(_cls.name, _cls)
 INTEGRATORS.freeze_builtin()

@@ -13,14 +13,6 @@ live in :mod:`reference_fem.stepper`; Newmark is alpha_m = alpha_f = 0):
     int rho a_(n+1-am) . v  +  int P(F(u_(n+1-af)), lam) : grad v  =  int rho g . v + int tbar . v
     int dW/dlam(F_*, lam) q = 0
 
-With the forces at the step's ends (Arnold and Bruls's form,
-:data:`mechanics.alpha_family.FORCES_AT_ENDS`) the stress term is
-
-    (1 - af) int P(F(u_(n+1)), lam_(n+1)) : grad v  +  af int P(F(u_n), lam_n) : grad v,
-
-each end with its own multiplier (lam_n: the last step's), and the constraint row at
-F(u_(n+1)) in every model: no field is ever evaluated at u_(n+1-af).
-
 Mass: rho times the displacement field, i.e. the consistent mass of the displacement
 space (the quadrature of degree 2 p integrates it exactly on the affine cells). The
 pressure has no inertia: the mixed system is a DAE (index 2 in the pressure). lam is
@@ -75,40 +67,22 @@ class DynamicProblem:
         self.u_n, self.a_n, self.u_pred = d.function(), d.function(), d.function()
         self.c_beta = d.constant(1.0)     # 1 / (beta dt^2)
         self.am, self.af = d.constant(0.0), d.constant(0.0)
-        an, _ = d.split(self.a_n)
-        v, _ = d.split(d.test)
-        work = s.external_work(v)
-        self._work = work
-        self._systems: dict[bool, backend.NonlinearSystem] = {}   # by forces_at_ends, made when first stepped
-        self.load_norm = backend.VectorNorm(work, s.bcs) if work is not None else (lambda: 0.0)
-        self.inertia_norm = backend.VectorNorm(self.rho * ufl.dot(an, v) * d.dx, s.bcs)
-
-    def step_system(self, forces_at_ends: bool) -> backend.NonlinearSystem:
-        """The step's nonlinear system: the forces at u_(n+1-af) (Chung-Hulbert's form), or
-        at the step's ends (``forces_at_ends``, Arnold and Bruls's form)."""
-        if forces_at_ends in self._systems:
-            return self._systems[forces_at_ends]
-        s, d = self.setup, self.disc
-        (un, lam_n), (an, _), (upred, _) = d.split(self.u_n), d.split(self.a_n), d.split(self.u_pred)
+        (un, _), (an, _), (upred, _) = d.split(self.u_n), d.split(self.a_n), d.split(self.u_pred)
         u, lam = d.split(d.w)
         v, q = d.split(d.test)
         a_new = (u - upred) * self.c_beta + an
         a_m = (1 - self.am) * a_new + self.am * an
-        if forces_at_ends:
-            u_f = u
-            stress = ((1 - self.af) * ufl.inner(s.stress(u, lam), ufl.grad(v))
-                      + self.af * ufl.inner(s.stress(un, lam_n), ufl.grad(v)))
-        else:
-            u_f = (1 - self.af) * u + self.af * un
-            stress = ufl.inner(s.stress(u_f, lam), ufl.grad(v))
-        R = self.rho * ufl.dot(a_m, v) * d.dx + stress * d.dx
-        if self._work is not None:
-            R = R - self._work
+        u_f = (1 - self.af) * u + self.af * un
+        R = self.rho * ufl.dot(a_m, v) * d.dx + ufl.inner(s.stress(u_f, lam), ufl.grad(v)) * d.dx
+        work = s.external_work(v)
+        if work is not None:
+            R = R - work
         row = s.model.constraint_row(s, s.gradient(s.model.constraint_displacement(u, u_f)), lam, q)
         if row is not None:
             R = R + row
-        self._systems[forces_at_ends] = system(s, R)
-        return self._systems[forces_at_ends]
+        self.system = system(s, R)
+        self.load_norm = backend.VectorNorm(work, s.bcs) if work is not None else (lambda: 0.0)
+        self.inertia_norm = backend.VectorNorm(self.rho * ufl.dot(an, v) * d.dx, s.bcs)
 
     def _start_forms(self, cell_size: float) -> None:
         """The initial acceleration: linear in (a0, lam0); u_n holds u0."""
@@ -165,20 +139,17 @@ class DynamicProblem:
         return w0
 
     def solve_step(self, u_n, a_n, u_pred, guess, beta_dt2: float, alpha_m: float, alpha_f: float,
-                   rtol: float, max_iterations: int, small_correction,
-                   forces_at_ends: bool = False) -> tuple[np.ndarray, int]:
-        """u_(n+1) (with lam) of one step and its Newton iterations; raises StepFailure.
-        ``forces_at_ends``: Arnold and Bruls's form (see the module)."""
+                   rtol: float, max_iterations: int, small_correction) -> tuple[np.ndarray, int]:
+        """u_(n+1) (with lam) of one step and its Newton iterations; raises StepFailure."""
         self.u_n.x.array[:] = u_n
         self.a_n.x.array[:] = a_n
         self.u_pred.x.array[:] = u_pred
         self.c_beta.value = 1.0 / beta_dt2
         self.am.value, self.af.value = alpha_m, alpha_f
-        step = self.step_system(forces_at_ends)
-        step.restore(guess)
+        self.system.restore(guess)
         scale = self.load_norm() + self.inertia_norm()
-        its, _ = newton(step, scale, rtol, max_iterations, small_correction)
-        return step.save(), its
+        its, _ = newton(self.system, scale, rtol, max_iterations, small_correction)
+        return self.system.save(), its
 
     def energies(self, u: np.ndarray, v: np.ndarray) -> Energies:
         """Kinetic, strain and the dead loads' potentials (J, full beam)."""

@@ -8,9 +8,7 @@ whose docstring derives them), on FElupe's discretisation of the static problem
     R_u = M a_(n+1-am) + f_int(u_(n+1-af), lam) - f_ext
     R_p = int dW/dphat(F_*, lam) q dV,   F_* = F(u_(n+1)) (mixed), F(u_(n+1-af)) (penalty)
 
-with a_(n+1) = (u_(n+1) - u_pred) / (beta dt^2) + a_n; with the forces at the step's ends
-(Arnold and Bruls's form) f_int(u_(n+1-af), lam) is (1 - af) f_int(u_(n+1), lam_(n+1)) +
-af f_int(u_n, lam_n) and R_p is at u_(n+1) in both models. Unknowns: w = [u_(n+1), lam]
+with a_(n+1) = (u_(n+1) - u_pred) / (beta dt^2) + a_n. Unknowns: w = [u_(n+1), lam]
 (displacement node by node, then the corner pressures). f_int and its tangent are FElupe's
 assembly of :class:`.problem.MixedMaterial` (tensortrax's derivatives of the energy); M is
 the consistent mass int rho N_a N_b dV of the displacement field (same quadrature: exact on
@@ -19,8 +17,7 @@ the rectangular Q2 cells). The tangent dR/dw:
     [ c (1 - am) M + (1 - af) K_uu(u_f, lam)    K_up(u_f)           ]
     [ K_pu(u_(n+1))  or  (1 - af) K_pu(u_f)     K_pp                ],   c = 1 / (beta dt^2)
 
-unsymmetric for the mixed model (its constraint row at the new state); with the forces at
-the ends [[c (1 - am) M + (1 - af) K_uu(u), (1 - af) K_up(u)], [K_pu(u), K_pp]]. Solved by SuperLU
+unsymmetric for the mixed model (its constraint row at the new state), solved by SuperLU
 in reverse Cuthill-McKee order (:func:`.problem.solve_sparse`).
 The Newton scale and test are the DOLFINx backend's (||R|| over the free rows against
 ||f_ext|| + ||M a_n||).
@@ -171,30 +168,25 @@ class DynamicProblem:
         return w0
 
     def solve_step(self, u_n, a_n, u_pred, guess, beta_dt2: float, alpha_m: float, alpha_f: float,
-                   rtol: float, max_iterations: int, small_correction,
-                   forces_at_ends: bool = False) -> tuple[np.ndarray, int]:
-        """u_(n+1) (with lam) of one step and its Newton iterations; raises StepFailure.
-        ``forces_at_ends``: Arnold and Bruls's form (see the module)."""
+                   rtol: float, max_iterations: int, small_correction) -> tuple[np.ndarray, int]:
+        """u_(n+1) (with lam) of one step and its Newton iterations; raises StepFailure."""
         from mechanics.newton import newton
 
         nu, M, f = self.nu, self.M, self.setup.f_ext
         un, an, up = u_n[:nu], a_n[:nu], u_pred[:nu]
         c = 1.0 / beta_dt2
         pressure = self.p_field is not None
-        at_new = pressure and self.mixed and alpha_f != 0.0 and not forces_at_ends
-        # Arnold-Bruls: the force at u_n with its own multiplier, weighted af; u_(n+1)'s 1 - af
-        w_f, w_n = (0.0, alpha_f) if forces_at_ends else (alpha_f, 0.0)
-        f_n = self._material(un, u_n[nu:] if pressure else None, False)[0] if forces_at_ends else 0.0
+        at_new = pressure and self.mixed and alpha_f != 0.0
 
         def split(w):
             u = w[:nu]
-            return u, (1 - w_f) * u + w_f * un, (w[nu:] if pressure else None)
+            return u, (1 - alpha_f) * u + alpha_f * un, (w[nu:] if pressure else None)
 
         def residual(w):
             u, uf, lam = split(w)
             am_ = (1 - alpha_m) * ((u - up) * c + an) + alpha_m * an
             g = self._material(uf, lam, False)
-            r = np.concatenate([M @ am_ + (1 - w_n) * g[0] + w_n * f_n] + g[1:]) - f
+            r = np.concatenate([M @ am_ + g[0]] + g[1:]) - f
             if at_new:      # the constraint at the new state (lam's own term is zero when mixed)
                 r[nu:] = self._constraint(u, False)
             return r
@@ -205,8 +197,8 @@ class DynamicProblem:
             if not pressure:
                 return Kuu + (1 - alpha_f) * self._material(uf, None, True)[0]
             K, Kup, Kpp = self._material(uf, lam, True)
-            Kpu = self._constraint(u, True).T if at_new else (1 - w_f) * Kup.T
-            return bmat([[Kuu + (1 - alpha_f) * K, (1 - w_n) * Kup], [Kpu, Kpp]]).tocsr()
+            Kpu = self._constraint(u, True).T if at_new else (1 - alpha_f) * Kup.T
+            return bmat([[Kuu + (1 - alpha_f) * K, Kup], [Kpu, Kpp]]).tocsr()
 
         system = StepSystem(self, residual, tangent)
         system.restore(guess)

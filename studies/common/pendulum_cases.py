@@ -22,7 +22,6 @@ from pathlib import Path
 import numpy as np
 
 from contract import paper
-from contract.scene import DEFAULT_INTEGRATOR
 
 from ..engine.case import make_case
 
@@ -59,7 +58,7 @@ def converged_rung(rungs: list[dict], tol: float = LADDER["tol"]) -> tuple[dict 
 
 def pendulum_dict(element: str, n: int, formulation: str, dt: float, rho_inf: float = 0.5,
                   law: str = paper.PENDULUM_LAW, t_end: float = paper.PENDULUM_T_END,
-                  every: float = paper.OUTPUT_EVERY, integrator: str = DEFAULT_INTEGRATOR,
+                  every: float = paper.OUTPUT_EVERY, integrator: str = "generalized-alpha",
                   penalty_factor: float | None = None, stiffness_scale: float = 1.0,
                   name: str | None = None) -> dict:
     """The paper's pendulum scene (:func:`contract.paper.pendulum_scene`) with these changes.
@@ -73,14 +72,6 @@ def pendulum_dict(element: str, n: int, formulation: str, dt: float, rho_inf: fl
         name=name or f"pendulum-{law}-{formulation}-{element}-{n}-dt{dt:g}-{integrator}-rho{rho_inf:g}-t{t_end:g}")
 
 
-def integrators_of(records) -> str:
-    """The integrators the dynamic records ran, for a caption ("arnold-bruls", or the names
-    joined by " / " where a study mixes them); the default's name without records."""
-    analyses = [r.get("scene", {}).get("analysis") or {} for r in records]
-    names = sorted({a.get("integrator", DEFAULT_INTEGRATOR) for a in analyses if a.get("kind") == "dynamic"})
-    return " / ".join(names) or DEFAULT_INTEGRATOR
-
-
 def pendulum_case(study: str, *args, options: dict | None = None, **kw):
     return make_case(study, "ancf", pendulum_dict(*args, **kw), options)
 
@@ -92,7 +83,7 @@ def describe_dynamic(rec: dict) -> dict:
     c10 = paper.materials()[m["law"]]["C10"]
     d = {"law": m["law"], "formulation": m["formulation"], "element": s["ancf"]["element"],
          "elements": s["ancf"]["elements"], "dt": a["dt"], "t_end": a["t_end"],
-         "rho_inf": a.get("rho_inf", 0.5), "integrator": a.get("integrator", DEFAULT_INTEGRATOR),
+         "rho_inf": a.get("rho_inf", 0.5), "integrator": a.get("integrator", "generalized-alpha"),
          "penalty_factor": m["penalty"] / m["C10"] if "penalty" in m else None,
          "stiffness_scale": m["C10"] / c10, "status": rec.get("status"), "reason": rec.get("reason"),
          "ok": rec.get("status") == "converged" and bool(rec.get("tip_history")),

@@ -40,7 +40,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from contract.errors import SceneError
-from contract.scene import ANALYSES, DEFAULT_INTEGRATOR, SUPPORTS, keys_of
+from contract.scene import ANALYSES, SUPPORTS, keys_of
 
 LOADS = tuple(k.name for k in keys_of("loads"))    # the scene's load keys
 SCENE_FORMATS = ("toml", "json")
@@ -179,7 +179,7 @@ def unsupported(decl: Declaration, scene: dict) -> str | None:
     material, loads = scene.get("material") or {}, scene.get("loads") or {}
     asked = {
         "analysis": [(scene.get("analysis") or {}).get("kind")],
-        "integrators": [(scene.get("analysis") or {}).get("integrator", DEFAULT_INTEGRATOR)]
+        "integrators": [(scene.get("analysis") or {}).get("integrator", "generalized-alpha")]
         if (scene.get("analysis") or {}).get("kind") == "dynamic" else [],
         "laws": [material.get("law")],
         "formulations": [material.get("formulation")],

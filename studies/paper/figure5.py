@@ -9,7 +9,7 @@ the continuum at each output time.
 """
 from __future__ import annotations
 
-from ..common.pendulum_cases import LENGTH, continuum_pendulum, describe_dynamic, integrators_of, gold_tips, pendulum_case, tip_errors
+from ..common.pendulum_cases import LENGTH, continuum_pendulum, describe_dynamic, gold_tips, pendulum_case, tip_errors
 from ..common.gold import short
 from ..engine.report import Section, Table, figure, legend_outside, linestyle
 
@@ -54,7 +54,7 @@ def report(ctx) -> Section:
     cont = continuum_pendulum()
     sec = Section(ctx.study.title,
                   f"Centre lines of the pendulum at t = 0, 0.1, ..., {g['t_end']:g} s for each law, "
-                  f"{g['elements_count']} elements of each higher-order element ({integrators_of(ctx.records())} rho_inf = "
+                  f"{g['elements_count']} elements of each higher-order element (generalized-alpha rho_inf = "
                   f"{g['rho_inf']}, dt = {1e3 * g['dt']:g} ms), against the converged continuum plane-stress model.")
     rows = []
     forms = g["formulations"]

@@ -5,7 +5,7 @@ ANCF cable pendulum, timed in the same run (``make bench-peers``).
                                               [--rounds 7] [--element HB2n-12 --element HB2n-16]
 
 Ours: ``scenes/pendulum-yeoh-plane-stress.toml`` (32 x HB2n-12, plane-stress Yeoh,
-Arnold-Bruls generalized-alpha, as Exudyn's; HB2n-16 by ``--element``) with the given dt and rho_inf; the wall
+generalized-alpha; HB2n-16 by ``--element``) with the given dt and rho_inf; the wall
 and CPU times are the medians of the records' ``wall_s`` and ``cpu_s`` over ``--repeats`` warm runs of :func:`ancf.simulation.run_scene` in this
 process (one untimed run first: numba compilation, caches). Exudyn: the same scene with the
 cable's element (:func:`peer_scene`, the element and features its declaration
@@ -218,7 +218,7 @@ diagram (`peers_work_precision.md`).
   `CoordinateConstraint`s (slope free), gravity by `LoadMassProportional`, from horizontal at
   rest, 0.5 s at a fixed step. Each timed repetition builds a fresh system outside the timed
   region and times `SolveDynamic` alone.
-- Ours: `scenes/pendulum-yeoh-plane-stress.toml` (plane-stress Yeoh, generalized-alpha in Arnold and Bruls's form, as Exudyn's) at the
+- Ours: `scenes/pendulum-yeoh-plane-stress.toml` (plane-stress Yeoh, generalized-alpha) at the
   same dt and rho_inf, the records' `wall_s` and `cpu_s` (the solve alone) of warm runs of
   `ancf.simulation.run_scene`.
 - Rounds: Exudyn's runs and ours in turn, the medians over all rounds (the machine's speed

@@ -7,10 +7,7 @@ element runs every case it admits, and both continuum codes run every case.
 
 1. ``rigid-swing``: the paper's pendulum (L = 350 mm, h = 5 mm, Yeoh) with every law constant
    times ``stiffer`` (C10 = 1.1e10 Pa at 2e4: near-rigid), released from the horizontal on the
-   point pin, dt 1 ms, by Newmark's average acceleration (conservative, in both solvers) and by
-   the scenes' default integrator (Arnold and Bruls's generalized-alpha, rho_inf 0.5: the
-   default must hold a pendulum that becomes stiffer; Chung and Hulbert's form is stopped by
-   the energy guard here, :mod:`.dynamics_stability`). Quantity:
+   point pin, Newmark's average acceleration (conservative, in both solvers), dt 1 ms. Quantity:
    the time the tip reaches the vertical, read by a cubic through the outputs around the
    crossing (:func:`.dynamics_stability.swing_time`). Reference: the rigid compound pendulum,
    K(1/sqrt 2) sqrt(I / (m g L / 2)), I / m = L^2 / 3 + h^2 / 12
@@ -51,7 +48,6 @@ import math
 import numpy as np
 
 from contract import paper
-from contract.scene import DEFAULT_INTEGRATOR
 
 from ..engine.case import make_case
 from ..engine.report import Section, Table
@@ -66,7 +62,7 @@ STUDY = {
         "elements": {"registered": {}}, "codes": None,
         # rigid-swing
         "stiffer": 2e4, "swing_elements": 16, "swing_dt": 1e-3, "swing_t_end": 0.3, "swing_every": 0.005,
-        "swing_cells_height": 2, "swing_integrators": ["newmark", DEFAULT_INTEGRATOR],
+        "swing_cells_height": 2,
         # clamped-frequency
         "ratios": [10, 20], "height": 0.005, "amplitude": 1e-4, "steps_per_period": 200, "periods": 4,
         "outputs_per_period": 50, "elements_per_h": 1, "cells_per_h": 4,
@@ -83,17 +79,14 @@ KAPPA = 5.0 / 6.0                 # Timoshenko's shear coefficient of a rectangl
 
 # -- 1. the rigid pendulum ---------------------------------------------------------------------------
 
-def swing_scene(grid: dict, solver: str, integrator: str = "newmark") -> dict:
-    """The near-rigid pendulum for ``solver`` (an element or a continuum code) by
-    ``integrator`` (Newmark: rho_inf 1; another: the scenes' default rho_inf, 0.5)."""
+def swing_scene(grid: dict, solver: str) -> dict:
+    """The near-rigid pendulum for ``solver`` (an element or a continuum code)."""
     fem = fem_table(solver, cells_height=grid["swing_cells_height"]) if solver in _codes(grid) else None
     return paper.pendulum_scene(paper.PENDULUM_LAW, "plane-stress", grid["swing_dt"], None if fem else solver,
                                 None if fem else grid["swing_elements"], t_end=grid["swing_t_end"],
-                                every=grid["swing_every"], integrator=integrator,
-                                rho_inf=1.0 if integrator == "newmark" else 0.5,
+                                every=grid["swing_every"], integrator="newmark", rho_inf=1.0,
                                 stiffness_scale=grid["stiffer"], fem=fem,
-                                name=f"dyn-bench-rigid-swing-x{grid['stiffer']:g}-{solver}"
-                                     + ("" if integrator == "newmark" else f"-{integrator}"))
+                                name=f"dyn-bench-rigid-swing-x{grid['stiffer']:g}-{solver}")
 
 
 # -- 2. the clamped beam's first frequency -----------------------------------------------------------
@@ -247,8 +240,7 @@ def _kind(solver: str, grid: dict) -> str:
 
 
 def cases(grid: dict, tiny: bool) -> list:
-    out = [make_case("dynamic-benchmarks", _kind(s, grid), swing_scene(grid, s, i))
-           for i in grid["swing_integrators"] for s in _solvers(grid)]
+    out = [make_case("dynamic-benchmarks", _kind(s, grid), swing_scene(grid, s)) for s in _solvers(grid)]
     out += [make_case("dynamic-benchmarks", _kind(s, grid), frequency_scene(grid, r, s))
             for r in grid["ratios"] for s in _solvers(grid)]
     return out + [make_case("dynamic-benchmarks", "ancf", dg_scene(grid, e)) for e in dg_elements(grid)]
@@ -289,12 +281,11 @@ def rows(ctx, solvers: list[str] | None = None) -> list[list]:
     solvers = _solvers(g) if solvers is None else solvers
     T = rigid_swing_reference()
     out = []
-    for i in g["swing_integrators"]:
-        for s in solvers:
-            rec = recs.get(swing_scene(g, s, i)["name"])
-            ts = swing_time(rec) if rec and rec.get("status") == "converged" else None
-            err = None if ts is None else ts / T - 1
-            out.append([f"rigid-swing {i}", s, "swing time (s)", T, ts, err, SWING_TOL, _verdict(err, SWING_TOL, rec)])
+    for s in solvers:
+        rec = recs.get(swing_scene(g, s)["name"])
+        ts = swing_time(rec) if rec and rec.get("status") == "converged" else None
+        err = None if ts is None else ts / T - 1
+        out.append(["rigid-swing", s, "swing time (s)", T, ts, err, SWING_TOL, _verdict(err, SWING_TOL, rec)])
     for r in g["ratios"]:
         ref = frequency_reference(g, r)
         for s in solvers:
@@ -321,8 +312,7 @@ def report(ctx) -> Section:
                   "rigid-swing's and dg-energy's before the runs; clamped-frequency's restated after both continuum "
                   "codes missed the first derivation (its doc gives both and the measurements). rigid-swing: the "
                   "near-rigid pendulum "
-                  f"(law constants x {g['stiffer']:g}, by {' and '.join(g['swing_integrators'])}, dt "
-                  f"{1e3 * g['swing_dt']:g} ms) against the rigid "
+                  f"(law constants x {g['stiffer']:g}, Newmark, dt {1e3 * g['swing_dt']:g} ms) against the rigid "
                   "compound pendulum's time from the horizontal to the vertical. clamped-frequency: a cantilever on "
                   "the beam's clamp, set vibrating by gravity switched on (tip amplitude "
                   f"{g['amplitude']:g} L), its first frequency by the matrix pencil against Timoshenko's "
