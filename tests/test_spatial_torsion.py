@@ -66,6 +66,7 @@ def test_a_bar_under_its_sections_saint_venant_traction_twists_uniformly(name):
     angles = np.array([section_rotation(b, res.q, n) for n in range(b.nodes)])
     assert np.allclose(angles, rate * xs, rtol=0.0, atol=1e-6 * rate * L)
 
+
 @pytest.mark.parametrize("name", list(SPATIAL_ELEMENTS))
 def test_the_end_torque_is_a_pure_torque(name):
     """The torque's nodal forces on the straight beam: no resultant (their sum over the

@@ -6,10 +6,10 @@ small twist), exact and within a polynomial section.
   sides, J = a^3 b / 3 (1 - (192 a / (pi^5 b)) sum_{n odd} tanh(n pi b / (2 a)) / n^5));
   :data:`TIMOSHENKO_GOODIER_TABLE` holds the book's table of k1 = J / (a^3 b), which the
   series is checked against;
-- :func:`polynomial_warping` (:func:`warping_bound` for any set of monomials, :func:`warping_state`
-  its state) and
-  :func:`quadratic_warping`: J of the same bar when the warping
-  psi (the axial displacement per twist rate, u_x = dtheta/dx psi(y, z)) is restricted to the
+- :func:`polynomial_warping` (:func:`warping_bound` for any set of monomials,
+  :func:`warping_state` its state) and :func:`quadratic_warping`: J of the same bar when
+  the warping psi (the axial displacement per twist rate, u_x = dtheta/dx psi(y, z)) is
+  restricted to the
   polynomials in (y, z) of a degree, as in a beam element whose section is complete to that
   degree: the Saint-Venant energy mu/2 (dtheta/dx)^2 int (psi_y - z)^2 + (psi_z + y)^2 dA
   minimised over that space (a Ritz bound: never below the exact J, falling to it with the

@@ -15,7 +15,8 @@ this harness (the 3363 with an element pressure) and its lock-free HS2n-72p (cub
 along, the complete quadratic section, the element pressure {1, x} x {1, y, z}; the family
 :func:`.elements.hermite_section`) and HS2n-96p (HS2n-72p's section with the torsion warping
 modes y^3 z and y z^3: within 0.1 % of the continuum on the clamped cantilever once the
-clamp's end zone is resolved). Each has a default rule chosen by the rank test (:mod:`.rank`). :mod:`.beam` takes equal or graded elements; :mod:`.statics` holds the
+clamp's end zone is resolved). Each has a default rule chosen by the rank test
+(:mod:`.rank`). :mod:`.beam` takes equal or graded elements; :mod:`.statics` holds the
 supports (the clamp, the free-warping support of torsion), gravity, a dead traction and a
 small-twist torque on the end face, and the static solve; ``experiments/spatial_cantilever``
 measures the elements against the 3D continuum, ``experiments/spatial_torsion`` against

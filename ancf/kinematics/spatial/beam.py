@@ -5,13 +5,14 @@ centred on the axis, cut into ``elements`` elements that share their end nodes (
 three-node element's middle node is its own), equal ones or, with ``grading`` g, each g
 times as long as the one before it from x = 0 (g > 1: finer towards the clamp at x = 0).
 Its coordinates are q (n_global, 3), the nodal vectors of every node in turn (node-major,
-kinds in the element's order); flattened, component i of vector m is entry 3 m + i. The energy is the integral of
-:func:`.energy.stress`'s W over the reference volume by a Gauss rule of ``points``
-(along, across the height, across the width), a product rule on each element; the force is
-its gradient, the tangent its Hessian, dense (:meth:`SpatialBeam.tangent`) or in band
-storage (:meth:`SpatialBeam.tangent_banded`, :class:`ancf.core.banded.Banded`: the coordinates
-are numbered along the beam, so an element's couple only neighbouring nodes, and the
-band's LU is what the statics solve). numpy, not the compiled loop.
+kinds in the element's order); flattened, component i of vector m is entry 3 m + i. The
+energy is the integral of :func:`.energy.stress`'s W over the reference volume by a Gauss
+rule of ``points`` (along, across the height, across the width), a product rule on each
+element; the force is its gradient, the tangent its Hessian, dense
+(:meth:`SpatialBeam.tangent`) or in band storage (:meth:`SpatialBeam.tangent_banded`,
+:class:`ancf.core.banded.Banded`: the coordinates are numbered along the beam, so an
+element's couple only neighbouring nodes, and the band's LU is what the statics solve).
+numpy, not the compiled loop.
 
 An element with a pressure basis (``SpatialSpec.pressure``, p_k) takes the penalty on the
 element-wise L2 projection of J - 1: alpha / 2 b^T M^-1 b with b_k = int p_k (J - 1) dV and

@@ -13,8 +13,7 @@
   increment by the shared Newton loop (:func:`mechanics.newton.newton`) on the free
   coordinates (the banded tangent's LU, scaled by its diagonal: the kinds' units differ, r in
   m, r_yy in 1/m; :meth:`ancf.core.banded.Banded.solve`), from a secant predictor, with full
-  steps; only an increment whose full
-  Newton fails is retried from the last equilibrium with a backtracking line search on the
+  steps; only an increment whose full Newton fails is retried from the last equilibrium with a backtracking line search on the
   total potential E(q) - t f.q (a state outside the law's domain, det F <= 0 included, has
   no energy and is backed out of). Full steps first, because a stiff penalty makes the
   energy a poor merit function: the linear step of a rotating beam stretches its fibres to
@@ -130,9 +129,7 @@ class _Increment:
 
     def __init__(self, beam: SpatialBeam, free: np.ndarray, q: np.ndarray, f: np.ndarray, line_search: bool):
         self.beam, self.free, self.q, self.f, self.line_search = beam, free, q.copy(), f, line_search
-        self.held = np.ones(beam.dof, bool)
-        self.held[free] = False
-        self.fixed = np.flatnonzero(self.held)
+        self.fixed = np.setdiff1d(np.arange(beam.dof), free)
 
     def potential(self, q: np.ndarray) -> float:
         e = self.beam.energy(q.reshape(-1, 3))
@@ -145,7 +142,9 @@ class _Increment:
     def newton_update(self) -> float:
         K = self.beam.tangent_banded(self.q.reshape(-1, 3)).constrain(self.fixed)
         try:
-            dq = -K.solve(np.where(self.held, 0.0, self.r))
+            r = self.r.copy()
+            r[self.fixed] = 0.0
+            dq = -K.solve(r)
         except np.linalg.LinAlgError:       # not an ArithmeticError: the shared loop would let it through
             raise ArithmeticError("singular tangent") from None
         s = 1.0
