@@ -233,6 +233,57 @@ def test_a_static_solve_balances_the_weight_and_its_moment_at_the_clamp():
     assert np.allclose(reaction, -moment, rtol=0.0, atol=1e-8 * np.abs(moment).max())
 
 
+PRESSURE_ELEMENTS = [n for n in ELEMENTS if SPATIAL_ELEMENTS[n].pressure]
+
+
+@pytest.mark.parametrize("name", PRESSURE_ELEMENTS)
+def test_the_mixed_iterates_pressures_are_the_projections_linearisation(name):
+    """The statics' pressure unknowns: at lambda = q's own projection (:meth:`pressures`) the
+    mixed tangent is the penalty's exactly, and the linearised pressures are the first-order
+    Taylor expansion of the projection (remainders fall by 4, within 1.25 %, per halving of
+    the step; the Taylor test's steps and bar)."""
+    rng = np.random.default_rng(9)
+    b = beam(name, "yeoh", elements=2, grading=1.3)
+    q = b.reference() + 0.02 * rng.standard_normal((b.n_global, 3)) * np.array([L, H, W]).mean() / 10
+    assert np.array_equal(b.tangent(q, b.pressures(q)), b.tangent(q))
+    dq = rng.standard_normal(b.dof) * 2e-6
+    lam = b.pressures(q)
+    rem = [np.linalg.norm(b.pressures(q + (h * dq).reshape(q.shape)) - b.linearised_pressures(q, h * dq))
+           for h in (1.0, 0.5, 0.25)]
+    ratios = np.array(rem[:-1]) / np.array(rem[1:])
+    assert np.all(np.abs(ratios - 4.0) < 0.05), ratios
+    assert np.linalg.norm(b.linearised_pressures(q, 0.0 * dq) - lam) <= 1e-14 * np.linalg.norm(lam)
+
+
+@pytest.mark.parametrize("name", ["3363p", "HS2n-72p"])
+def test_the_mixed_newton_reaches_the_penalty_problems_equilibrium(name):
+    """The statics' full steps with the pressures as unknowns, and the damped steps of the
+    penalty problem alone (q's own pressures, the energy's line search): the same
+    equilibrium of one increment, the paper's cantilever at a tenth of its weight (two
+    graded elements, the paper's penalty), to Newton's tolerance (the tip within 1e-9 of
+    its drop; the statics' stop: the force's round-off floor, or a correction below 1e-12 of
+    the length)."""
+    from mechanics.newton import newton
+    from ancf.kinematics.spatial.statics import _Increment, clamp_rows, gravity_load
+    from ancf.solvers.statics import ROUNDOFF_FLOOR
+    from contract import paper
+
+    c = {k: v for k, v in paper.materials()["neo-hookean"].items() if k != "density"}
+    b = SpatialBeam(SPATIAL_ELEMENTS[name], 0.16, H, W, 2, "neo-hookean", c, paper.PENALTY, grading=1.25)
+    f = 0.1 * gravity_load(b, paper.materials()["neo-hookean"]["density"])
+    free = np.setdiff1d(np.arange(b.dof), clamp_rows(b))
+    q0 = b.reference().ravel()
+    floor = ROUNDOFF_FLOOR * np.finfo(float).eps * np.linalg.norm(b.force_magnitude(b.reference())[free])
+    small = lambda system, r, dw: dw <= 1e-12 * b.length
+    tips = {}
+    for line_search in (False, True):
+        system = _Increment(b, free, q0, f, line_search, b.pressures(q0))
+        newton(system, max(np.linalg.norm(f), floor / 1e-10), 1e-10, 200, small)
+        tips[line_search] = system.q.reshape(-1, 3)[(b.nodes - 1) * len(b.spec.kinds)] - (0.16, 0.0, 0.0)
+    assert tips[False][1] < -1e-3
+    assert np.abs(tips[False] - tips[True]).max() < 1e-9 * abs(tips[False][1]), tips
+
+
 def test_the_residual_tolerance_respects_the_forces_roundoff():
     """The paper's cantilever (3333 x 4, alpha 1000 MPa) at a tenth of its weight: rtol |f|
     lies below the force's round-off, eps |f_int|_terms (:meth:`SpatialBeam.force_magnitude`,

@@ -206,27 +206,62 @@ class SpatialBeam:
         dofs = np.stack([self.element_dofs(e) for e in range(self.elements)])
         return BandedPattern.of(dofs, self.dof, int((dofs.max(axis=1) - dofs.min(axis=1)).max()))
 
-    def tangent(self, q: np.ndarray) -> np.ndarray:
-        """d2E/dq2 (dof, dof), N/m."""
+    def tangent(self, q: np.ndarray, pressure: np.ndarray | None = None) -> np.ndarray:
+        """d2E/dq2 (dof, dof), N/m (``pressure``: see :meth:`element_tangents`)."""
         K = np.zeros((self.dof, self.dof))
-        for e, Ke in enumerate(self.element_tangents(q)):
+        for e, Ke in enumerate(self.element_tangents(q, pressure)):
             d = self.element_dofs(e)
             K[np.ix_(d, d)] += Ke
         return K
 
-    def tangent_banded(self, q: np.ndarray) -> Banded:
+    def tangent_banded(self, q: np.ndarray, pressure: np.ndarray | None = None) -> Banded:
         """d2E/dq2 in band storage (half-bandwidth: the largest dof distance inside an element)."""
-        return self._band.assemble(np.stack(list(self.element_tangents(q))))
+        return self._band.assemble(np.stack(list(self.element_tangents(q, pressure))))
 
-    def element_tangents(self, q: np.ndarray):
-        """Each element's block of d2E/dq2 in turn, (nd, nd) over :meth:`element_dofs`."""
+    def pressures(self, q: np.ndarray) -> np.ndarray | None:
+        """The element pressures' coefficients lambda_e = alpha M^-1 b_e (elements, n_p) at q
+        (the pressure at a point is p . lambda_e), or None without a pressure basis."""
+        if self._pressures is None:
+            return None
+        lam = []
+        for e in range(self.elements):
+            p, Minv = self._pressure(e)
+            _, _, w = self.table(e)
+            J = invariant_derivatives(self.gradients(q, e), 0)[0][2]
+            lam.append(self.alpha * Minv @ np.einsum("q,qk,q->k", w, p, J - 1.0))
+        return np.array(lam)
+
+    def linearised_pressures(self, q: np.ndarray, dq: np.ndarray) -> np.ndarray | None:
+        """lambda_e(q) + dlambda_e/dq dq (elements, n_p): the pressures' linearisation in a step
+        dq from q, the pressure unknowns' Newton update of the mixed (u, p) form condensed per
+        element (:mod:`.statics`); None without a pressure basis."""
+        if self._pressures is None:
+            return None
+        dq = np.asarray(dq).reshape(-1, 3)
+        lam = []
+        for e in range(self.elements):
+            p, Minv = self._pressure(e)
+            _, dN, w = self.table(e)
+            F = self.gradients(q, e)
+            inv, d, _ = invariant_derivatives(F, 1)
+            dF = np.einsum("mi,pmJ->piJ", dq[self.element_rows(e)], dN)
+            dJ = inv[2] - 1.0 + np.einsum("piJ,piJ->p", d[2], dF)
+            lam.append(self.alpha * Minv @ np.einsum("q,qk,q->k", w, p, dJ))
+        return np.array(lam)
+
+    def element_tangents(self, q: np.ndarray, pressure: np.ndarray | None = None):
+        """Each element's block of d2E/dq2 in turn, (nd, nd) over :meth:`element_dofs`. With
+        ``pressure`` (elements, n_p), the pressure's geometric term (p . lambda_e) d2J/dF2 takes
+        these coefficients instead of q's own (:meth:`pressures`): the condensed tangent of the
+        mixed form at an iterate (q, lambda) off the constraint lambda = alpha M^-1 b(q)."""
         for e in range(self.elements):
             _, dN, w = self.table(e)
             F = self.gradients(q, e)
             _, _, A = stress(self.law, self.constants, self._pointwise_alpha, F)
             if self._pressures is not None:
                 pr = self._projected(F, e, 2)
-                A = A + pr["pressure"][:, None, None, None, None] * pr["ddJ"]
+                at = pr["pressure"] if pressure is None else pr["p"] @ pressure[e]
+                A = A + at[:, None, None, None, None] * pr["ddJ"]
             # sum_p w dN_mJ A_iJkL dN_nL in two BLAS-sized contractions (a single four-operand
             # einsum loops over every index at once: 16 s for a quartic section's 8 elements)
             T = np.einsum("pmJ,piJkL->pmikL", dN, A) * w[:, None, None, None, None]
