@@ -139,7 +139,6 @@ def invariant_derivatives(F: np.ndarray, order: int = 2) -> tuple[np.ndarray, np
     d2J = eps_ikm eps_JLM F_mM   (B = F F^T)."""
     n = F.shape[0]
     C = np.einsum("pki,pkj->pij", F, F)
-    B = np.einsum("pik,pjk->pij", F, F)
     I1 = np.einsum("pij,pij->p", F, F)
     I2 = 0.5 * (I1 ** 2 - np.einsum("pij,pij->p", C, C))
     J = np.linalg.det(F)
@@ -148,16 +147,22 @@ def invariant_derivatives(F: np.ndarray, order: int = 2) -> tuple[np.ndarray, np
     d = np.empty((3, n, 3, 3))
     d[0] = 2.0 * F
     d[1] = 2.0 * (I1[:, None, None] * F - F @ C)
-    d[2] = 0.5 * np.einsum("ikm,JLM,pkL,pmM->piJ", _EPS, _EPS, F, F)
+    # cof F column by column: the cross products of F's other two columns
+    a, b, c = F[:, :, 0], F[:, :, 1], F[:, :, 2]
+    d[2] = np.stack([np.cross(b, c), np.cross(c, a), np.cross(a, b)], axis=-1)
     if order == 1:
         return np.stack([I1, I2, J]), d, None
+    B = np.einsum("pik,pjk->pij", F, F)
     eye = np.eye(3)
-    dd = np.zeros((3, n, 3, 3, 3, 3))
+    dd = np.empty((3, n, 3, 3, 3, 3))
     dd[0] = 2.0 * np.einsum("ik,JL->iJkL", eye, eye)[None]
-    dd[1] = (4.0 * np.einsum("piJ,pkL->piJkL", F, F) + 2.0 * I1[:, None, None, None, None] * dd[0] / 2.0
-             - 2.0 * (np.einsum("ik,pJL->piJkL", eye, C) + np.einsum("piL,pkJ->piJkL", F, F)
-                      + np.einsum("pik,JL->piJkL", B, eye)))
-    dd[2] = np.einsum("ikm,JLM,pmM->piJkL", _EPS, _EPS, F)
+    dd[1] = (4.0 * F[:, :, :, None, None] * F[:, None, None, :, :] + I1[:, None, None, None, None] * dd[0]
+             - 2.0 * (eye[None, :, None, :, None] * C[:, None, :, None, :]
+                      + F[:, :, None, None, :] * np.swapaxes(F, 1, 2)[:, None, :, :, None]
+                      + B[:, :, None, :, None] * eye[None, None, :, None, :]))
+    # eps_ikm eps_JLM F_mM in two contractions, (p, M, i, k) then (p, i, k, J, L)
+    X = np.tensordot(F, _EPS, axes=([1], [2]))
+    dd[2] = np.tensordot(X, _EPS, axes=([1], [2])).transpose(0, 1, 3, 2, 4)
     return np.stack([I1, I2, J]), d, dd
 
 
@@ -177,5 +182,10 @@ def stress(law: str, constants: Mapping[str, float], alpha: float, F: np.ndarray
     P = np.einsum("ap,apiJ->piJ", g, d)
     if not tangent:
         return W.D[0], P, None
-    A = np.einsum("ap,apiJkL->piJkL", g, dd) + np.einsum("abp,apiJ,bpkL->piJkL", H, d, d)
+    # sum_a g_a dd_a + sum_ab H_ab d_a (x) d_b, as broadcast products (a three-operand einsum
+    # loops over every index at once)
+    Hd = np.einsum("abp,bpkL->apkL", H, d)
+    A = np.einsum("ap,apiJkL->piJkL", g, dd)
+    for k in range(3):
+        A += d[k][:, :, :, None, None] * Hd[k][:, None, None, :, :]
     return W.D[0], P, A
