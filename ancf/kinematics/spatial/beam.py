@@ -12,7 +12,7 @@ element; the force is its gradient, the tangent its Hessian, dense
 (:meth:`SpatialBeam.tangent`) or in band storage (:meth:`SpatialBeam.tangent_banded`,
 :class:`ancf.core.banded.Banded`: the coordinates are numbered along the beam, so an
 element's couple only neighbouring nodes, and the band's LU is what the statics solve).
-numpy, not the compiled loop.
+numpy over all elements at once, not the compiled loop.
 
 An element with a pressure basis (``SpatialSpec.pressure``, p_k) takes the penalty on the
 element-wise L2 projection of J - 1: alpha / 2 b^T M^-1 b with b_k = int p_k (J - 1) dV and
@@ -28,7 +28,7 @@ from typing import Mapping
 import numpy as np
 
 from ...core.banded import Banded, BandedPattern
-from .energy import density, density_jet, invariant_derivatives, stress
+from .energy import density, density_jet, invariant_derivatives, stress, stress_of
 from .spec import SpatialSpec
 
 
@@ -120,19 +120,6 @@ class SpatialBeam:
     def _pointwise_alpha(self) -> float:
         return 0.0 if self.spec.pressure else self.alpha
 
-    def _projected(self, F: np.ndarray, e: int, order: int) -> dict:
-        """The projected penalty at one element's points, to ``order`` (0: its energy
-        alpha / 2 b^T M^-1 b; 1: also the pressure alpha M^-1 b at the points, ``pressure``
-        (npts: the stress is pressure x dJ/dF), and dJ/dF; 2: also d2J/dF2), with the basis p
-        and M^-1."""
-        p, Minv = self._pressure(e)
-        _, _, w = self.table(e)
-        inv, d, dd = invariant_derivatives(F, order)
-        b = np.einsum("q,qk,q->k", w, p, inv[2] - 1.0)
-        lam = self.alpha * Minv @ b
-        return {"energy": 0.5 * b @ lam, "pressure": p @ lam, "dJ": None if d is None else d[2],
-                "ddJ": None if dd is None else dd[2], "p": p, "Minv": Minv}
-
     def element_rows(self, e: int) -> np.ndarray:
         """Global shape-function indices of element ``e``'s local ones."""
         k = len(self.spec.kinds)
@@ -156,29 +143,64 @@ class SpatialBeam:
         _, dN, _ = self.table(e)
         return np.einsum("mi,pmJ->piJ", np.asarray(q).reshape(-1, 3)[self.element_rows(e)], dN)
 
+    @cached_property
+    def _stacked(self) -> dict:
+        """Every element's tables at once: dN (E, npts, n, 3), w (E, npts), rows (E, n), wdN and,
+        with a pressure basis, p (E, npts, n_p) and M^-1 (E, n_p, n_p)."""
+        E = range(self.elements)
+        out = {"dN": np.stack([self.table(e)[1] for e in E]), "w": np.stack([self.table(e)[2] for e in E]),
+               "rows": np.stack([self.element_rows(e) for e in E])}
+        # w dN_nL as (E, npts * 3 (p, L), n): the tangent's second factor
+        out["wdN"] = (out["w"][:, :, None, None] * out["dN"]).transpose(0, 1, 3, 2).reshape(len(E), -1, out["dN"].shape[2])
+        if self._pressures is not None:
+            out["p"] = np.stack([self._pressure(e)[0] for e in E])
+            out["Minv"] = np.stack([self._pressure(e)[1] for e in E])
+        return out
+
+    def _all_gradients(self, q: np.ndarray) -> np.ndarray:
+        """F (E * npts, 3, 3) at every element's points, element-major."""
+        st = self._stacked
+        qe = np.asarray(q).reshape(-1, 3)[st["rows"]]                  # (E, n, 3)
+        return np.matmul(np.swapaxes(qe, 1, 2)[:, None], st["dN"]).reshape(-1, 3, 3)
+
+    def _assemble_vector(self, P: np.ndarray, dN: np.ndarray) -> np.ndarray:
+        """sum over points of w P_iJ dN_mJ, assembled (dof,): P (E * npts, 3, 3) without w."""
+        st = self._stacked
+        E, npts, n, _ = dN.shape
+        wP = (st["w"].reshape(-1)[:, None, None] * P).reshape(E, npts, 3, 3)
+        fe = np.matmul(dN.transpose(0, 2, 1, 3).reshape(E, n, 3 * npts), wP.transpose(0, 1, 3, 2).reshape(E, 3 * npts, 3))
+        f = np.zeros((self.n_global, 3))
+        np.add.at(f, st["rows"], fe)
+        return f.ravel()
+
+    def _condensed(self, J: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """b_k = int p_k (J - 1) dV and the pressures lambda = alpha M^-1 b, each (E, n_p),
+        from J (E * npts)."""
+        st = self._stacked
+        b = np.einsum("epk,ep->ek", st["p"], st["w"] * (J.reshape(st["w"].shape) - 1.0))
+        return b, self.alpha * np.einsum("ekl,el->ek", st["Minv"], b)
+
+    def _point_pressures(self, lam: np.ndarray) -> np.ndarray:
+        """p . lambda_e at every point (E * npts)."""
+        return np.einsum("epk,ek->ep", self._stacked["p"], lam).reshape(-1)
+
     def energy(self, q: np.ndarray) -> float:
         """The strain energy (J)."""
-        total = 0.0
-        for e in range(self.elements):
-            _, dN, w = self.table(e)
-            F = self.gradients(q, e)
-            total += w @ density(self.law, self.constants, self._pointwise_alpha, F)
-            if self._pressures is not None:
-                total += self._projected(F, e, 0)["energy"]
+        F = self._all_gradients(q)
+        total = self._stacked["w"].reshape(-1) @ density(self.law, self.constants, self._pointwise_alpha, F)
+        if self._pressures is not None:
+            b, lam = self._condensed(invariant_derivatives(F, 0)[0][2])
+            total += 0.5 * np.sum(b * lam)
         return float(total)
 
     def force(self, q: np.ndarray) -> np.ndarray:
         """dE/dq (dof,), N."""
-        f = np.zeros((self.n_global, 3))
-        for e in range(self.elements):
-            _, dN, w = self.table(e)
-            F = self.gradients(q, e)
-            _, P, _ = stress(self.law, self.constants, self._pointwise_alpha, F, tangent=False)
-            if self._pressures is not None:
-                pr = self._projected(F, e, 1)
-                P = P + pr["pressure"][:, None, None] * pr["dJ"]
-            np.add.at(f, self.element_rows(e), np.einsum("p,piJ,pmJ->mi", w, P, dN))
-        return f.ravel()
+        F = self._all_gradients(q)
+        _, P, _ = stress(self.law, self.constants, self._pointwise_alpha, F, tangent=False)
+        if self._pressures is not None:
+            inv, d, _ = invariant_derivatives(F, 1)
+            P = P + self._point_pressures(self._condensed(inv[2])[1])[:, None, None] * d[2]
+        return self._assemble_vector(P, self._stacked["dN"])
 
     def force_magnitude(self, q: np.ndarray) -> np.ndarray:
         """The internal force assembled from the magnitudes of its terms (dof,), N: per point
@@ -186,16 +208,11 @@ class SpatialBeam:
         penalty's alpha (|J| + 1) |cof F| (its two terms alpha J cof F and alpha cof F, whose
         difference is the stress: its round-off is eps times this, whatever J - 1 is), against
         |dN| w. eps times its norm over the free dofs is the size of the force's round-off."""
-        f = np.zeros((self.n_global, 3))
-        for e in range(self.elements):
-            _, dN, w = self.table(e)
-            F = self.gradients(q, e)
-            inv, d, _ = invariant_derivatives(F, 1)
-            g = density_jet(self.law, self.constants, self._pointwise_alpha, *inv).gradient()
-            Pm = np.einsum("ap,apiJ->piJ", np.abs(g), np.abs(d))
-            Pm = Pm + self.alpha * (np.abs(inv[2]) + 1.0)[:, None, None] * np.abs(d[2])
-            np.add.at(f, self.element_rows(e), np.einsum("p,piJ,pmJ->mi", w, Pm, np.abs(dN)))
-        return f.ravel()
+        inv, d, _ = invariant_derivatives(self._all_gradients(q), 1)
+        g = density_jet(self.law, self.constants, self._pointwise_alpha, *inv).gradient()
+        Pm = np.einsum("ap,apiJ->piJ", np.abs(g), np.abs(d))
+        Pm = Pm + self.alpha * (np.abs(inv[2]) + 1.0)[:, None, None] * np.abs(d[2])
+        return self._assemble_vector(Pm, np.abs(self._stacked["dN"]))
 
     def element_dofs(self, e: int) -> np.ndarray:
         """Global dof indices of element ``e``'s local ones (3 m + i, m its local vectors)."""
@@ -216,20 +233,14 @@ class SpatialBeam:
 
     def tangent_banded(self, q: np.ndarray, pressure: np.ndarray | None = None) -> Banded:
         """d2E/dq2 in band storage (half-bandwidth: the largest dof distance inside an element)."""
-        return self._band.assemble(np.stack(list(self.element_tangents(q, pressure))))
+        return self._band.assemble(self.element_tangents(q, pressure))
 
     def pressures(self, q: np.ndarray) -> np.ndarray | None:
         """The element pressures' coefficients lambda_e = alpha M^-1 b_e (elements, n_p) at q
         (the pressure at a point is p . lambda_e), or None without a pressure basis."""
         if self._pressures is None:
             return None
-        lam = []
-        for e in range(self.elements):
-            p, Minv = self._pressure(e)
-            _, _, w = self.table(e)
-            J = invariant_derivatives(self.gradients(q, e), 0)[0][2]
-            lam.append(self.alpha * Minv @ np.einsum("q,qk,q->k", w, p, J - 1.0))
-        return np.array(lam)
+        return self._condensed(invariant_derivatives(self._all_gradients(q), 0)[0][2])[1]
 
     def linearised_pressures(self, q: np.ndarray, dq: np.ndarray) -> np.ndarray | None:
         """lambda_e(q) + dlambda_e/dq dq (elements, n_p): the pressures' linearisation in a step
@@ -237,37 +248,33 @@ class SpatialBeam:
         element (:mod:`.statics`); None without a pressure basis."""
         if self._pressures is None:
             return None
-        dq = np.asarray(dq).reshape(-1, 3)
-        lam = []
-        for e in range(self.elements):
-            p, Minv = self._pressure(e)
-            _, dN, w = self.table(e)
-            F = self.gradients(q, e)
-            inv, d, _ = invariant_derivatives(F, 1)
-            dF = np.einsum("mi,pmJ->piJ", dq[self.element_rows(e)], dN)
-            dJ = inv[2] - 1.0 + np.einsum("piJ,piJ->p", d[2], dF)
-            lam.append(self.alpha * Minv @ np.einsum("q,qk,q->k", w, p, dJ))
-        return np.array(lam)
+        inv, d, _ = invariant_derivatives(self._all_gradients(q), 1)
+        dF = self._all_gradients(dq)
+        return self._condensed(inv[2] + np.einsum("piJ,piJ->p", d[2], dF))[1]
 
-    def element_tangents(self, q: np.ndarray, pressure: np.ndarray | None = None):
-        """Each element's block of d2E/dq2 in turn, (nd, nd) over :meth:`element_dofs`. With
+    def element_tangents(self, q: np.ndarray, pressure: np.ndarray | None = None) -> np.ndarray:
+        """Every element's block of d2E/dq2, (elements, nd, nd) over :meth:`element_dofs`. With
         ``pressure`` (elements, n_p), the pressure's geometric term (p . lambda_e) d2J/dF2 takes
         these coefficients instead of q's own (:meth:`pressures`): the condensed tangent of the
-        mixed form at an iterate (q, lambda) off the constraint lambda = alpha M^-1 b(q)."""
-        for e in range(self.elements):
-            _, dN, w = self.table(e)
-            F = self.gradients(q, e)
-            _, _, A = stress(self.law, self.constants, self._pointwise_alpha, F)
-            if self._pressures is not None:
-                pr = self._projected(F, e, 2)
-                at = pr["pressure"] if pressure is None else pr["p"] @ pressure[e]
-                A = A + at[:, None, None, None, None] * pr["ddJ"]
-            # sum_p w dN_mJ A_iJkL dN_nL in two BLAS-sized contractions (a single four-operand
-            # einsum loops over every index at once: 16 s for a quartic section's 8 elements)
-            T = np.einsum("pmJ,piJkL->pmikL", dN, A) * w[:, None, None, None, None]
-            Ke = np.tensordot(T, dN, axes=([0, 4], [0, 2])).transpose(0, 1, 3, 2)
-            if self._pressures is not None:
-                # db_k / dq_mi (two contractions: one three-operand einsum is 8 times slower)
-                G = np.tensordot(w[:, None] * pr["p"], np.einsum("piJ,pmJ->pmi", pr["dJ"], dN), axes=(0, 0))
-                Ke += self.alpha * np.einsum("kmi,kn->min", G, pr["Minv"] @ G.reshape(len(G), -1)).reshape(Ke.shape)
-            yield Ke.reshape(3 * len(dN[0]), 3 * len(dN[0]))
+        mixed form at an iterate (q, lambda) off the constraint lambda = alpha M^-1 b(q). All
+        elements at once: per point the 9 x 9 A, then sum_p w dN_mJ A_iJkL dN_nL as two
+        batched products (J first, then p and L together)."""
+        st = self._stacked
+        dN, w = st["dN"], st["w"]
+        E, npts, n, _ = dN.shape
+        inv, d, dd = invariant_derivatives(self._all_gradients(q), 2)
+        _, _, A = stress_of(self.law, self.constants, self._pointwise_alpha, inv, d, dd)
+        if self._pressures is not None:
+            at = self._point_pressures(self._condensed(inv[2])[1] if pressure is None else pressure)
+            A = A + at[:, None, None, None, None] * dd[2]
+        # (E, p, J, i kL), then T_e,p,m,ikL = sum_J dN_mJ A_iJkL
+        A = A.reshape(E, npts, 3, 3, 9).transpose(0, 1, 3, 2, 4).reshape(E, npts, 3, 27)
+        T = np.matmul(dN, A).reshape(E, npts, n, 3, 3, 3).transpose(0, 2, 3, 4, 1, 5).reshape(E, 9 * n, 3 * npts)
+        K = np.matmul(T, st["wdN"])                                                            # (E, m i k, n)
+        K = K.reshape(E, n, 3, 3, n).transpose(0, 1, 2, 4, 3).reshape(E, 3 * n, 3 * n)
+        if self._pressures is not None:
+            # alpha G^T M^-1 G, G_k,mi = db_k / dq_mi = int p_k cof(F)_iJ dN_mJ
+            Z = np.matmul(dN, np.swapaxes(d[2].reshape(E, npts, 3, 3), 2, 3))                  # (E, p, m, i)
+            G = np.matmul(np.swapaxes(w[:, :, None] * st["p"], 1, 2), Z.reshape(E, npts, 3 * n))
+            K += self.alpha * np.matmul(np.swapaxes(G, 1, 2), np.matmul(st["Minv"], G))
+        return K

@@ -176,7 +176,13 @@ def stress(law: str, constants: Mapping[str, float], alpha: float, F: np.ndarray
     """W (npts), the first Piola stress P = dW/dF (npts, 3, 3) and, with ``tangent``, its
     derivative A = d2W/dF2 (npts, 3, 3, 3, 3) at deformation gradients F (npts, 3, 3)."""
     F = np.asarray(F, float)
-    inv, d, dd = invariant_derivatives(F, 2 if tangent else 1)
+    return stress_of(law, constants, alpha, *invariant_derivatives(F, 2 if tangent else 1))
+
+
+def stress_of(law: str, constants: Mapping[str, float], alpha: float, inv, d, dd):
+    """:func:`stress` from the invariants and their derivatives (:func:`invariant_derivatives`;
+    ``dd`` None: no tangent)."""
+    tangent = dd is not None
     W = density_jet(law, constants, alpha, *inv)
     g, H = W.gradient(), W.hessian()
     P = np.einsum("ap,apiJ->piJ", g, d)
