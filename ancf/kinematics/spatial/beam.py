@@ -245,7 +245,7 @@ class SpatialBeam:
     def linearised_pressures(self, q: np.ndarray, dq: np.ndarray) -> np.ndarray | None:
         """lambda_e(q) + dlambda_e/dq dq (elements, n_p): the pressures' linearisation in a step
         dq from q, the pressure unknowns' Newton update of the mixed (u, p) form condensed per
-        element (:mod:`.statics`); None without a pressure basis."""
+        element (:mod:`ancf.kinematics.spatial.statics`); None without a pressure basis."""
         if self._pressures is None:
             return None
         inv, d, _ = invariant_derivatives(self._all_gradients(q), 1)
