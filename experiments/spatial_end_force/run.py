@@ -40,11 +40,11 @@ FORCE = 0.03   # N, downwards (-y)
 FACE_WEIGHTS = {"dolfinx": "facets", "felupe": "simpson-merged"}
 
 
-def scene(law: str):
+def scene(law: str, incompressibility: str = "mixed"):
     from contract import paper
     from contract.scene import scene_from_dict
 
-    d = paper.cantilever_scene(law, "paper", fem={"model": "3d", "incompressibility": "mixed"},
+    d = paper.cantilever_scene(law, "paper", fem={"model": "3d", "incompressibility": incompressibility},
                                load_steps=10, name=f"end-force-{law}-3d")
     d["loads"] = {"tip_force": [0.0, -FORCE]}
     return scene_from_dict(d)
@@ -83,15 +83,16 @@ def continuum(a) -> None:
 
     out = HERE / "continuum.jsonl"
     if any(r["law"] == a.law and r["backend"] == a.backend and r["levels_asked"] == a.levels
-           and r.get("face_weights") == FACE_WEIGHTS[a.backend] for r in _lines(out)):
+           and r.get("face_weights") == FACE_WEIGHTS[a.backend]
+           and r.get("incompressibility", "mixed") == a.incompressibility for r in _lines(out)):
         return
-    base = replace(base_settings_3d(), backend=a.backend)
+    base = replace(base_settings_3d(a.incompressibility), backend=a.backend)
     t0 = time.perf_counter()
-    study = refinement_study(scene(a.law), a.levels, base,
+    study = refinement_study(scene(a.law, a.incompressibility), a.levels, base,
                              progress=lambda lv: print(lv["cells_length"], lv["tip"], f"{lv['wall_s']:.1f} s", flush=True))
     d = study.to_dict()
     rec = {"law": a.law, "backend": a.backend, "levels_asked": a.levels, "force_N": FORCE,
-           "face_weights": FACE_WEIGHTS[a.backend],
+           "face_weights": FACE_WEIGHTS[a.backend], "incompressibility": a.incompressibility,
            "tip": d["extrapolated"], "error_estimate_m": d["error_estimate"], "order": d["order"],
            "levels": d["levels"], "seconds": time.perf_counter() - t0}
     with out.open("a") as f:
@@ -101,7 +102,8 @@ def continuum(a) -> None:
 
 def reference(law: str) -> dict:
     for r in _lines(HERE / "continuum.jsonl"):
-        if r["law"] == law and r["backend"] == "dolfinx" and r["tip"] is not None:
+        if (r["law"] == law and r["backend"] == "dolfinx" and r["tip"] is not None
+                and r.get("incompressibility", "mixed") == "mixed"):
             return r
     raise SystemExit(f"no DOLFINx reference for {law}: run `run.py continuum {law}` first")
 
@@ -150,6 +152,8 @@ def main() -> None:
     c.add_argument("law")
     c.add_argument("--backend", default="dolfinx", choices=["dolfinx", "felupe"])
     c.add_argument("--levels", type=int, default=3)
+    c.add_argument("--incompressibility", default="mixed", choices=["mixed", "penalty"],
+                   help="mixed: J = 1 exactly (the reference); penalty: the scene's alpha, as the ANCF runs")
     e = sub.add_parser("ancf")
     e.add_argument("law")
     e.add_argument("element")
