@@ -82,3 +82,74 @@ def test_the_end_torque_is_a_pure_torque(name):
     assert np.abs(f[r::k].sum(axis=0)).max() < 1e-12 * T / H
     moment = np.cross(b.reference(), f).sum(axis=0)
     assert np.allclose(moment, [T, 0.0, 0.0], rtol=0.0, atol=1e-12 * T)
+
+
+def _twisted_between_plates(name: str, theta: float, shift: float = 0.0, steps: int = 1):
+    """The bar clamped at x = 0, its face x = L a rigid plate turned by theta about the axis
+    and moved by ``shift`` along it (a prescribed motion, ``held``), in ``steps`` increments."""
+    from ancf.kinematics.spatial.statics import clamp_rows, face_rows, rotated_face
+
+    b = SpatialBeam(SPATIAL_ELEMENTS[name], L, H, W, 2, "neo-hookean", {"C10": MU / 2}, 1e9)
+    end = b.nodes - 1
+    fixed = np.concatenate([clamp_rows(b), face_rows(b, end)])
+    clamp = b.reference().ravel()[clamp_rows(b)]
+
+    def held(t):
+        c, s = np.cos(t * theta), np.sin(t * theta)
+        face = rotated_face(b, end, np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])).reshape(-1, 3)
+        face[0, 0] += t * shift                 # the kind r comes first
+        return np.concatenate([clamp, face.ravel()])
+
+    assert b.spec.kinds[0] == "r"
+    res = solve_static(b, np.zeros(b.dof), fixed, load_steps=steps, held=held)
+    assert res.status == "converged", res.reason
+    return b, res
+
+
+@pytest.mark.parametrize("name", ["3363p", "HS2n-96p"])
+def test_the_plates_reaction_is_the_derivative_of_the_energy_and_balances_the_clamps(name):
+    """Twisted by 0.3 rad between rigid plates (a finite twist: 0.01 shear strain at the
+    section's corners, 2 elements): the plate's torque (face_reaction, the generalised
+    reactions paired with its rigid virtual motion) is dE/dtheta of the equilibrium energy,
+    its axial force dE/dL, both by central differences (steps of 1e-4 theta and 1e-6 L:
+    truncation below 1e-7 relative; the equilibrium energy is stationary in the free
+    coordinates, so Newton's tolerance leaves it accurate to about 1e-12): the torque to 1e-6;
+    the axial force, Poynting's, is small (its differences are 4e-7 of the energy), to 1e-5.
+    No load acts: the clamp's and the plate's reactions are equal and opposite, to the free
+    coordinates' residual (Newton's 1e-8 of the reactions, whose forces are of order T / h),
+    and the moment about x is the only one (the others vanish by symmetry; 1e-9 of the
+    torque)."""
+    from ancf.kinematics.spatial.statics import face_reaction
+
+    theta, d_theta, d_shift = 0.3, 3e-5, 1e-6 * L
+    b, res = _twisted_between_plates(name, theta)
+    plate = face_reaction(b, res.q, np.zeros(b.dof), b.nodes - 1)
+    clamp = face_reaction(b, res.q, np.zeros(b.dof), 0)
+    T, N = plate["moment"][0], plate["force"][0]
+    energy = lambda th, dx: b.energy(_twisted_between_plates(name, th, dx)[1].q)
+    assert T == pytest.approx((energy(theta + d_theta, 0.0) - energy(theta - d_theta, 0.0)) / (2 * d_theta), rel=1e-6)
+    assert N == pytest.approx((energy(theta, d_shift) - energy(theta, -d_shift)) / (2 * d_shift), rel=1e-5)
+    arm = np.array([L, 0.0, 0.0])
+    assert np.allclose(plate["force"] + clamp["force"], 0.0, rtol=0.0, atol=1e-8 * T / H)
+    assert np.allclose(plate["moment"] + clamp["moment"] + np.cross(arm, plate["force"]), 0.0, rtol=0.0,
+                       atol=1e-8 * T)
+    assert np.abs(plate["moment"][1:]).max() < 1e-9 * T and np.abs(plate["force"][1:]).max() < 1e-9 * T / H
+
+
+def test_between_plates_the_torque_is_linear_in_the_twist_and_the_poynting_force_quadratic():
+    """At small twists the torque is odd in theta and the axial force (Poynting's) even, of
+    order theta^2, and compressive: at theta and 2 theta (0.05 and 0.1 rad over 16 h, shear
+    strains up to 5e-3 at the corners) T doubles and N quadruples, to the relative O(gamma^2)
+    = 3e-5 of the next terms; the reactions' own accuracy (Newton's 1e-8 of the torque's
+    forces) is 1e-5 of N at 0.1 rad: tolerance 1e-3."""
+    from ancf.kinematics.spatial.statics import face_reaction
+
+    out = []
+    for theta in (0.05, 0.1):
+        b, res = _twisted_between_plates("HS2n-96p", theta)
+        r = face_reaction(b, res.q, np.zeros(b.dof), b.nodes - 1)
+        out.append((r["moment"][0], r["force"][0]))
+    (T1, N1), (T2, N2) = out
+    assert T1 > 0 and N1 < 0
+    assert T2 / T1 == pytest.approx(2.0, rel=1e-3)
+    assert N2 / N1 == pytest.approx(4.0, rel=1e-3)

@@ -57,8 +57,44 @@ from .spec import kind_orders
 
 def clamp_rows(beam: SpatialBeam) -> np.ndarray:
     """The dof indices the clamp holds (see the module doc)."""
-    kinds = [m for m, k in enumerate(beam.spec.kinds) if kind_orders(k)[0] == 0]
-    return np.array([3 * m + i for m in kinds for i in range(3)])
+    return face_rows(beam, 0)
+
+
+def face_rows(beam: SpatialBeam, node: int) -> np.ndarray:
+    """The dof indices that describe the section at ``node`` itself, r(x_node, y, z): every
+    kind without an x derivative (r, r_y, r_z, r_yy, ...); held, the face is a rigid plate's."""
+    k = len(beam.spec.kinds)
+    kinds = [m for m, kind in enumerate(beam.spec.kinds) if kind_orders(kind)[0] == 0]
+    return np.array([3 * (node * k + m) + i for m in kinds for i in range(3)])
+
+
+def rotated_face(beam: SpatialBeam, node: int, R: np.ndarray) -> np.ndarray:
+    """The values of :func:`face_rows` (same order) of the reference section at ``node`` turned
+    rigidly by the rotation matrix ``R`` about its centre (x_node, 0, 0): r stays, every other
+    kind of the section's field is R times its reference value (r_y -> R e_y, r_z -> R e_z,
+    r_yy, ... stay zero)."""
+    ref = beam.reference()
+    nodal = face_rows(beam, node)[::3] // 3          # the held nodal vectors
+    values = ref[nodal] @ np.asarray(R, float).T
+    centre = nodal == node * len(beam.spec.kinds) + beam.spec.kinds.index("r")
+    values[centre] = ref[nodal[centre]]
+    return values.ravel()
+
+
+def face_reaction(beam: SpatialBeam, q: np.ndarray, f_ext: np.ndarray, node: int) -> dict:
+    """The force and moment (about the section's centre r(x_node, 0, 0)) that the support
+    holding :func:`face_rows` applies to the beam at equilibrium (N, N m): the generalised
+    reactions f = f_int - f_ext at those rows, paired with a rigid virtual motion of the face
+    (delta r = delta c + delta omega x (r - c): the kind r moves by delta c + delta omega x 0,
+    every other kind q_k by delta omega x q_k), the continuum's sum of x x f over the face's
+    nodes."""
+    q = np.asarray(q).reshape(-1, 3)
+    rows = face_rows(beam, node)
+    nodal = rows[::3] // 3
+    f = (beam.force(q) - f_ext)[rows].reshape(-1, 3)
+    centre = nodal == node * len(beam.spec.kinds) + beam.spec.kinds.index("r")
+    arm = np.where(centre[:, None], 0.0, q[nodal])
+    return {"force": f[centre].sum(axis=0), "moment": np.cross(arm, f).sum(axis=0)}
 
 
 def free_warping_rows(beam: SpatialBeam) -> np.ndarray:
@@ -172,15 +208,42 @@ class _Increment:
         return float(np.abs(dq).max())          # Newton's correction, undamped
 
 
-def solve_static(beam: SpatialBeam, f_ext: np.ndarray, fixed: np.ndarray, load_steps: int = 10,
-                 rtol: float = 1e-8, xtol: float = 1e-12, max_iterations: int = 40) -> StaticResult:
-    """Equilibrium under ``f_ext`` with the dofs ``fixed`` held at the reference (see the
-    module doc)."""
+def _linear_reaction(beam: SpatialBeam, q0: np.ndarray, fixed: np.ndarray, motion: np.ndarray) -> float:
+    """|f_int| at the held rows (N) of the linear response to the prescribed ``motion`` of
+    ``fixed`` from the equilibrium q0, the free coordinates following: the supports'
+    reactions to first order, the force scale of a motion's residual. (The held rows' own
+    response, the free ones at rest, is no scale: a section turned against its neighbours
+    at rest meets the penalty's stiffness, some 1e4 times the reactions of the beam that
+    follows.) K dq by differences of the force along a small multiple of the motion."""
     free = np.setdiff1d(np.arange(beam.dof), fixed)
-    scale = float(np.linalg.norm(f_ext)) or 1.0
+    eps = 1e-6 * beam.length / max(float(np.abs(motion).max()), 1e-300)
+    f0 = beam.force(q0.reshape(-1, 3))
+    dq = np.zeros(beam.dof)
+    dq[fixed] = eps * motion
+    df = beam.force((q0 + dq).reshape(-1, 3)) - f0
+    df[fixed] = 0.0
+    dq -= beam.tangent_banded(q0.reshape(-1, 3), beam.pressures(q0)).constrain(fixed).solve(df)
+    return float(np.linalg.norm((beam.force((q0 + dq).reshape(-1, 3)) - f0)[fixed])) / eps
+
+
+def solve_static(beam: SpatialBeam, f_ext: np.ndarray, fixed: np.ndarray, load_steps: int = 10,
+                 rtol: float = 1e-8, xtol: float = 1e-12, max_iterations: int = 40,
+                 held=None, start: np.ndarray | None = None) -> StaticResult:
+    """Equilibrium under ``t f_ext`` with the dofs ``fixed`` held at the reference (see the
+    module doc), or, with ``held`` (a function of the load parameter t giving the values of
+    ``fixed``, in their order), moved along with the load: a prescribed motion (a support's
+    rotation). Its force scale, for the residual's tolerance, is the larger of the load's
+    and the prescribed motion's reactions to first order (:func:`_linear_reaction`). ``start``: the state at t = 0 (an
+    equilibrium there, e.g. the end of an earlier leg of a path; default the reference)."""
+    fixed = np.asarray(fixed)
+    free = np.setdiff1d(np.arange(beam.dof), fixed)
+    q0 = (beam.reference() if start is None else np.asarray(start, float)).ravel()
+    scale = float(np.linalg.norm(f_ext))
+    if held is not None:
+        scale = max(scale, _linear_reaction(beam, q0, fixed, held(1.0) - q0[fixed]))
+    scale = scale or 1.0
     # never below the force's own round-off (the planar statics' rule and margin)
     floor = ROUNDOFF_FLOOR * np.finfo(float).eps * float(np.linalg.norm(beam.force_magnitude(beam.reference())[free]))
-    q0 = beam.reference().ravel()
     state = {"q": q0, "lam": beam.pressures(q0), "dq": None}
     small = lambda system, r, dw: dw <= xtol * beam.length
 
@@ -193,6 +256,9 @@ def solve_static(beam: SpatialBeam, f_ext: np.ndarray, fixed: np.ndarray, load_s
             lam_guess = None if lam is None else lam + prev[2] * s
         spent, reason = 0, None
         for start, lam_start, line_search in ((guess, lam_guess, False), (q, lam, False), (q, lam, True)):
+            if held is not None:
+                start = start.copy()
+                start[fixed] = held(t1)
             system = _Increment(beam, free, start, t1 * f_ext, line_search, lam_start)
             try:
                 its, _ = newton(system, max(t1 * scale, floor / rtol), rtol, max_iterations, small)
