@@ -1,0 +1,339 @@
+"""Finite torsion of the paper's bar in 3D (160 x 5 x 7 mm) between two rigid plates: the
+spatial ANCF elements against the 3D continuum.
+
+The case: the face x = 0 clamped, the face x = L turned rigidly about the bar's axis by
+theta (up to half a turn) about its centre, which stays at (L, 0, 0); both faces are
+rigid plates (no warping, no change of the section), the same boundary condition in
+both solvers (a continuum's face nodes and the ANCF section's own field r(L, y, z) are
+both the plate's rigid map). The quantities: the torque T and the axial force N that
+the plate applies to the bar at x = L (its reaction: the continuum's residual summed
+over the face's nodes, x x f about the centre; ANCF's generalised reactions paired with
+the plate's rigid virtual motion, :func:`ancf.kinematics.spatial.statics.face_reaction`).
+T is about mu J theta / L (J Saint-Venant's torsion constant, plus the restrained warping
+near the plates); N is the Poynting effect, compressive, of second order in theta.
+
+    .venv/bin/python experiments/spatial_finite_torsion/run.py continuum LAW [--levels N] [--incompressibility I]
+    .venv/bin/python experiments/spatial_finite_torsion/run.py ancf LAW ELEMENT COUNTS [--penalty PA]
+
+``continuum``: Q2/Q1 hexahedra 16 x 1 x 1 -> 64 x 4 x 4 (uniform along x: both ends are
+plates), the plate's rotation in 10 equal increments (reference_fem.statics.solve_static,
+its Newton and load-path rule), T and N at every angle of ANGLES, and Richardson's value
+of each with its error estimate (reference_fem.convergence's formula and its 3D order cap);
+one JSON line per law and incompressibility in continuum.jsonl. ``ancf``: the element on
+equal meshes, the paper's penalty unless given, the same 10 increments; one line per
+run in res.jsonl with its errors against the DOLFINx mixed value. summary.py prints the
+tables.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+sys.path.insert(0, str(ROOT / "experiments" / "spatial_cantilever"))
+
+# the plate's final rotation vector (rad) per case: half a turn about the axis; and a third
+# of a turn about it with bending about both section axes (22.5 and 15 degrees)
+CASES = {"twist": (math.pi, 0.0, 0.0), "twist-bend": (2 * math.pi / 3, math.pi / 8, math.pi / 12)}
+ANGLES = (0.5, 1.0)                    # fractions of the rotation recorded
+STEPS = 10
+RTOL = 1e-9                            # the continuum's Newton tolerance, of its residual's scale
+
+
+def rotation(case: str, frac: float) -> np.ndarray:
+    """The plate's rotation matrix at ``frac`` of the case's rotation vector (Rodrigues)."""
+    v = frac * np.asarray(CASES[case], float)
+    a = float(np.linalg.norm(v))
+    if a == 0.0:
+        return np.eye(3)
+    k = v / a
+    K = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + math.sin(a) * K + (1.0 - math.cos(a)) * K @ K
+
+
+def reactions(force, moment) -> dict:
+    """The plate's reaction as recorded: T (the moment about x) and N (the axial force) with
+    the whole vectors (N, N m)."""
+    return {"T": float(moment[0]), "N": float(force[0]), "force": [float(v) for v in force],
+            "moment": [float(v) for v in moment]}
+
+
+def scene(law: str, incompressibility: str = "mixed"):
+    from contract import paper
+    from contract.scene import scene_from_dict
+
+    d = paper.cantilever_scene(law, "paper", fem={"model": "3d", "incompressibility": incompressibility},
+                               load_steps=STEPS, name=f"finite-torsion-{law}-3d")
+    d["loads"] = {}
+    return scene_from_dict(d)
+
+
+def _lines(path: Path) -> list[dict]:
+    return [json.loads(s) for s in path.read_text().splitlines()] if path.exists() else []
+
+
+def richardson(values: list[float]) -> dict:
+    """Richardson's value of the last three levels (ratio 2) by reference_fem.convergence's
+    rule, with its error estimate (the 3D cap on the trusted order)."""
+    from reference_fem.convergence import P_TRUSTED_3D, RATIO
+
+    a, b, c = values[-3:]
+    d1, d2 = abs(b - a), abs(c - b)
+    if not (d1 > 0 and d2 > 0) or d2 >= d1:
+        return {"value": None, "error_estimate": None, "order": None}
+    p = math.log(d1 / d2) / math.log(RATIO)
+    return {"value": c + (c - b) / (RATIO ** p - 1.0), "error_estimate": d2 / (RATIO ** min(p, P_TRUSTED_3D) - 1.0),
+            "order": p}
+
+
+class Plate:
+    """The rigid plate at x = L on a DOLFINx set-up: three Dirichlet conditions whose values
+    are the plate's displacement R(theta)(X - c) + c - X, and the reaction it applies."""
+
+    def __init__(self, s, beam):
+        import dolfinx
+
+        d, g = s.disc, s.model.geometry
+        fdim = d.mesh.topology.dim - 1
+        facets = dolfinx.mesh.locate_entities_boundary(d.mesh, fdim, g.at_right(beam))
+        self.c = np.array([beam.length, 0.0, 0.0])
+        self.funcs, self.bcs, self.dofs, self.X = [], [], [], []
+        for i in range(3):
+            sub = d.Wu.sub(i)
+            V, _ = sub.collapse()
+            w_dofs, v_dofs = dolfinx.fem.locate_dofs_topological((sub, V), fdim, facets)
+            f = dolfinx.fem.Function(V)
+            self.funcs.append(f)
+            self.bcs.append(dolfinx.fem.dirichletbc(f, [w_dofs, v_dofs], sub))
+            self.dofs.append(np.asarray(w_dofs))
+            self.X.append(V.tabulate_dof_coordinates()[v_dofs])
+
+    def set(self, R: np.ndarray) -> None:
+        for i, f in enumerate(self.funcs):
+            f.interpolate(lambda x, i=i: (R @ (x - self.c[:, None]))[i] + self.c[i] - x[i])
+
+    def reaction(self, system, R: np.ndarray) -> dict:
+        """Force and moment about the centre (N, N m) that the plate applies: the residual
+        (no condition applied) at the plate's rows, x x f over its nodes."""
+        import dolfinx.fem.petsc
+
+        b = dolfinx.fem.petsc.assemble_vector(system.R)
+        b.ghostUpdate()
+        r = b.array
+        force, moment = np.zeros(3), np.zeros(3)
+        for i in range(3):
+            f = np.zeros((len(self.dofs[i]), 3))
+            f[:, i] = r[self.dofs[i]]
+            force += f.sum(axis=0)
+            moment += np.cross((self.X[i] - self.c) @ R.T, f).sum(axis=0)
+        return {"force": force, "moment": moment}
+
+
+def continuum_level(law: str, incompressibility: str, settings, rtol: float = RTOL, case: str = "twist") -> dict:
+    from reference_fem.dolfinx_backend.problem import set_up, static_problem
+    from reference_fem.statics import solve_static
+
+    sc = scene(law, incompressibility)
+    t0 = time.perf_counter()
+    s = set_up(sc, settings)
+    plate = Plate(s, sc.beam)
+    s.bcs = s.bcs + plate.bcs
+    prob = static_problem(s)
+    out = {}
+
+    # the path in legs ending at each recorded angle, so that each is an accepted state
+    done, res, iterations = 0.0, None, 0
+    for frac in ANGLES:
+        leg = lambda t, a=done, b=frac: plate.set(rotation(case, a + t * (b - a)))
+        steps = max(1, round(STEPS * (frac - done)))
+        res = solve_static(prob.system, leg, steps, rtol, 40)
+        iterations += res.newton_iterations
+        if res.status != "converged":
+            break
+        r = plate.reaction(prob.system, rotation(case, frac))
+        out[str(frac)] = reactions(r["force"], r["moment"])
+        done = frac
+    return {"cells": [settings.cells_length, settings.cells_height, settings.cells_width],
+            "ndof": s.disc.ndof, "status": res.status, "reason": res.reason, "newton_iterations": iterations,
+            "reactions": out, "seconds": time.perf_counter() - t0}
+
+
+def felupe_level(law: str, incompressibility: str, settings, rtol: float = RTOL, case: str = "twist") -> dict:
+    """continuum_level on FElupe's hexahedra (the same Q2/Q1 mesh): the plate's nodes held,
+    their values written into the unknowns at every load (the Newton system keeps held
+    values as set), the reaction its residual at those nodes."""
+    from reference_fem.felupe_backend.problem import Reduction, System, set_up
+    from reference_fem.statics import solve_static
+
+    sc = scene(law, incompressibility)
+    t0 = time.perf_counter()
+    s = set_up(sc, replace_backend(settings, "felupe"))
+    pts = s.mesh.points
+    nodes = np.flatnonzero(s.settings.geometry.at_right(sc.beam)(pts.T))
+    rows = (3 * nodes[:, None] + np.arange(3)).ravel()
+    s.fixed[rows] = True
+    s.reduction = Reduction(s.fixed)
+    system = System(s)
+    c = np.array([sc.beam.length, 0.0, 0.0])
+    X = pts[nodes]
+
+    def place(R: np.ndarray) -> None:
+        system.w[rows] = ((X - c) @ R.T + c - X).ravel()
+
+    out, done, res, iterations = {}, 0.0, None, 0
+    for frac in ANGLES:
+        leg = lambda t, a=done, b=frac: place(rotation(case, a + t * (b - a)))
+        res = solve_static(system, leg, max(1, round(STEPS * (frac - done))), rtol, 40)
+        iterations += res.newton_iterations
+        if res.status != "converged":
+            break
+        f = system.residual(system.w)[rows].reshape(-1, 3)
+        arm = (X - c) @ rotation(case, frac).T
+        out[str(frac)] = reactions(f.sum(axis=0), np.cross(arm, f).sum(axis=0))
+        done = frac
+    return {"cells": [settings.cells_length, settings.cells_height, settings.cells_width], "ndof": s.ndof,
+            "status": res.status, "reason": res.reason, "newton_iterations": iterations, "reactions": out,
+            "seconds": time.perf_counter() - t0}
+
+
+def replace_backend(settings, backend: str):
+    from dataclasses import replace
+
+    return replace(settings, backend=backend)
+
+
+def settings_for(cells: tuple[int, int, int], incompressibility: str):
+    from dataclasses import replace
+
+    from studies.verification.continuum_gold.cantilever import base_settings_3d
+
+    nx, ny, nz = cells
+    return replace(base_settings_3d(incompressibility), progression=1.0, cells_length=nx, cells_height=ny,
+                   cells_width=nz)
+
+
+def _cells(text: str) -> tuple[int, int, int]:
+    return tuple(int(v) for v in text.split(","))
+
+
+def find_level(law: str, incompressibility: str, backend: str, case: str, cells, rtol: float = RTOL) -> dict:
+    """The level's line of levels.jsonl, computed and appended if it is not there."""
+    key = (law, incompressibility, backend, case, list(cells), rtol)
+    for r in _lines(HERE / "levels.jsonl"):
+        if (r["law"], r["incompressibility"], r["backend"], r.get("case", "twist"), r["cells"], r["rtol"]) == key:
+            return r
+    solve = felupe_level if backend == "felupe" else continuum_level
+    lv = {"law": law, "backend": backend, "incompressibility": incompressibility, "rtol": rtol, "case": case,
+          **solve(law, incompressibility, settings_for(cells, incompressibility), rtol, case)}
+    with (HERE / "levels.jsonl").open("a") as f:
+        f.write(json.dumps(lv) + "\n")
+    print(json.dumps(lv), flush=True)
+    return lv
+
+
+def level(a) -> None:
+    """One mesh (``--cells NX,NY,NZ``) into levels.jsonl."""
+    find_level(a.law, a.incompressibility, a.backend, a.case, _cells(a.cells), a.rtol)
+
+
+def continuum(a) -> None:
+    """Richardson's values over a sequence of nested levels (``--sequence``, each refining
+    the last by 2 in the directions that change), each level from levels.jsonl or computed;
+    one line in continuum.jsonl."""
+    seq = [_cells(c) for c in a.sequence.split()]
+    out = HERE / "continuum.jsonl"
+    levels = [find_level(a.law, a.incompressibility, a.backend, a.case, c) for c in seq]
+    ext = {}
+    if len(levels) >= 3 and all(lv["status"] == "converged" for lv in levels):
+        for frac in map(str, ANGLES):
+            ext[frac] = {q: richardson([lv["reactions"][frac][q] for lv in levels]) for q in ("T", "N")}
+    rec = {"law": a.law, "backend": a.backend, "incompressibility": a.incompressibility, "case": a.case,
+           "rotation": list(CASES[a.case]), "angles": list(ANGLES), "sequence": [list(c) for c in seq],
+           "extrapolated": ext}
+    lines = [r for r in _lines(out) if (r["law"], r["backend"], r["incompressibility"], r.get("case", "twist"),
+                                        r["sequence"]) != (a.law, a.backend, a.incompressibility, a.case, rec["sequence"])]
+    out.write_text("".join(json.dumps(r) + "\n" for r in lines + [rec]))
+    print(json.dumps(rec), flush=True)
+
+
+def ancf_run(law: str, element: str, n: int, penalty: float, case: str = "twist") -> dict:
+    from run import element as named   # experiments/spatial_cantilever/run.py
+
+    from ancf.kinematics.spatial.beam import SpatialBeam
+    from ancf.kinematics.spatial.statics import clamp_rows, face_reaction, face_rows, rotated_face, solve_static
+    from contract import paper
+
+    spec = named(element)
+    c = {k: v for k, v in paper.materials()[law].items() if k != "density"}
+    L, h, w = paper.CANTILEVER["length"], paper.CANTILEVER["height"], paper.CANTILEVER["width"]
+    b = SpatialBeam(spec, L, h, w, n, law, c, penalty, spec.default_rule())
+    end = b.nodes - 1
+    fixed = np.concatenate([clamp_rows(b), face_rows(b, end)])
+    clamp = b.reference().ravel()[clamp_rows(b)]
+    zero = np.zeros(b.dof)
+    t0 = time.perf_counter()
+    out, done, iterations, res = {}, 0.0, 0, None
+    q_start = None
+    for frac in ANGLES:
+        held = lambda t, a=done, e=frac: np.concatenate([clamp, rotated_face(b, end, rotation(case, a + t * (e - a)))])
+        res = solve_static(b, zero, fixed, load_steps=max(1, round(STEPS * (frac - done))), held=held,
+                           start=q_start)
+        iterations += res.newton_iterations
+        if res.status != "converged":
+            break
+        r = face_reaction(b, res.q, zero, end)
+        out[str(frac)] = reactions(r["force"], r["moment"])
+        q_start, done = res.q, frac
+    return {"law": law, "case": case, "element": element, "elements": n, "penalty": penalty,
+            "points": spec.default_rule(),
+            "dof": b.dof, "status": res.status, "reason": res.reason, "newton_iterations": iterations,
+            "reactions": out, "seconds": time.perf_counter() - t0}
+
+
+def ancf(a) -> None:
+    out = HERE / "res.jsonl"
+    have = {(r["law"], r.get("case", "twist"), r["element"], r["elements"], r["penalty"]) for r in _lines(out)}
+    for n in (int(x) for x in a.counts.split(",")):
+        if (a.law, a.case, a.element, n, a.penalty) in have:
+            continue
+        rec = ancf_run(a.law, a.element, n, a.penalty, a.case)
+        with out.open("a") as f:
+            f.write(json.dumps(rec) + "\n")
+        print(json.dumps(rec), flush=True)
+
+
+def main() -> None:
+    from contract import paper
+
+    a = argparse.ArgumentParser()
+    sub = a.add_subparsers(dest="what", required=True)
+    c = sub.add_parser("continuum")
+    c.add_argument("law")
+    c.add_argument("--sequence", default="16,1,1 32,2,2 64,4,4", help="levels, e.g. '32,2,2 32,4,4 32,8,8'")
+    v = sub.add_parser("level")
+    v.add_argument("law")
+    v.add_argument("--cells", required=True)
+    v.add_argument("--rtol", type=float, default=RTOL)
+    e = sub.add_parser("ancf")
+    e.add_argument("law")
+    e.add_argument("element")
+    e.add_argument("counts")
+    e.add_argument("--penalty", type=float, default=paper.PENALTY)
+    for p in (c, v, e):
+        p.add_argument("--case", default="twist", choices=list(CASES))
+    for p in (c, v):
+        p.add_argument("--backend", default="dolfinx", choices=["dolfinx", "felupe"])
+        p.add_argument("--incompressibility", default="mixed", choices=["mixed", "penalty"])
+    a = a.parse_args()
+    {"continuum": continuum, "level": level, "ancf": ancf}[a.what](a)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,98 @@
+"""The tables of REPORT.md from continuum.jsonl, levels.jsonl and res.jsonl (run.py writes them).
+
+    .venv/bin/python experiments/spatial_finite_torsion/summary.py
+"""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+
+
+def lines(name: str) -> list[dict]:
+    p = HERE / name
+    return [json.loads(s) for s in p.read_text().splitlines()] if p.exists() else []
+
+
+def saint_venant_torque(law: str, theta: float) -> float:
+    from contract import paper
+    from mechanics.laws import get_law
+    from studies.verification.torsion import saint_venant_rectangle
+
+    c = {k: v for k, v in paper.materials()[law].items() if k != "density"}
+    mu = get_law(law).shear_modulus(c)
+    h, w, L = paper.CANTILEVER["height"], paper.CANTILEVER["width"], paper.CANTILEVER["length"]
+    return mu * saint_venant_rectangle(h, w) * theta / L
+
+
+# the sequence whose Richardson value is the reference: the section refined at 32 cells
+# along (the section's error dominates: levels.jsonl)
+REFERENCE_SEQUENCE = [[32, 2, 2], [32, 4, 4], [32, 8, 8]]
+
+
+def references() -> dict:
+    """{(law, incompressibility, angle): {"T": (value, error estimate, order), "N": ...}} of
+    the continuum's Richardson values over REFERENCE_SEQUENCE."""
+    out = {}
+    for r in lines("continuum.jsonl"):
+        if r["sequence"] != REFERENCE_SEQUENCE or r.get("case", "twist") != "twist":
+            continue
+        for frac, q in r["extrapolated"].items():
+            out[(r["law"], r["incompressibility"], frac)] = {k: (v["value"], v["error_estimate"], v["order"])
+                                                             for k, v in q.items()}
+    return out
+
+
+def continuum_table() -> str:
+    rows = ["| law | backend | J | cells (x, y, z) | Newton rtol | dof | T at pi / 2 (N mm) | T at pi (N mm) | "
+            "N at pi / 2 (mN) | N at pi (mN) | Newton | s |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    seen = [(r["law"], r["incompressibility"], r) for r in lines("levels.jsonl") if r.get("case", "twist") == "twist"]
+    for law, inc, lv in sorted(seen, key=lambda t: (t[0], t[1], t[2]["ndof"], t[2]["backend"])):
+        g = lv["reactions"]
+        rows.append(f"| {law} | {lv['backend']} | {inc} | {' x '.join(map(str, lv['cells']))} | "
+                    f"{lv.get('rtol', 1e-9):.0e} | {lv['ndof']} | "
+                    f"{1e3 * g['0.5']['T']:.5f} | {1e3 * g['1.0']['T']:.5f} | {1e3 * g['0.5']['N']:.4f} | "
+                    f"{1e3 * g['1.0']['N']:.4f} | {lv['newton_iterations']} | {lv['seconds']:.0f} |")
+    return "\n".join(rows)
+
+
+def ancf_table() -> str:
+    ref = references()
+    rows = ["| element | law | elements | dof | penalty (Pa) | T at pi (N mm) | off the continuum (%) | "
+            "N at pi (mN) | off the continuum (%) | T over mu J theta / L | Newton | s |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in sorted(lines("res.jsonl"), key=lambda r: (r["element"], r["law"], r["penalty"], r["elements"])):
+        g = r["reactions"].get("1.0")
+        if g is None:
+            rows.append(f"| {r['element']} | {r['law']} | {r['elements']} | {r['dof']} | {r['penalty']:.0e} | "
+                        f"{r['status']}: {r['reason']} | | | | | {r['newton_iterations']} | {r['seconds']:.1f} |")
+            continue
+        c = ref.get((r["law"], "mixed", "1.0"))
+        eT = "" if c is None or c["T"][0] is None else f"{100 * (g['T'] / c['T'][0] - 1):+.3f}"
+        eN = "" if c is None or c["N"][0] is None else f"{100 * (g['N'] / c['N'][0] - 1):+.1f}"
+        sv = g["T"] / saint_venant_torque(r["law"], math.pi)
+        rows.append(f"| {r['element']} | {r['law']} | {r['elements']} | {r['dof']} | {r['penalty']:.0e} | "
+                    f"{1e3 * g['T']:.5f} | {eT} | {1e3 * g['N']:.4f} | {eN} | {sv:.4f} | "
+                    f"{r['newton_iterations']} | {r['seconds']:.1f} |")
+    return "\n".join(rows)
+
+
+def reference_table() -> str:
+    rows = ["| law | J | angle | T (N mm) | its error estimate | order | N (mN) | its error estimate | order |",
+            "|---|---|---|---|---|---|---|---|---|"]
+    for (law, inc, frac), q in sorted(references().items()):
+        t, n = q["T"], q["N"]
+        fmt = lambda v, s: "no value" if v is None else f"{s * v:.5f}"
+        order = lambda v: "" if v is None else f"{v:.2f}"
+        rows.append(f"| {law} | {inc} | {frac} pi | {fmt(t[0], 1e3)} | {fmt(t[1], 1e3)} | {order(t[2])} | "
+                    f"{fmt(n[0], 1e3)} | {fmt(n[1], 1e3)} | {order(n[2])} |")
+    return "\n".join(rows)
+
+
+if __name__ == "__main__":
+    print(continuum_table(), end="\n\n")
+    print(reference_table(), end="\n\n")
+    print(ancf_table())
