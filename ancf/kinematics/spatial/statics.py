@@ -7,7 +7,10 @@
 - Gravity (:func:`gravity_load`): the dead load of rho g on the volume, f_m = int rho g N_m dV;
   a dead traction on the free end face (:func:`end_face_load`), a torque about the axis by
   one (:func:`end_torque_load`, small twists), and the section's rotation about the axis at a
-  node (:func:`section_rotation`); the free-warping support of torsion (:func:`free_warping_rows`).
+  node (:func:`section_rotation`); the free-warping support of torsion (:func:`free_warping_rows`);
+  any section held as a rigid plate (:func:`face_rows`), turned (:func:`rotated_face`, a
+  prescribed motion: :func:`solve_static`'s ``held``), and the plate's reaction
+  (:func:`face_reaction`).
 - :func:`solve_static`: the load along t: 0 -> 1 by the shared load-path rule
   (:func:`mechanics.load_path.follow`: adaptive increments, cut when one fails), each
   increment by the shared Newton loop (:func:`mechanics.newton.newton`) on the free
@@ -215,7 +218,6 @@ def _linear_reaction(beam: SpatialBeam, q0: np.ndarray, fixed: np.ndarray, motio
     response, the free ones at rest, is no scale: a section turned against its neighbours
     at rest meets the penalty's stiffness, some 1e4 times the reactions of the beam that
     follows.) K dq by differences of the force along a small multiple of the motion."""
-    free = np.setdiff1d(np.arange(beam.dof), fixed)
     eps = 1e-6 * beam.length / max(float(np.abs(motion).max()), 1e-300)
     f0 = beam.force(q0.reshape(-1, 3))
     dq = np.zeros(beam.dof)
@@ -233,8 +235,9 @@ def solve_static(beam: SpatialBeam, f_ext: np.ndarray, fixed: np.ndarray, load_s
     module doc), or, with ``held`` (a function of the load parameter t giving the values of
     ``fixed``, in their order), moved along with the load: a prescribed motion (a support's
     rotation). Its force scale, for the residual's tolerance, is the larger of the load's
-    and the prescribed motion's reactions to first order (:func:`_linear_reaction`). ``start``: the state at t = 0 (an
-    equilibrium there, e.g. the end of an earlier leg of a path; default the reference)."""
+    and the prescribed motion's reactions to first order (:func:`_linear_reaction`).
+    ``start``: the state at t = 0 (an equilibrium there, e.g. the end of an earlier leg of a
+    path; default the reference)."""
     fixed = np.asarray(fixed)
     free = np.setdiff1d(np.arange(beam.dof), fixed)
     q0 = (beam.reference() if start is None else np.asarray(start, float)).ravel()
@@ -255,11 +258,11 @@ def solve_static(beam: SpatialBeam, f_ext: np.ndarray, fixed: np.ndarray, load_s
             guess = q + prev[1] * s
             lam_guess = None if lam is None else lam + prev[2] * s
         spent, reason = 0, None
-        for start, lam_start, line_search in ((guess, lam_guess, False), (q, lam, False), (q, lam, True)):
+        for q_start, lam_start, line_search in ((guess, lam_guess, False), (q, lam, False), (q, lam, True)):
             if held is not None:
-                start = start.copy()
-                start[fixed] = held(t1)
-            system = _Increment(beam, free, start, t1 * f_ext, line_search, lam_start)
+                q_start = q_start.copy()
+                q_start[fixed] = held(t1)
+            system = _Increment(beam, free, q_start, t1 * f_ext, line_search, lam_start)
             try:
                 its, _ = newton(system, max(t1 * scale, floor / rtol), rtol, max_iterations, small)
             except StepFailure as e:
