@@ -12,17 +12,16 @@ the plate's rigid virtual motion, :func:`ancf.kinematics.spatial.statics.face_re
 T is about mu J theta / L (J Saint-Venant's torsion constant, plus the restrained warping
 near the plates); N is the Poynting effect, compressive, of second order in theta.
 
-    .venv/bin/python experiments/spatial_finite_torsion/run.py continuum LAW [--levels N] [--incompressibility I]
-    .venv/bin/python experiments/spatial_finite_torsion/run.py ancf LAW ELEMENT COUNTS [--penalty PA]
+    .venv/bin/python experiments/spatial_finite_torsion/run.py level LAW --cells NX,NY,NZ [...] [--backend B] [--case C]
+    .venv/bin/python experiments/spatial_finite_torsion/run.py ancf LAW ELEMENT COUNTS [--penalty PA] [--case C]
 
-``continuum``: Q2/Q1 hexahedra 16 x 1 x 1 -> 64 x 4 x 4 (uniform along x: both ends are
-plates), the plate's rotation in 10 equal increments (reference_fem.statics.solve_static,
-its Newton and load-path rule), T and N at every angle of ANGLES, and Richardson's value
-of each with its error estimate (reference_fem.convergence's formula and its 3D order cap);
-one JSON line per law and incompressibility in continuum.jsonl. ``ancf``: the element on
-equal meshes, the paper's penalty unless given, the same 10 increments; one line per
-run in res.jsonl with its errors against the DOLFINx mixed value. summary.py prints the
-tables.
+``level``: the continuum on Q2/Q1 hexahedra of the given cells (uniform along x: both ends
+are plates), DOLFINx or FElupe, the plate's rotation in 10 equal increments
+(reference_fem.statics.solve_static, its Newton and load-path rule), the reactions at every
+fraction of ANGLES; one JSON line per mesh in levels.jsonl. ``ancf``: the element on equal
+meshes, the paper's penalty unless given, the same 10 increments; one line per run in
+res.jsonl. summary.py computes the continuum's Richardson values from levels.jsonl and
+prints the tables.
 """
 from __future__ import annotations
 
@@ -77,20 +76,6 @@ def scene(law: str, incompressibility: str = "mixed"):
 
 def _lines(path: Path) -> list[dict]:
     return [json.loads(s) for s in path.read_text().splitlines()] if path.exists() else []
-
-
-def richardson(values: list[float]) -> dict:
-    """Richardson's value of the last three levels (ratio 2) by reference_fem.convergence's
-    rule, with its error estimate (the 3D cap on the trusted order)."""
-    from reference_fem.convergence import P_TRUSTED_3D, RATIO
-
-    a, b, c = values[-3:]
-    d1, d2 = abs(b - a), abs(c - b)
-    if not (d1 > 0 and d2 > 0) or d2 >= d1:
-        return {"value": None, "error_estimate": None, "order": None}
-    p = math.log(d1 / d2) / math.log(RATIO)
-    return {"value": c + (c - b) / (RATIO ** p - 1.0), "error_estimate": d2 / (RATIO ** min(p, P_TRUSTED_3D) - 1.0),
-            "order": p}
 
 
 class Plate:
@@ -169,12 +154,14 @@ def felupe_level(law: str, incompressibility: str, settings, rtol: float = RTOL,
     """continuum_level on FElupe's hexahedra (the same Q2/Q1 mesh): the plate's nodes held,
     their values written into the unknowns at every load (the Newton system keeps held
     values as set), the reaction its residual at those nodes."""
+    from dataclasses import replace
+
     from reference_fem.felupe_backend.problem import Reduction, System, set_up
     from reference_fem.statics import solve_static
 
     sc = scene(law, incompressibility)
     t0 = time.perf_counter()
-    s = set_up(sc, replace_backend(settings, "felupe"))
+    s = set_up(sc, replace(settings, backend="felupe"))
     pts = s.mesh.points
     nodes = np.flatnonzero(s.settings.geometry.at_right(sc.beam)(pts.T))
     rows = (3 * nodes[:, None] + np.arange(3)).ravel()
@@ -201,12 +188,6 @@ def felupe_level(law: str, incompressibility: str, settings, rtol: float = RTOL,
     return {"cells": [settings.cells_length, settings.cells_height, settings.cells_width], "ndof": s.ndof,
             "status": res.status, "reason": res.reason, "newton_iterations": iterations, "reactions": out,
             "seconds": time.perf_counter() - t0}
-
-
-def replace_backend(settings, backend: str):
-    from dataclasses import replace
-
-    return replace(settings, backend=backend)
 
 
 def settings_for(cells: tuple[int, int, int], incompressibility: str):
@@ -239,28 +220,9 @@ def find_level(law: str, incompressibility: str, backend: str, case: str, cells,
 
 
 def level(a) -> None:
-    """One mesh (``--cells NX,NY,NZ``) into levels.jsonl."""
-    find_level(a.law, a.incompressibility, a.backend, a.case, _cells(a.cells), a.rtol)
-
-
-def continuum(a) -> None:
-    """Richardson's values over a sequence of nested levels (``--sequence``, each refining
-    the last by 2 in the directions that change), each level from levels.jsonl or computed;
-    one line in continuum.jsonl."""
-    seq = [_cells(c) for c in a.sequence.split()]
-    out = HERE / "continuum.jsonl"
-    levels = [find_level(a.law, a.incompressibility, a.backend, a.case, c) for c in seq]
-    ext = {}
-    if len(levels) >= 3 and all(lv["status"] == "converged" for lv in levels):
-        for frac in map(str, ANGLES):
-            ext[frac] = {q: richardson([lv["reactions"][frac][q] for lv in levels]) for q in ("T", "N")}
-    rec = {"law": a.law, "backend": a.backend, "incompressibility": a.incompressibility, "case": a.case,
-           "rotation": list(CASES[a.case]), "angles": list(ANGLES), "sequence": [list(c) for c in seq],
-           "extrapolated": ext}
-    lines = [r for r in _lines(out) if (r["law"], r["backend"], r["incompressibility"], r.get("case", "twist"),
-                                        r["sequence"]) != (a.law, a.backend, a.incompressibility, a.case, rec["sequence"])]
-    out.write_text("".join(json.dumps(r) + "\n" for r in lines + [rec]))
-    print(json.dumps(rec), flush=True)
+    """Each mesh of ``--cells NX,NY,NZ [...]`` into levels.jsonl (those there already kept)."""
+    for cells in a.cells:
+        find_level(a.law, a.incompressibility, a.backend, a.case, _cells(cells), a.rtol)
 
 
 def ancf_run(law: str, element: str, n: int, penalty: float, case: str = "twist") -> dict:
@@ -314,25 +276,22 @@ def main() -> None:
 
     a = argparse.ArgumentParser()
     sub = a.add_subparsers(dest="what", required=True)
-    c = sub.add_parser("continuum")
-    c.add_argument("law")
-    c.add_argument("--sequence", default="16,1,1 32,2,2 64,4,4", help="levels, e.g. '32,2,2 32,4,4 32,8,8'")
     v = sub.add_parser("level")
     v.add_argument("law")
-    v.add_argument("--cells", required=True)
+    v.add_argument("--cells", required=True, nargs="+", help="NX,NY,NZ per mesh, e.g. 32,2,2 32,4,4 32,8,8")
     v.add_argument("--rtol", type=float, default=RTOL)
     e = sub.add_parser("ancf")
     e.add_argument("law")
     e.add_argument("element")
     e.add_argument("counts")
     e.add_argument("--penalty", type=float, default=paper.PENALTY)
-    for p in (c, v, e):
+    for p in (v, e):
         p.add_argument("--case", default="twist", choices=list(CASES))
-    for p in (c, v):
+    for p in (v,):
         p.add_argument("--backend", default="dolfinx", choices=["dolfinx", "felupe"])
         p.add_argument("--incompressibility", default="mixed", choices=["mixed", "penalty"])
     a = a.parse_args()
-    {"continuum": continuum, "level": level, "ancf": ancf}[a.what](a)
+    {"level": level, "ancf": ancf}[a.what](a)
 
 
 if __name__ == "__main__":

@@ -1,4 +1,4 @@
-"""The tables of REPORT.md from continuum.jsonl, levels.jsonl and res.jsonl (run.py writes them).
+"""The tables of REPORT.md from levels.jsonl and res.jsonl (run.py writes them).
 
     .venv/bin/python experiments/spatial_finite_torsion/summary.py
 """
@@ -45,13 +45,15 @@ def _level(law: str, inc: str, cells: list[int]) -> dict | None:
 
 
 def _extrapolate(a: float, b: float, c: float) -> tuple[float, float, float] | None:
-    """(c's limit, the tail (limit - c), order) of three levels of ratio 2."""
-    d1, d2 = b - a, c - b
-    if d1 == 0 or d2 == 0 or d2 / d1 <= 0 or abs(d2) >= abs(d1):
+    """(c's limit, the tail (limit - c), order) of three levels of ratio 2 by
+    reference_fem.convergence.richardson (no cap on the trusted order: see above); None
+    unless the levels converge monotonically."""
+    from reference_fem.convergence import richardson
+
+    if (b - a) * (c - b) <= 0:
         return None
-    p = math.log(d1 / d2) / math.log(2.0)
-    tail = d2 / (2.0 ** p - 1.0)
-    return c + tail, tail, p
+    r = richardson((a, 0.0), (b, 0.0), (c, 0.0), p_trusted=math.inf)
+    return None if r.value is None else (r.value[0], r.value[0] - c, r.order)
 
 
 def references() -> dict:

@@ -71,15 +71,20 @@ def face_rows(beam: SpatialBeam, node: int) -> np.ndarray:
     return np.array([3 * (node * k + m) + i for m in kinds for i in range(3)])
 
 
+def _face_vectors(beam: SpatialBeam, node: int) -> tuple[np.ndarray, np.ndarray]:
+    """(the nodal vectors :func:`face_rows` holds, which of them is the centre's r)."""
+    nodal = face_rows(beam, node)[::3] // 3
+    return nodal, nodal == node * len(beam.spec.kinds) + beam.spec.kinds.index("r")
+
+
 def rotated_face(beam: SpatialBeam, node: int, R: np.ndarray) -> np.ndarray:
     """The values of :func:`face_rows` (same order) of the reference section at ``node`` turned
     rigidly by the rotation matrix ``R`` about its centre (x_node, 0, 0): r stays, every other
     kind of the section's field is R times its reference value (r_y -> R e_y, r_z -> R e_z,
     r_yy, ... stay zero)."""
     ref = beam.reference()
-    nodal = face_rows(beam, node)[::3] // 3          # the held nodal vectors
+    nodal, centre = _face_vectors(beam, node)
     values = ref[nodal] @ np.asarray(R, float).T
-    centre = nodal == node * len(beam.spec.kinds) + beam.spec.kinds.index("r")
     values[centre] = ref[nodal[centre]]
     return values.ravel()
 
@@ -92,10 +97,8 @@ def face_reaction(beam: SpatialBeam, q: np.ndarray, f_ext: np.ndarray, node: int
     every other kind q_k by delta omega x q_k), the continuum's sum of x x f over the face's
     nodes."""
     q = np.asarray(q).reshape(-1, 3)
-    rows = face_rows(beam, node)
-    nodal = rows[::3] // 3
-    f = (beam.force(q) - f_ext)[rows].reshape(-1, 3)
-    centre = nodal == node * len(beam.spec.kinds) + beam.spec.kinds.index("r")
+    nodal, centre = _face_vectors(beam, node)
+    f = (beam.force(q) - f_ext)[face_rows(beam, node)].reshape(-1, 3)
     arm = np.where(centre[:, None], 0.0, q[nodal])
     return {"force": f[centre].sum(axis=0), "moment": np.cross(arm, f).sum(axis=0)}
 
