@@ -3,7 +3,8 @@
 The beam lies along x from 0 to ``length``, its section ``height`` (y) by ``width`` (z)
 centred on the axis, cut into ``elements`` elements that share their end nodes (a
 three-node element's middle node is its own), equal ones or, with ``grading`` g, each g
-times as long as the one before it from x = 0 (g > 1: finer towards the clamp at x = 0).
+times as long as the one before it from x = 0 (g > 1: finer towards the clamp at x = 0), and
+with ``both_ends`` from both ends to the middle (fine at both, for two supports).
 Its coordinates are q (n_global, 3), the nodal vectors of every node in turn (node-major,
 kinds in the element's order); flattened, component i of vector m is entry 3 m + i. The
 energy is the integral of :func:`.energy.stress`'s W over the reference volume by a Gauss
@@ -54,6 +55,7 @@ class SpatialBeam:
     alpha: float                        # the volumetric penalty, Pa
     points: tuple[int, int, int] | None = None      # the Gauss rule; None: the element's default_rule
     grading: float = 1.0                # each element this times as long as the one before it
+    both_ends: bool = False             # the grading from both ends to the middle (mirrored)
 
     def __post_init__(self):
         if self.points is None:
@@ -64,13 +66,17 @@ class SpatialBeam:
     @cached_property
     def lengths(self) -> np.ndarray:
         """The elements' lengths from x = 0 (m)."""
-        r = self.grading ** np.arange(self.elements)
+        if self.both_ends:
+            half = self.grading ** np.arange((self.elements + 1) // 2)
+            r = np.concatenate([half, half[::-1][self.elements % 2:]])
+        else:
+            r = self.grading ** np.arange(self.elements)
         return self.length * r / r.sum()
 
     @property
     def le(self) -> float:
         """The element length of a beam of equal elements."""
-        if self.grading != 1.0:
+        if self.grading != 1.0 and len(set(self.lengths)) > 1:
             raise ValueError("le: a graded beam's elements differ; see lengths")
         return self.length / self.elements
 

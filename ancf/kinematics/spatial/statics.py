@@ -122,17 +122,18 @@ def gravity_load(beam: SpatialBeam, density: float, g=(0.0, -9.81, 0.0)) -> np.n
     return f.ravel()
 
 
-def end_face_load(beam: SpatialBeam, traction) -> np.ndarray:
-    """f (dof,) of a dead traction on the free end face x = L (N): f_m = int t(y, z) N_m dA,
-    ``traction`` a function of the face's points y, z (arrays, m) giving t (npts, 3) in Pa, by
-    the beam's rule across the section (exact for a traction of degree one on the squared
-    basis's rule)."""
+def end_face_load(beam: SpatialBeam, traction, start: bool = False) -> np.ndarray:
+    """f (dof,) of a dead traction on the free end face x = L (N), or with ``start`` on the face
+    x = 0: f_m = int t(y, z) N_m dA, ``traction`` a function of the face's points y, z
+    (arrays, m) giving t (npts, 3) in Pa, by the beam's rule across the section (exact for a
+    traction of degree one on the squared basis's rule)."""
     gy, wy = np.polynomial.legendre.leggauss(beam.points[1])
     gz, wz = np.polynomial.legendre.leggauss(beam.points[2])
     Y, Z = (a.ravel() / 2.0 for a in np.meshgrid(gy, gz, indexing="ij"))
     wa = np.outer(wy, wz).ravel() / 4.0 * beam.height * beam.width
-    e = beam.elements - 1
-    N, _ = beam.spec.tabulate(np.ones(Y.size), Y, Z, beam.lengths[e], beam.height, beam.width)
+    e = 0 if start else beam.elements - 1
+    N, _ = beam.spec.tabulate(np.full(Y.size, 0.0 if start else 1.0), Y, Z, beam.lengths[e], beam.height,
+                              beam.width)
     t = np.asarray(traction(Y * beam.height, Z * beam.width), float).reshape(Y.size, 3)
     f = np.zeros((beam.n_global, 3))
     np.add.at(f, beam.element_rows(e), np.einsum("p,pm,pi->mi", wa, N, t))
