@@ -16,14 +16,19 @@ along, the complete quadratic section, the element pressure {1, x} x {1, y, z}; 
 :func:`.elements.hermite_section`) and HS2n-96p (HS2n-72p's section with the torsion warping
 modes y^3 z and y z^3: within 0.1 % of the continuum on the clamped cantilever under its
 weight and under an end force once the clamp's end zone is resolved, 0.24 % stiff in
-torsion) and HS2n-132p (with degree 6's odd-odd modes too: within 0.1 % in torsion). Each
-has a default rule chosen by the rank test (:mod:`.rank`). :mod:`.beam` takes equal or
-graded elements; :mod:`.statics` holds the supports (the clamp, the free-warping support of
-torsion), gravity, a dead traction and a small-twist torque on the end face, and the static
-solve; ``experiments/spatial_cantilever`` and ``experiments/spatial_end_force`` measure the
-elements against the 3D continuum under the weight and under an end force,
+torsion) and HS2n-132p (with degree 6's odd-odd modes too: within 0.1 % in small-twist
+torsion, 0.16 % soft at half a turn) and HS2n-180p (the complete cubic section, degree 6's
+warping and the complete quadratic element pressure: within 0.1 % of the continuum at half a
+turn for three laws and under an end force, converging at a measured rate). Each has a default
+rule chosen by the rank test (:mod:`.rank`). :mod:`.beam` takes equal or graded elements
+(graded from one end or from both); :mod:`.statics` holds the supports (the clamp, the
+free-warping support of torsion), gravity, a dead traction on either end face, a small-twist
+torque, a rigid plate turned to a given rotation and its reaction, and the static solve;
+``experiments/spatial_cantilever`` and ``experiments/spatial_end_force`` measure the elements
+against the 3D continuum under the weight and under an end force,
 ``experiments/spatial_torsion`` against Saint-Venant's torsion
-(``tests/test_spatial_torsion.py``: the torsion constants and every element's uniform twist).
+(``tests/test_spatial_torsion.py``: the torsion constants and every element's uniform twist)
+and ``experiments/spatial_finite_torsion`` against two continuum codes at half a turn.
 
 What is here is the element layer and its contract checks (``tests/test_spatial_elements.py``:
 shape functions, patch and rigid-motion tests, Taylor tests, the plane-strain limit against

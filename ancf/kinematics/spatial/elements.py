@@ -45,13 +45,15 @@ TORSION_MODES_6 = TORSION_MODES + ((5, 1), (3, 3), (1, 5))
 
 
 def hermite_section(name: str, degree: int, pressure_degree: int | None = None, reference: str = "",
-                    extra: tuple[tuple[int, int], ...] = ()) -> SpatialSpec:
+                    extra: tuple[tuple[int, int], ...] = (),
+                    pressure_extra: tuple[tuple[int, int], ...] = ()) -> SpatialSpec:
     """Two nodes, cubic Hermite along the beam, the complete section of ``degree`` in (y, z):
     at each node the section's field y^a z^b and its slope along the beam, kinds
     r_<y^a z^b> and r_x<y^a z^b> (r, r_x, r_y, r_xy, r_z, r_xz, r_yy, ...), so that the
     position and the section's shape are C1 between elements; ``extra`` adds section modes
     (a, b) beyond the complete ones (y^3 z and y z^3: the next torsion warping). With
-    ``pressure_degree`` an element pressure {1, x} x the complete section of that degree."""
+    ``pressure_degree`` an element pressure {1, x} x the complete section of that degree and
+    the section modes ``pressure_extra``."""
     modes = section_modes(degree)
     modes += [m for m in extra if m not in modes]
     kinds = []
@@ -59,8 +61,9 @@ def hermite_section(name: str, degree: int, pressure_degree: int | None = None, 
         d = "y" * a + "z" * b
         kinds += ["r_" + d if d else "r", "r_x" + d]
     basis = tuple(_monomial(i, a, b) for i in range(4) for a, b in modes)
-    pressure = () if pressure_degree is None else tuple(
-        _monomial(i, a, b) for i in range(2) for a, b in section_modes(pressure_degree))
+    pmodes = [] if pressure_degree is None else section_modes(pressure_degree)
+    pmodes += [m for m in pressure_extra if m not in pmodes]
+    pressure = tuple(_monomial(i, a, b) for i in range(2) for a, b in pmodes)
     return SpatialSpec(name, basis, (0.0, 1.0), tuple(kinds), reference, pressure=pressure)
 
 
@@ -101,4 +104,15 @@ register_spatial_element(hermite_section(
 # the 5 x 7 mm section at 16 elements, 0.081 % at 8 (experiments/spatial_torsion)
 register_spatial_element(hermite_section(
     "HS2n-132p", 2, 1, "this harness: HS2n-96p with the torsion warping modes of degree 6", TORSION_MODES_6))
+# this harness: the complete cubic section with degree 4's and 6's torsion warping (15 vectors
+# per node, 180 dof) and the pressure {1, x} x the complete quadratic section: the section
+# modes y^3, y^2 z, y z^2, z^3 carry the in-plane second-order fields of a finite twist, the
+# pressure's y^2, z^2 and y z its second-order volume change and the restrained warping's at
+# a plate, both needed for finite torsion (experiments/spatial_finite_torsion: either alone
+# leaves it soft or locks it; together the twist's stiffening and the plates' end zones come
+# right); the cubic section also removes HS2n-96p's stiff limit in bending
+# (experiments/spatial_end_force)
+register_spatial_element(hermite_section(
+    "HS2n-180p", 3, 2, "this harness: the cubic section, degree 6's torsion warping, a quadratic element pressure",
+    TORSION_MODES_6))
 BUILTIN = SPATIAL_ELEMENTS.freeze_builtin()
