@@ -9,8 +9,9 @@ and skips the runs it holds.
 ELEMENT a registered spatial element or a trial of the Hermite-section family,
 ``H<degree>p<pressure degree>[w]`` (ancf.kinematics.spatial.elements.hermite_section: cubic
 Hermite along, the complete section of that degree, the pressure {1, x} x the complete
-section of its degree; ``H2`` without a pressure; a trailing ``w`` adds the section modes
-y^3 z and y z^3, the next torsion warping), COUNTS comma-separated element counts. The law's
+section of its degree; ``H2`` without a pressure; a ``w`` adds the section modes
+y^3 z and y z^3, the next torsion warping; ``+y3+yz2`` adds these modes, ``/y2+z2`` these
+modes to the pressure's section), COUNTS comma-separated element counts. The law's
 constants and density are the paper's (contract.paper), the penalty the paper's 1000 MPa
 unless given; the element's default rule (its points along, across the height, across the width) unless given;
 equal elements, or with ``--grading G`` each G times as long as the one before it from the clamp;
@@ -21,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import time
 from pathlib import Path
 
@@ -41,16 +43,34 @@ GOLD = ROOT / "reports" / "data" / "solid3d" / "fem_cantilever_3d.json"
 LOOP = "full-newton"
 
 
+def _modes(text: str) -> tuple[tuple[int, int], ...]:
+    """Section modes from monomials joined by '+': 'y3+yz2' -> ((3, 0), (1, 2))."""
+    out = []
+    for m in text.split("+"):
+        powers = dict(re.findall(r"([yz])(\d*)", m))
+        if not m or "".join(f"{v}{powers[v]}" for v in "yz" if v in powers) != m:
+            raise SystemExit(f"section mode {m!r}: a monomial in y and z, y's first (y3, yz2, z4)")
+        out.append(tuple(int(powers[v] or 1) if v in powers else 0 for v in "yz"))
+    return tuple(out)
+
+
 def element(name: str):
-    """A registered spatial element, or H<degree>[p<degree>][w] of the Hermite-section family
-    (``w``: with the torsion warping modes y^3 z and y z^3 added to the section)."""
+    """A registered spatial element, or H<degree>[p<degree>][w][+<modes>][/<modes>] of the
+    Hermite-section family (``w``: with the torsion warping modes y^3 z and y z^3 added to the
+    section; ``+y3+yz2``: these section modes added too; ``/y2+z2``: these section modes added
+    to the pressure's)."""
     if name in SPATIAL_ELEMENTS:
         return SPATIAL_ELEMENTS[name]
-    base, extra = (name[:-1], TORSION_MODES) if name.endswith("w") else (name, ())
+    name_, _, pmore = name.partition("/")
+    base, _, more = name_.partition("+")
+    base, extra = (base[:-1], TORSION_MODES) if base.endswith("w") else (base, ())
     head, _, p = base[1:].partition("p")
     if not base.startswith("H") or not head.isdigit() or (p and not p.isdigit()):
-        raise SystemExit(f"element {name!r}: one of {list(SPATIAL_ELEMENTS)} or H<degree>[p<degree>][w]")
-    return hermite_section(name, int(head), int(p) if p else None, "trial", extra)
+        raise SystemExit(f"element {name!r}: one of {list(SPATIAL_ELEMENTS)} or H<degree>[p<degree>][w][+<modes>][/<modes>]")
+    if pmore and not p:
+        raise SystemExit(f"element {name!r}: pressure modes '/{pmore}' need a pressure degree p<degree>")
+    return hermite_section(name, int(head), int(p) if p else None, "trial", extra + (_modes(more) if more else ()),
+                           _modes(pmore) if pmore else ())
 
 
 def main() -> None:

@@ -13,13 +13,14 @@ T is about mu J theta / L (J Saint-Venant's torsion constant, plus the restraine
 near the plates); N is the Poynting effect, compressive, of second order in theta.
 
     .venv/bin/python experiments/spatial_finite_torsion/run.py level LAW --cells NX,NY,NZ [...] [--backend B] [--case C]
-    .venv/bin/python experiments/spatial_finite_torsion/run.py ancf LAW ELEMENT COUNTS [--penalty PA] [--case C]
+    .venv/bin/python experiments/spatial_finite_torsion/run.py ancf LAW ELEMENT COUNTS [--penalty PA] [--grading G] [--case C]
 
 ``level``: the continuum on Q2/Q1 hexahedra of the given cells (uniform along x: both ends
 are plates), DOLFINx or FElupe, the plate's rotation in 10 equal increments
 (reference_fem.statics.solve_static, its Newton and load-path rule), the reactions at every
 fraction of ANGLES; one JSON line per mesh in levels.jsonl. ``ancf``: the element on equal
-meshes, the paper's penalty unless given, the same 10 increments; one line per run in
+meshes or, with ``--grading G``, meshes graded from both plates to the middle (each element G
+times as long as the one before it), the paper's penalty unless given, the same 10 increments; one line per run in
 res.jsonl. summary.py computes the continuum's Richardson values from levels.jsonl and
 prints the tables.
 """
@@ -225,7 +226,7 @@ def level(a) -> None:
         find_level(a.law, a.incompressibility, a.backend, a.case, _cells(cells), a.rtol)
 
 
-def ancf_run(law: str, element: str, n: int, penalty: float, case: str = "twist") -> dict:
+def ancf_run(law: str, element: str, n: int, penalty: float, case: str = "twist", grading: float = 1.0) -> dict:
     from run import element as named   # experiments/spatial_cantilever/run.py
 
     from ancf.kinematics.spatial.beam import SpatialBeam
@@ -235,7 +236,7 @@ def ancf_run(law: str, element: str, n: int, penalty: float, case: str = "twist"
     spec = named(element)
     c = {k: v for k, v in paper.materials()[law].items() if k != "density"}
     L, h, w = paper.CANTILEVER["length"], paper.CANTILEVER["height"], paper.CANTILEVER["width"]
-    b = SpatialBeam(spec, L, h, w, n, law, c, penalty, spec.default_rule())
+    b = SpatialBeam(spec, L, h, w, n, law, c, penalty, spec.default_rule(), grading, both_ends=True)
     end = b.nodes - 1
     fixed = np.concatenate([clamp_rows(b), face_rows(b, end)])
     clamp = b.reference().ravel()[clamp_rows(b)]
@@ -253,7 +254,8 @@ def ancf_run(law: str, element: str, n: int, penalty: float, case: str = "twist"
         r = face_reaction(b, res.q, zero, end)
         out[str(frac)] = reactions(r["force"], r["moment"])
         q_start, done = res.q, frac
-    return {"law": law, "case": case, "element": element, "elements": n, "penalty": penalty,
+    return {"law": law, "case": case, "element": element, "elements": n, "penalty": penalty, "grading": grading,
+            "first_element_m": float(b.lengths[0]),
             "points": spec.default_rule(),
             "dof": b.dof, "status": res.status, "reason": res.reason, "newton_iterations": iterations,
             "reactions": out, "seconds": time.perf_counter() - t0}
@@ -261,11 +263,12 @@ def ancf_run(law: str, element: str, n: int, penalty: float, case: str = "twist"
 
 def ancf(a) -> None:
     out = HERE / "res.jsonl"
-    have = {(r["law"], r.get("case", "twist"), r["element"], r["elements"], r["penalty"]) for r in _lines(out)}
+    have = {(r["law"], r.get("case", "twist"), r["element"], r["elements"], r["penalty"], r.get("grading", 1.0))
+            for r in _lines(out)}
     for n in (int(x) for x in a.counts.split(",")):
-        if (a.law, a.case, a.element, n, a.penalty) in have:
+        if (a.law, a.case, a.element, n, a.penalty, a.grading) in have:
             continue
-        rec = ancf_run(a.law, a.element, n, a.penalty, a.case)
+        rec = ancf_run(a.law, a.element, n, a.penalty, a.case, a.grading)
         with out.open("a") as f:
             f.write(json.dumps(rec) + "\n")
         print(json.dumps(rec), flush=True)
@@ -285,6 +288,8 @@ def main() -> None:
     e.add_argument("element")
     e.add_argument("counts")
     e.add_argument("--penalty", type=float, default=paper.PENALTY)
+    e.add_argument("--grading", type=float, default=1.0,
+                   help="each element this times as long as the one before it, from both plates to the middle")
     for p in (v, e):
         p.add_argument("--case", default="twist", choices=list(CASES))
     for p in (v,):

@@ -97,22 +97,23 @@ def continuum_table() -> str:
 
 def ancf_table() -> str:
     ref = references()
-    rows = ["| element | law | elements | dof | penalty (Pa) | T at pi (N mm) | off the continuum (%) | "
-            "N at pi (mN) | off the continuum (%) | T over mu J theta / L | Newton | s |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    rows = ["| element | law | elements | grading | dof | penalty (Pa) | T at pi (N mm) | off the continuum (%) | "
+            "T(pi) / T(pi / 2) | N at pi (mN) | off the continuum (%) | T over mu J theta / L | Newton | s |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in sorted((r for r in lines("res.jsonl") if r.get("case", "twist") == "twist"),
-                    key=lambda r: (r["element"], r["law"], r["penalty"], r["elements"])):
+                    key=lambda r: (r["element"], r["law"], r["penalty"], r.get("grading", 1.0), r["elements"])):
         g = r["reactions"].get("1.0")
+        head = (f"| {r['element']} | {r['law']} | {r['elements']} | {r.get('grading', 1.0):g} | {r['dof']} | "
+                f"{r['penalty']:.0e} | ")
         if g is None:
-            rows.append(f"| {r['element']} | {r['law']} | {r['elements']} | {r['dof']} | {r['penalty']:.0e} | "
-                        f"{r['status']}: {r['reason']} | | | | | {r['newton_iterations']} | {r['seconds']:.1f} |")
+            rows.append(head + f"{r['status']}: {r['reason']} | | | | | | {r['newton_iterations']} | {r['seconds']:.1f} |")
             continue
         c = ref.get((r["law"], "mixed", "1.0"))
         eT = "" if c is None or c["T"][0] is None else f"{100 * (g['T'] / c['T'][0] - 1):+.3f}"
         eN = "" if c is None or c["N"][0] is None else f"{100 * (g['N'] / c['N'][0] - 1):+.1f}"
         sv = g["T"] / saint_venant_torque(r["law"], math.pi)
-        rows.append(f"| {r['element']} | {r['law']} | {r['elements']} | {r['dof']} | {r['penalty']:.0e} | "
-                    f"{1e3 * g['T']:.5f} | {eT} | {1e3 * g['N']:.4f} | {eN} | {sv:.4f} | "
+        rows.append(head + f"{1e3 * g['T']:.5f} | {eT} | {g['T'] / r['reactions']['0.5']['T']:.4f} | "
+                    f"{1e3 * g['N']:.4f} | {eN} | {sv:.4f} | "
                     f"{r['newton_iterations']} | {r['seconds']:.1f} |")
     return "\n".join(rows)
 
