@@ -7,7 +7,8 @@ is the registered law's on the full deformation gradient, F = sum_k q_k (x) grad
 nothing planar in between (:mod:`.energy`: the law's psi(I1bar, I2bar) plus the volumetric
 penalty alpha/2 (J - 1)^2, stress and tangent by second-order forward derivatives in the
 invariants, the same law function the planar solver and the continuum codes evaluate).
-:mod:`.beam` assembles a straight beam of them: energy, internal force and tangent.
+:mod:`.beam` assembles a straight beam of them: energy, internal force and tangent (by sum
+factorisation over the section and along the beam, :mod:`.product`).
 
 Built in (:mod:`.elements`, :data:`SPATIAL_ELEMENTS`): the fully parameterised 3243, the
 3333 and the 3363 (names as in Obrezkov et al. 2022), each with its source, the 3363p of

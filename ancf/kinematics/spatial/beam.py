@@ -13,7 +13,8 @@ element; the force is its gradient, the tangent its Hessian, dense
 (:meth:`SpatialBeam.tangent`) or in band storage (:meth:`SpatialBeam.tangent_banded`,
 :class:`ancf.core.banded.Banded`: the coordinates are numbered along the beam, so an
 element's couple only neighbouring nodes, and the band's LU is what the statics solve).
-numpy over all elements at once, not the compiled loop.
+numpy over all elements at once, not the compiled loop; the tangent by sum factorisation when
+the element's shape functions are products of an along and a section factor (:mod:`.product`).
 
 An element with a pressure basis (``SpatialSpec.pressure``, p_k) takes the penalty on the
 element-wise L2 projection of J - 1: alpha / 2 b^T M^-1 b with b_k = int p_k (J - 1) dV and
@@ -29,6 +30,7 @@ from typing import Mapping
 import numpy as np
 
 from ...core.banded import Banded, BandedPattern
+from . import product
 from .energy import density, density_jet, invariant_derivatives, stress, stress_of
 from .spec import SpatialSpec
 
@@ -258,12 +260,20 @@ class SpatialBeam:
         dF = self._all_gradients(dq)
         return self._condensed(inv[2] + np.einsum("piJ,piJ->p", d[2], dF))[1]
 
-    def element_tangents(self, q: np.ndarray, pressure: np.ndarray | None = None) -> np.ndarray:
+    @cached_property
+    def _product(self) -> product.Factors | None:
+        """The product split of the shape functions on the rule (:mod:`.product`), or None."""
+        N = np.stack([self.table(e)[0] for e in range(self.elements)])
+        return product.factors(N, self._stacked["dN"], self.points, self.lengths, self.height, self.width)
+
+    def element_tangents(self, q: np.ndarray, pressure: np.ndarray | None = None, split: bool = True) -> np.ndarray:
         """Every element's block of d2E/dq2, (elements, nd, nd) over :meth:`element_dofs`. With
         ``pressure`` (elements, n_p), the pressure's geometric term (p . lambda_e) d2J/dF2 takes
         these coefficients instead of q's own (:meth:`pressures`): the condensed tangent of the
-        mixed form at an iterate (q, lambda) off the constraint lambda = alpha M^-1 b(q). All
-        elements at once: per point the 9 x 9 A, then sum_p w dN_mJ A_iJkL dN_nL as two
+        mixed form at an iterate (q, lambda) off the constraint lambda = alpha M^-1 b(q). Per
+        point the 9 x 9 A, then sum_p w dN_mJ A_iJkL dN_nL: by sum factorisation over the
+        section and along the beam when the element's shape functions are products
+        (:mod:`.product`; ``split`` False: never), otherwise for all elements at once as two
         batched products (J first, then p and L together)."""
         st = self._stacked
         dN, w = st["dN"], st["w"]
@@ -273,11 +283,15 @@ class SpatialBeam:
         if self._pressures is not None:
             at = self._point_pressures(self._condensed(inv[2])[1] if pressure is None else pressure)
             A = A + at[:, None, None, None, None] * dd[2]
-        # (E, p, J, i kL), then T_e,p,m,ikL = sum_J dN_mJ A_iJkL
-        A = A.reshape(E, npts, 3, 3, 9).transpose(0, 1, 3, 2, 4).reshape(E, npts, 3, 27)
-        T = np.matmul(dN, A).reshape(E, npts, n, 3, 3, 3).transpose(0, 2, 3, 4, 1, 5).reshape(E, 9 * n, 3 * npts)
-        K = np.matmul(T, st["wdN"])                                                            # (E, m i k, n)
-        K = K.reshape(E, n, 3, 3, n).transpose(0, 1, 2, 4, 3).reshape(E, 3 * n, 3 * n)
+        if split and self._product is not None:
+            wA = (w.reshape(-1)[:, None, None, None, None] * A).reshape(E, self.points[0], -1, 3, 3, 3, 3)
+            K = product.element_tangents(self._product, wA)
+        else:
+            # (E, p, J, i kL), then T_e,p,m,ikL = sum_J dN_mJ A_iJkL
+            A = A.reshape(E, npts, 3, 3, 9).transpose(0, 1, 3, 2, 4).reshape(E, npts, 3, 27)
+            T = np.matmul(dN, A).reshape(E, npts, n, 3, 3, 3).transpose(0, 2, 3, 4, 1, 5).reshape(E, 9 * n, 3 * npts)
+            K = np.matmul(T, st["wdN"])                                                        # (E, m i k, n)
+            K = K.reshape(E, n, 3, 3, n).transpose(0, 1, 2, 4, 3).reshape(E, 3 * n, 3 * n)
         if self._pressures is not None:
             # alpha G^T M^-1 G, G_k,mi = db_k / dq_mi = int p_k cof(F)_iJ dN_mJ
             Z = np.matmul(dN, np.swapaxes(d[2].reshape(E, npts, 3, 3), 2, 3))                  # (E, p, m, i)
