@@ -122,13 +122,28 @@ class Plate:
         return {"force": force, "moment": moment}
 
 
-def continuum_level(law: str, incompressibility: str, settings, rtol: float = RTOL, case: str = "twist") -> dict:
+def both_ends(n: int, grading: float, length: float) -> np.ndarray:
+    """The n + 1 cell boundaries along x of cells growing by ``grading`` from both ends to the
+    middle (the ANCF beams' ``both_ends``)."""
+    half = grading ** np.arange((n + 1) // 2)
+    r = np.concatenate([half, half[::-1][n % 2:]])
+    return np.concatenate([[0.0], np.cumsum(length * r / r.sum())])
+
+
+def continuum_level(law: str, incompressibility: str, settings, rtol: float = RTOL, case: str = "twist",
+                    grading: float = 1.0) -> dict:
     from reference_fem.dolfinx_backend.problem import set_up, static_problem
     from reference_fem.statics import solve_static
 
     sc = scene(law, incompressibility)
     t0 = time.perf_counter()
     s = set_up(sc, settings)
+    if grading != 1.0:
+        # the uniform mesh's nodes moved along x, cell by cell, onto cells graded from both
+        # plates (a map linear in each cell: the cells stay straight-sided boxes)
+        x = s.disc.mesh.geometry.x
+        n, L = settings.cells_length, sc.beam.length
+        x[:, 0] = np.interp(x[:, 0], np.linspace(0.0, L, n + 1), both_ends(n, grading, L))
     plate = Plate(s, sc.beam)
     s.bcs = s.bcs + plate.bcs
     prob = static_problem(s)
@@ -205,15 +220,22 @@ def _cells(text: str) -> tuple[int, int, int]:
     return tuple(int(v) for v in text.split(","))
 
 
-def find_level(law: str, incompressibility: str, backend: str, case: str, cells, rtol: float = RTOL) -> dict:
+def find_level(law: str, incompressibility: str, backend: str, case: str, cells, rtol: float = RTOL,
+               grading: float = 1.0) -> dict:
     """The level's line of levels.jsonl, computed and appended if it is not there."""
-    key = (law, incompressibility, backend, case, list(cells), rtol)
+    key = (law, incompressibility, backend, case, list(cells), rtol, grading)
     for r in _lines(HERE / "levels.jsonl"):
-        if (r["law"], r["incompressibility"], r["backend"], r.get("case", "twist"), r["cells"], r["rtol"]) == key:
+        if (r["law"], r["incompressibility"], r["backend"], r.get("case", "twist"), r["cells"], r["rtol"],
+                r.get("grading", 1.0)) == key:
             return r
-    solve = felupe_level if backend == "felupe" else continuum_level
+    if backend == "felupe":
+        if grading != 1.0:
+            raise SystemExit("--grading: DOLFINx meshes only")
+        rec = felupe_level(law, incompressibility, settings_for(cells, incompressibility), rtol, case)
+    else:
+        rec = continuum_level(law, incompressibility, settings_for(cells, incompressibility), rtol, case, grading)
     lv = {"law": law, "backend": backend, "incompressibility": incompressibility, "rtol": rtol, "case": case,
-          **solve(law, incompressibility, settings_for(cells, incompressibility), rtol, case)}
+          "grading": grading, **rec}
     with (HERE / "levels.jsonl").open("a") as f:
         f.write(json.dumps(lv) + "\n")
     print(json.dumps(lv), flush=True)
@@ -223,7 +245,7 @@ def find_level(law: str, incompressibility: str, backend: str, case: str, cells,
 def level(a) -> None:
     """Each mesh of ``--cells NX,NY,NZ [...]`` into levels.jsonl (those there already kept)."""
     for cells in a.cells:
-        find_level(a.law, a.incompressibility, a.backend, a.case, _cells(cells), a.rtol)
+        find_level(a.law, a.incompressibility, a.backend, a.case, _cells(cells), a.rtol, a.grading)
 
 
 def ancf_run(law: str, element: str, n: int, penalty: float, case: str = "twist", grading: float = 1.0) -> dict:
@@ -283,6 +305,8 @@ def main() -> None:
     v.add_argument("law")
     v.add_argument("--cells", required=True, nargs="+", help="NX,NY,NZ per mesh, e.g. 32,2,2 32,4,4 32,8,8")
     v.add_argument("--rtol", type=float, default=RTOL)
+    v.add_argument("--grading", type=float, default=1.0,
+                   help="cells along growing by this ratio from both plates to the middle (DOLFINx)")
     e = sub.add_parser("ancf")
     e.add_argument("law")
     e.add_argument("element")

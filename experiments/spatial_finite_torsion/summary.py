@@ -31,17 +31,34 @@ def saint_venant_torque(law: str, theta: float) -> float:
 # continuum's: levels.jsonl), Richardson's value of it at the observed order (the 2D
 # Saint-Venant sequence of saint_venant_q2.py shows the Q2 section's order, 3.6 -> 3.7, so the
 # 3D cap of 1 is not needed here), plus the length's correction from 32 cells on, measured
-# on the 4 x 4 section (16, 32, 64 along) and extrapolated at its own order.
-SECTION_SEQUENCE = [[32, 2, 2], [32, 4, 4], [32, 8, 8]]
-LENGTH_SEQUENCE = [[16, 4, 4], [32, 4, 4], [64, 4, 4]]
+# on a coarser section and extrapolated at its own order. Pure twist: equal cells along, the
+# length's sequence on the 4 x 4 section. Twist with bending: its plates' end zones bend (the
+# corners of a clamped face), which equal cells resolve so slowly that their sequence is not
+# monotone (16 -> 24 -> 32 -> 48 -> 64 cells on 2 x 2 move the axial force -0.34, +0.06,
+# +0.27, +0.20 %): cells graded from both plates (1.1 at 32 along, its square and fourth roots
+# at 64 and 128), the length's sequence on the 2 x 2 section. Each level: (cells, grading).
+SEQUENCES = {
+    "twist": ([([32, 2, 2], 1.0), ([32, 4, 4], 1.0), ([32, 8, 8], 1.0)],
+              [([16, 4, 4], 1.0), ([32, 4, 4], 1.0), ([64, 4, 4], 1.0)]),
+    "twist-bend": ([([32, 2, 2], 1.1), ([32, 4, 4], 1.1), ([32, 8, 8], 1.1)],
+                   [([32, 2, 2], 1.1), ([64, 2, 2], 1.1 ** 0.5), ([128, 2, 2], 1.1 ** 0.25)]),
+}
+# the reaction's components per case: name -> (the record's key, index; None: a number)
+COMPONENTS = {"twist": {"T": ("T", None), "N": ("N", None)},
+              "twist-bend": {"N": ("force", 0), "T": ("moment", 0), "My": ("moment", 1), "Mz": ("moment", 2)}}
 
 
-def _level(law: str, inc: str, cells: list[int]) -> dict | None:
+def _level(law: str, inc: str, cells: list[int], case: str = "twist", grading: float = 1.0) -> dict | None:
     for r in lines("levels.jsonl"):
         if ((r["law"], r["incompressibility"], r["backend"], r.get("case", "twist"), r["cells"], r["rtol"])
-                == (law, inc, "dolfinx", "twist", cells, 1e-9)):
+                == (law, inc, "dolfinx", case, cells, 1e-9) and math.isclose(r.get("grading", 1.0), grading)):
             return r
     return None
+
+
+def component(reactions: dict, case: str, name: str) -> float:
+    key, i = COMPONENTS[case][name]
+    return reactions[key] if i is None else reactions[key][i]
 
 
 def _extrapolate(a: float, b: float, c: float) -> tuple[float, float, float] | None:
@@ -56,26 +73,29 @@ def _extrapolate(a: float, b: float, c: float) -> tuple[float, float, float] | N
     return None if r.value is None else (r.value[0], r.value[0] - c, r.order)
 
 
-def references() -> dict:
-    """{(law, incompressibility, angle): {"T": (value, error estimate, section order), "N": ...}}:
+def references(case: str = "twist") -> dict:
+    """{(law, incompressibility, angle): {component: (value, error estimate, section order)}}:
     the section's Richardson value at 32 cells along plus the length's correction; the error
     estimate the sum of the two tails (each the size of what its extrapolation added)."""
     out = {}
+    section, length = SEQUENCES[case]
     keys = {(r["law"], r["incompressibility"]) for r in lines("levels.jsonl")}
     for law, inc in sorted(keys):
-        sec = [_level(law, inc, c) for c in SECTION_SEQUENCE]
-        lng = [_level(law, inc, c) for c in LENGTH_SEQUENCE]
+        sec = [_level(law, inc, c, case, g) for c, g in section]
+        lng = [_level(law, inc, c, case, g) for c, g in length]
         if None in sec or None in lng:
             continue
+        at32 = next(lv for (c, _), lv in zip(length, lng) if c[0] == 32)
         for frac in sec[0]["reactions"]:
             q = {}
-            for k in ("T", "N"):
-                s_ = _extrapolate(*(lv["reactions"][frac][k] for lv in sec))
-                x_ = _extrapolate(*(lv["reactions"][frac][k] for lv in lng))
+            for k in COMPONENTS[case]:
+                s_ = _extrapolate(*(component(lv["reactions"][frac], case, k) for lv in sec))
+                x_ = _extrapolate(*(component(lv["reactions"][frac], case, k) for lv in lng))
                 if s_ is None or x_ is None:
                     q[k] = (None, None, None)
                     continue
-                correction = x_[0] - lng[1]["reactions"][frac][k]      # from 32 cells along to the limit
+                # from the section sequence's length (32 cells along) to the limit
+                correction = x_[0] - component(at32["reactions"][frac], case, k)
                 q[k] = (s_[0] + correction, abs(s_[1]) + abs(x_[1]), s_[2])
             out[(law, inc, frac)] = q
     return out
@@ -130,7 +150,67 @@ def reference_table() -> str:
     return "\n".join(rows)
 
 
+TB_UNITS = {"N": (1e3, "mN"), "T": (1e3, "N mm"), "My": (1e3, "N mm"), "Mz": (1e3, "N mm")}
+
+
+def twist_bend_continuum_table() -> str:
+    names = list(COMPONENTS["twist-bend"])
+    rows = ["| law | backend | cells (x, y, z) | grading | dof | "
+            + " | ".join(f"{k} ({TB_UNITS[k][1]})" for k in names) + " | Newton | s |",
+            "|---|---|---|---|---|" + "---|" * len(names) + "---|---|"]
+    seen = [r for r in lines("levels.jsonl") if r.get("case") == "twist-bend"]
+    for lv in sorted(seen, key=lambda r: (r["law"], r.get("grading", 1.0) != 1.0, r["cells"][1], r["cells"][0],
+                                          r["backend"])):
+        g = lv["reactions"]["1.0"]
+        rows.append(f"| {lv['law']} | {lv['backend']} | {' x '.join(map(str, lv['cells']))} | "
+                    f"{lv.get('grading', 1.0):.4g} | {lv['ndof']} | "
+                    + " | ".join(f"{TB_UNITS[k][0] * component(g, 'twist-bend', k):.4f}" for k in names)
+                    + f" | {lv['newton_iterations']} | {lv['seconds']:.0f} |")
+    return "\n".join(rows)
+
+
+def twist_bend_reference_table() -> str:
+    names = list(COMPONENTS["twist-bend"])
+    rows = ["| law | angle | " + " | ".join(f"{k} ({TB_UNITS[k][1]}) +- | order" for k in names) + " |",
+            "|---|---|" + "---|---|" * len(names)]
+    for (law, inc, frac), q in sorted(references("twist-bend").items()):
+        cells = []
+        for k in names:
+            v, e, p = q[k]
+            f = TB_UNITS[k][0]
+            cells += ["no value", ""] if v is None else [f"{f * v:.4f} +- {f * e:.4f}", f"{p:.2f}"]
+        rows.append(f"| {law} | {frac} | " + " | ".join(cells) + " |")
+    return "\n".join(rows)
+
+
+def twist_bend_ancf_table() -> str:
+    ref = references("twist-bend")
+    names = list(COMPONENTS["twist-bend"])
+    rows = ["| element | law | elements | grading | dof | "
+            + " | ".join(f"{k} ({TB_UNITS[k][1]}) | off (%)" for k in names) + " | Newton | s |",
+            "|---|---|---|---|---|" + "---|---|" * len(names) + "---|---|"]
+    for r in sorted((r for r in lines("res.jsonl") if r.get("case") == "twist-bend"),
+                    key=lambda r: (r["element"], r["law"], r.get("grading", 1.0), r["elements"])):
+        g = r["reactions"].get("1.0")
+        head = f"| {r['element']} | {r['law']} | {r['elements']} | {r.get('grading', 1.0):g} | {r['dof']} | "
+        if g is None:
+            rows.append(head + f"{r['status']}: {r['reason']} |" + " |" * (2 * len(names) - 1)
+                        + f" {r['newton_iterations']} | {r['seconds']:.1f} |")
+            continue
+        c = ref.get((r["law"], "mixed", "1.0"))
+        cells = []
+        for k in names:
+            v = component(g, "twist-bend", k)
+            off = "" if c is None or c[k][0] is None else f"{100 * (v / c[k][0] - 1):+.3f}"
+            cells += [f"{TB_UNITS[k][0] * v:.4f}", off]
+        rows.append(head + " | ".join(cells) + f" | {r['newton_iterations']} | {r['seconds']:.1f} |")
+    return "\n".join(rows)
+
+
 if __name__ == "__main__":
     print(continuum_table(), end="\n\n")
     print(reference_table(), end="\n\n")
-    print(ancf_table())
+    print(ancf_table(), end="\n\n")
+    print(twist_bend_continuum_table(), end="\n\n")
+    print(twist_bend_reference_table(), end="\n\n")
+    print(twist_bend_ancf_table())
