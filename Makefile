@@ -4,7 +4,7 @@ PY := .venv/bin/python
 export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 
-.PHONY: setup test test-full test-slow test-guards study study-full audit loops bench bench-penalty bench-peers external-exudyn docs clean-venv
+.PHONY: setup test test-full test-slow test-guards study study-full audit loops bench bench-spatial bench-penalty bench-peers external-exudyn docs clean-venv
 
 # The idempotent set-up every target runs first (tools/setup.sh): Debian's packages, the
 # venv .venv with the system's site packages, this project installed editable, FElupe pinned,
@@ -82,6 +82,11 @@ bench: setup
 	$(PY) -m studies bench table3
 	$(PY) -m studies bench pendulum
 	$(PY) -m studies bench kernels
+
+# what 1 % and 0.1 % cost in 3D: the spatial ANCF elements beside the 3D continuum on the
+# end-force cantilever and half a turn of torsion, timed side by side (experiments/spatial_cost)
+bench-spatial: setup
+	$(PY) experiments/spatial_cost/bench.py
 
 # the penalty sweep: every element x law x penalised formulation x mesh from 10 to 1e5 C10
 # (reports/penalty.md)
