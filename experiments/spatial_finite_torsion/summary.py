@@ -51,7 +51,8 @@ COMPONENTS = {"twist": {"T": ("T", None), "N": ("N", None)},
 def _level(law: str, inc: str, cells: list[int], case: str = "twist", grading: float = 1.0) -> dict | None:
     for r in lines("levels.jsonl"):
         if ((r["law"], r["incompressibility"], r["backend"], r.get("case", "twist"), r["cells"], r["rtol"])
-                == (law, inc, "dolfinx", case, cells, 1e-9) and math.isclose(r.get("grading", 1.0), grading)):
+                == (law, inc, "dolfinx", case, cells, 1e-9) and math.isclose(r.get("grading", 1.0), grading)
+                and r["status"] == "converged"):
             return r
     return None
 
@@ -108,6 +109,11 @@ def continuum_table() -> str:
     seen = [(r["law"], r["incompressibility"], r) for r in lines("levels.jsonl") if r.get("case", "twist") == "twist"]
     for law, inc, lv in sorted(seen, key=lambda t: (t[0], t[1], t[2]["ndof"], t[2]["backend"])):
         g = lv["reactions"]
+        if "1.0" not in g:
+            rows.append(f"| {law} | {lv['backend']} | {inc} | {' x '.join(map(str, lv['cells']))} | "
+                        f"{lv.get('rtol', 1e-9):.0e} | {lv['ndof']} | {lv['status']}: {lv['reason']} | | | | "
+                        f"{lv['newton_iterations']} | {lv['seconds']:.0f} |")
+            continue
         rows.append(f"| {law} | {lv['backend']} | {inc} | {' x '.join(map(str, lv['cells']))} | "
                     f"{lv.get('rtol', 1e-9):.0e} | {lv['ndof']} | "
                     f"{1e3 * g['0.5']['T']:.5f} | {1e3 * g['1.0']['T']:.5f} | {1e3 * g['0.5']['N']:.4f} | "
@@ -161,10 +167,14 @@ def twist_bend_continuum_table() -> str:
     seen = [r for r in lines("levels.jsonl") if r.get("case") == "twist-bend"]
     for lv in sorted(seen, key=lambda r: (r["law"], r.get("grading", 1.0) != 1.0, r["cells"][1], r["cells"][0],
                                           r["backend"])):
-        g = lv["reactions"]["1.0"]
-        rows.append(f"| {lv['law']} | {lv['backend']} | {' x '.join(map(str, lv['cells']))} | "
-                    f"{lv.get('grading', 1.0):.4g} | {lv['ndof']} | "
-                    + " | ".join(f"{TB_UNITS[k][0] * component(g, 'twist-bend', k):.4f}" for k in names)
+        g = lv["reactions"].get("1.0")
+        head = (f"| {lv['law']} | {lv['backend']} | {' x '.join(map(str, lv['cells']))} | "
+                f"{lv.get('grading', 1.0):.4g} | {lv['ndof']} | ")
+        if g is None:
+            rows.append(head + f"{lv['status']}: {lv['reason']} |" + " |" * (len(names) - 1)
+                        + f" {lv['newton_iterations']} | {lv['seconds']:.0f} |")
+            continue
+        rows.append(head + " | ".join(f"{TB_UNITS[k][0] * component(g, 'twist-bend', k):.4f}" for k in names)
                     + f" | {lv['newton_iterations']} | {lv['seconds']:.0f} |")
     return "\n".join(rows)
 
