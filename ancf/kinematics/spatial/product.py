@@ -11,7 +11,7 @@ Lagrange function of xi times a section mode (1, y, z, y z, ...), with few disti
 then splits into two small contractions per pair of gradient directions (J, L): over the
 section's points with the section factors (s, s_eta, s_zeta), then over the points along
 with the along factors (h, h'), instead of one over every point with every shape function.
-For HS2n-180p on the (4, 6, 6) rule that is about a quarter of the products, all in large
+For HS2n-180p on the (4, 6, 6) rule that is about a fifth of the products, all in large
 matrix products.
 
 :func:`factors` finds the factors from the tabulated shape functions (a rank-one split of
