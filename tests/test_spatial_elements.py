@@ -353,6 +353,39 @@ def test_the_residual_tolerance_respects_the_forces_roundoff():
     assert 0.01 * floor < min(tail) and max(tail) < ROUNDOFF_FLOOR * floor, (tail, floor)
 
 
+def test_the_tolerance_floor_holds_the_coordinates_representation():
+    """On short elements far from the origin the residual's round-off is the coordinates':
+    a position held to eps |x| moves the force by the penalty's stiffness times that. HS2n-72p
+    x 12 graded 3 from both ends (0.22 mm elements at x = 0 and at x = 0.16 m) at a tenth of
+    its weight: Newton's residuals at the converged state stall above the force evaluation's
+    floor alone (ROUNDOFF_FLOOR eps |f_int|_terms, which the tolerance then could not reach;
+    measured up to 5.6 times it) and below :func:`roundoff_floor`, which adds eps |K| |q|
+    (measured 0.02 to 0.28 of it)."""
+    from ancf.kinematics.spatial.statics import _Increment, clamp_rows, gravity_load, roundoff_floor
+    from ancf.solvers.statics import ROUNDOFF_FLOOR
+    from contract import paper
+    from mechanics.newton import newton
+    from mechanics.time_loop import StepFailure
+
+    m = paper.materials()["neo-hookean"]
+    c = {k: v for k, v in m.items() if k != "density"}
+    geo = paper.CANTILEVER
+    b = SpatialBeam(SPATIAL_ELEMENTS["HS2n-72p"], geo["length"], geo["height"], geo["width"], 12, "neo-hookean", c,
+                    paper.PENALTY, grading=3.0, both_ends=True)
+    f = 0.1 * gravity_load(b, m["density"], (0.0, -paper.GRAVITY, 0.0))
+    free = np.setdiff1d(np.arange(b.dof), clamp_rows(b))
+    terms = ROUNDOFF_FLOOR * np.finfo(float).eps * np.linalg.norm(b.force_magnitude(b.reference())[free])
+    floor = roundoff_floor(b, free)
+    system = _Increment(b, free, b.reference().ravel(), f, line_search=False)
+    with pytest.raises(StepFailure):               # no stop: 12 full Newton steps
+        newton(system, 1.0, 0.0, 12)
+    tail = [system.residual_norm()]
+    for _ in range(4):
+        system.newton_update()
+        tail.append(system.residual_norm())
+    assert terms < max(tail) < floor and 0.01 * floor < max(tail), (tail, terms, floor)
+
+
 # the sextic torsion modes' rule (4, 6, 6) takes seconds per rule: their cases run in the full tier
 @pytest.mark.parametrize("name", tiered(ELEMENTS, lambda name: name in ("HS2n-132p", "HS2n-180p"),
                                         "test_the_default_rule_is_the_cheapest_that_passes_the_rank_test"))

@@ -34,9 +34,10 @@
   insists on descent crawls back to the constraint where Newton's full steps converge
   (measured, 3363p x 2, the paper's cantilever at a tenth of its load: 8 full steps to
   5e-9 of the load against more than 30 damped ones). An increment converges at
-  |residual| <= max(rtol t |f|, ROUNDOFF_FLOOR eps |f_int|_terms) (the planar statics' floor,
-  :data:`ancf.solvers.statics.ROUNDOFF_FLOOR`, on the force assembled from the magnitudes of
-  its terms, :meth:`.beam.SpatialBeam.force_magnitude`, at the reference state), or when
+  |residual| <= max(rtol t |f|, floor), the floor the residual's round-off at the reference
+  state (:func:`roundoff_floor`: the planar statics' ROUNDOFF_FLOOR eps |f_int|_terms, on the
+  force assembled from the magnitudes of its terms, :meth:`.beam.SpatialBeam.force_magnitude`,
+  plus the coordinates' representation eps |K| |q|), or when
   Newton's correction is below ``xtol`` of the beam's length: the residual's round-off (a stiff penalty's eps alpha h w, with terms of P of
   order mu that cancel) can lie above rtol |f| under gravity while the corrections fall
   quadratically to round-off (3333 x 4 at a tenth of the load: corrections 7e-4, 2e-7,
@@ -53,6 +54,7 @@ from mechanics.load_path import Attempt, PathCounts, PathFailure, follow
 from mechanics.newton import newton
 from mechanics.time_loop import StepFailure
 
+from ...core.banded import Banded
 from ...solvers.statics import ROUNDOFF_FLOOR
 from .beam import SpatialBeam
 from .spec import kind_orders
@@ -240,6 +242,21 @@ def _linear_reaction(beam: SpatialBeam, q0: np.ndarray, fixed: np.ndarray, motio
     return float(np.linalg.norm((beam.force((q0 + dq).reshape(-1, 3)) - f0)[fixed])) / eps
 
 
+def roundoff_floor(beam: SpatialBeam, free: np.ndarray) -> float:
+    """The residual's round-off over the ``free`` rows at the reference state (N), the
+    tolerance's floor: the force's evaluation, ROUNDOFF_FLOOR eps |f_int|_terms (the planar
+    statics' rule and margin), plus the coordinates' own representation, eps |K| |q| (a
+    position held to eps |x| moves the force by K times that: on a short element at the far
+    end of the beam, 1e-4 m long at x = 0.16 m with the penalty's stiffness, some 20 times the
+    first term, below which Newton's residual cannot fall)."""
+    q = beam.reference()
+    eps = np.finfo(float).eps
+    K = beam.tangent_banded(q)
+    terms = ROUNDOFF_FLOOR * eps * float(np.linalg.norm(beam.force_magnitude(q)[free]))
+    coordinates = eps * float(np.linalg.norm(Banded(np.abs(K.ab), K.b).matvec(np.abs(q.ravel()))[free]))
+    return terms + coordinates
+
+
 def solve_static(beam: SpatialBeam, f_ext: np.ndarray, fixed: np.ndarray, load_steps: int = 10,
                  rtol: float = 1e-8, xtol: float = 1e-12, max_iterations: int = 40,
                  held=None, start: np.ndarray | None = None) -> StaticResult:
@@ -257,8 +274,7 @@ def solve_static(beam: SpatialBeam, f_ext: np.ndarray, fixed: np.ndarray, load_s
     if held is not None:
         scale = max(scale, _linear_reaction(beam, q0, fixed, held(1.0) - q0[fixed]))
     scale = scale or 1.0
-    # never below the force's own round-off (the planar statics' rule and margin)
-    floor = ROUNDOFF_FLOOR * np.finfo(float).eps * float(np.linalg.norm(beam.force_magnitude(beam.reference())[free]))
+    floor = roundoff_floor(beam, free)
     state = {"q": q0, "lam": beam.pressures(q0), "dq": None}
     small = lambda system, r, dw: dw <= xtol * beam.length
 
