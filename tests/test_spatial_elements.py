@@ -387,7 +387,7 @@ def test_the_tolerance_floor_holds_the_coordinates_representation():
 
 
 # the sextic torsion modes' rule (4, 6, 6) takes seconds per rule: their cases run in the full tier
-@pytest.mark.parametrize("name", tiered(ELEMENTS, lambda name: name in ("HS2n-132p", "HS2n-180p"),
+@pytest.mark.parametrize("name", tiered(ELEMENTS, lambda name: name in ("HS2n-132p", "HS2n-180p", "HS2n-216p"),
                                         "test_the_default_rule_is_the_cheapest_that_passes_the_rank_test"))
 def test_the_default_rule_is_the_cheapest_that_passes_the_rank_test(name):
     """Each element's default rule passes the small-strain rank test (no zero-energy mode

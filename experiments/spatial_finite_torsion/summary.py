@@ -8,6 +8,8 @@ import json
 import math
 from pathlib import Path
 
+import numpy as np
+
 HERE = Path(__file__).resolve().parent
 
 
@@ -45,7 +47,10 @@ SEQUENCES = {
 }
 # the reaction's components per case: name -> (the record's key, index; None: a number)
 COMPONENTS = {"twist": {"T": ("T", None), "N": ("N", None)},
-              "twist-bend": {"N": ("force", 0), "T": ("moment", 0), "My": ("moment", 1), "Mz": ("moment", 2)}}
+              "twist-bend": {"N": ("force", 0), "Fy": ("force", 1), "Fz": ("force", 2), "T": ("moment", 0),
+                             "My": ("moment", 1), "Mz": ("moment", 2)}}
+# the twist-bend tables' columns (Fy, Fz enter the vectors' errors)
+TB_SHOWN = ("N", "T", "My", "Mz")
 
 
 def _level(law: str, inc: str, cells: list[int], case: str = "twist", grading: float = 1.0) -> dict | None:
@@ -156,7 +161,8 @@ def reference_table() -> str:
     return "\n".join(rows)
 
 
-TB_UNITS = {"N": (1e3, "mN"), "T": (1e3, "N mm"), "My": (1e3, "N mm"), "Mz": (1e3, "N mm")}
+TB_UNITS = {"N": (1e3, "mN"), "Fy": (1e3, "mN"), "Fz": (1e3, "mN"), "T": (1e3, "N mm"), "My": (1e3, "N mm"),
+            "Mz": (1e3, "N mm")}
 
 
 def twist_bend_continuum_table() -> str:
@@ -195,16 +201,17 @@ def twist_bend_reference_table() -> str:
 
 def twist_bend_ancf_table() -> str:
     ref = references("twist-bend")
-    names = list(COMPONENTS["twist-bend"])
+    names = list(TB_SHOWN)
     rows = ["| element | law | elements | grading | dof | "
-            + " | ".join(f"{k} ({TB_UNITS[k][1]}) | off (%)" for k in names) + " | Newton | s |",
-            "|---|---|---|---|---|" + "---|---|" * len(names) + "---|---|"]
+            + " | ".join(f"{k} ({TB_UNITS[k][1]}) | off (%)" for k in names)
+            + " | force off (%) | moment off (%) | Newton | s |",
+            "|---|---|---|---|---|" + "---|---|" * len(names) + "---|---|---|---|"]
     for r in sorted((r for r in lines("res.jsonl") if r.get("case") == "twist-bend"),
                     key=lambda r: (r["element"], r["law"], r.get("grading", 1.0), r["elements"])):
         g = r["reactions"].get("1.0")
         head = f"| {r['element']} | {r['law']} | {r['elements']} | {r.get('grading', 1.0):g} | {r['dof']} | "
         if g is None:
-            rows.append(head + f"{r['status']}: {r['reason']} |" + " |" * (2 * len(names) - 1)
+            rows.append(head + f"{r['status']}: {r['reason']} |" + " |" * (2 * len(names) + 1)
                         + f" {r['newton_iterations']} | {r['seconds']:.1f} |")
             continue
         c = ref.get((r["law"], "mixed", "1.0"))
@@ -213,6 +220,12 @@ def twist_bend_ancf_table() -> str:
             v = component(g, "twist-bend", k)
             off = "" if c is None or c[k][0] is None else f"{100 * (v / c[k][0] - 1):+.3f}"
             cells += [f"{TB_UNITS[k][0] * v:.4f}", off]
+        for vector, ks in (("force", ("N", "Fy", "Fz")), ("moment", ("T", "My", "Mz"))):
+            if c is None or any(c[k][0] is None for k in ks):
+                cells.append("")
+                continue
+            want = np.array([c[k][0] for k in ks])
+            cells.append(f"{100 * np.linalg.norm(np.array(g[vector]) - want) / np.linalg.norm(want):.3f}")
         rows.append(head + " | ".join(cells) + f" | {r['newton_iterations']} | {r['seconds']:.1f} |")
     return "\n".join(rows)
 
