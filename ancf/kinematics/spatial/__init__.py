@@ -20,8 +20,10 @@ weight and under an end force once the clamp's end zone is resolved, 0.24 % stif
 torsion) and HS2n-132p (with degree 6's odd-odd modes too: within 0.1 % in small-twist
 torsion, 0.16 % soft at half a turn) and HS2n-180p (the complete cubic section, degree 6's
 warping and the complete quadratic element pressure: within 0.1 % of the continuum at half a
-turn for three laws and under an end force, converging at a measured rate). Each has a default
-rule chosen by the rank test (:mod:`.rank`). :mod:`.beam` takes equal or graded elements
+turn for three laws and under an end force, converging at a measured rate, 0.2 % stiff in the
+axial force and bending moment at a plate turned about all three axes) and HS2n-216p (its
+section completed to the quartic, for that case). Each has a default rule chosen by the rank
+test (:mod:`.rank`). :mod:`.beam` takes equal or graded elements
 (graded from one end or from both); :mod:`.statics` holds the supports (the clamp, the
 free-warping support of torsion), gravity, a dead traction on either end face, a small-twist
 torque, a rigid plate turned to a given rotation and its reaction, and the static solve;
