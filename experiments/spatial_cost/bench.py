@@ -95,7 +95,8 @@ def end_force_runs():
 
     return ([continuum(0), element("HS2n-96p", 4)],
             [continuum(0), continuum(1), element("HS2n-96p", 4), element("HS2n-96p", 8), element("HS2n-96p", 12),
-             element("HS2n-180p", 8), element("HS2n-180p", 12), element("HS2n-180p", 16)])
+             element("HS2n-180p", 8), element("HS2n-180p", 12), element("HS2n-180p", 16),
+             element("HS2n-216p", 12), element("HS2n-216p", 16)])
 
 
 def twist_runs():
@@ -117,7 +118,8 @@ def twist_runs():
 
     return ([continuum((16, 1, 1)), element("HS2n-180p", 2, 1.0)],
             [continuum((32, 4, 4)), continuum((32, 5, 5)), continuum((32, 6, 6)),
-             element("HS2n-180p", 8, 1.4), element("HS2n-180p", 12, 1.4), element("HS2n-180p", 16, 1.4)])
+             element("HS2n-180p", 8, 1.4), element("HS2n-180p", 12, 1.4), element("HS2n-180p", 16, 1.4),
+             element("HS2n-216p", 16, 1.4)])
 
 
 CASES = {"end-force": end_force_runs, "twist": twist_runs}
