@@ -225,13 +225,13 @@ def _solve(K, r: np.ndarray) -> np.ndarray:
     return K.solve(r) if x is None else x
 
 
-def _linear_reaction(beam: SpatialBeam, q0: np.ndarray, fixed: np.ndarray, motion: np.ndarray) -> float:
-    """|f_int| at the held rows (N) of the linear response to the prescribed ``motion`` of
-    ``fixed`` from the equilibrium q0, the free coordinates following: the supports'
-    reactions to first order, the force scale of a motion's residual. (The held rows' own
-    response, the free ones at rest, is no scale: a section turned against its neighbours
-    at rest meets the penalty's stiffness, some 1e4 times the reactions of the beam that
-    follows.) K dq by differences of the force along a small multiple of the motion."""
+def _linear_response(beam: SpatialBeam, q0: np.ndarray, fixed: np.ndarray, motion: np.ndarray):
+    """The linear response to the prescribed ``motion`` of ``fixed`` from the equilibrium q0,
+    the free coordinates following: (dq (dof,) for the whole motion, |f_int| at the held rows
+    (N), the supports' reactions to first order, the force scale of a motion's residual). (The
+    held rows' own response, the free ones at rest, is no scale: a section turned against its
+    neighbours at rest meets the penalty's stiffness, some 1e4 times the reactions of the beam
+    that follows.) K dq by differences of the force along a small multiple of the motion."""
     eps = 1e-6 * beam.length / max(float(np.abs(motion).max()), 1e-300)
     f0 = beam.force(q0.reshape(-1, 3))
     dq = np.zeros(beam.dof)
@@ -239,7 +239,7 @@ def _linear_reaction(beam: SpatialBeam, q0: np.ndarray, fixed: np.ndarray, motio
     df = beam.force((q0 + dq).reshape(-1, 3)) - f0
     df[fixed] = 0.0
     dq -= _solve(beam.tangent_banded(q0.reshape(-1, 3), beam.pressures(q0)).constrain(fixed), df)
-    return float(np.linalg.norm((beam.force((q0 + dq).reshape(-1, 3)) - f0)[fixed])) / eps
+    return dq / eps, float(np.linalg.norm((beam.force((q0 + dq).reshape(-1, 3)) - f0)[fixed])) / eps
 
 
 def roundoff_floor(beam: SpatialBeam, free: np.ndarray) -> float:
@@ -264,18 +264,24 @@ def solve_static(beam: SpatialBeam, f_ext: np.ndarray, fixed: np.ndarray, load_s
     module doc), or, with ``held`` (a function of the load parameter t giving the values of
     ``fixed``, in their order), moved along with the load: a prescribed motion (a support's
     rotation). Its force scale, for the residual's tolerance, is the larger of the load's
-    and the prescribed motion's reactions to first order (:func:`_linear_reaction`).
+    and the prescribed motion's reactions to first order (:func:`_linear_response`), and the first
+    increment starts from that linear response.
     ``start``: the state at t = 0 (an equilibrium there, e.g. the end of an earlier leg of a
     path; default the reference)."""
     fixed = np.asarray(fixed)
     free = np.setdiff1d(np.arange(beam.dof), fixed)
     q0 = (beam.reference() if start is None else np.asarray(start, float)).ravel()
     scale = float(np.linalg.norm(f_ext))
+    state = {"q": q0, "lam": beam.pressures(q0), "dq": None}
     if held is not None:
-        scale = max(scale, _linear_reaction(beam, q0, fixed, held(1.0) - q0[fixed]))
+        dq1, reaction = _linear_response(beam, q0, fixed, held(1.0) - q0[fixed])
+        scale = max(scale, reaction)
+        # the first increment's predictor: the motion's linear response (the free coordinates
+        # beside a turned plate follow it, instead of starting at rest against it)
+        lam0 = state["lam"]
+        state["dq"] = (1.0, dq1, None if lam0 is None else beam.linearised_pressures(q0.reshape(-1, 3), dq1) - lam0)
     scale = scale or 1.0
     floor = roundoff_floor(beam, free)
-    state = {"q": q0, "lam": beam.pressures(q0), "dq": None}
     small = lambda system, r, dw: dw <= xtol * beam.length
 
     def attempt(t0: float, t1: float) -> Attempt:
