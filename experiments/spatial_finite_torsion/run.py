@@ -125,9 +125,9 @@ class Plate:
 def both_ends(n: int, grading: float, length: float) -> np.ndarray:
     """The n + 1 cell boundaries along x of cells growing by ``grading`` from both ends to the
     middle (the ANCF beams' ``both_ends``)."""
-    half = grading ** np.arange((n + 1) // 2)
-    r = np.concatenate([half, half[::-1][n % 2:]])
-    x = np.concatenate([[0.0], np.cumsum(length * r / r.sum())])
+    from ancf.kinematics.spatial.beam import graded_lengths
+
+    x = np.concatenate([[0.0], np.cumsum(graded_lengths(n, grading, length, both_ends=True))])
     x[-1] = length                      # exactly: the plate's nodes are found at x = L
     return x
 

@@ -45,6 +45,17 @@ def gauss_box(points: tuple[int, int, int]) -> tuple[np.ndarray, np.ndarray]:
     return X, W
 
 
+def graded_lengths(n: int, grading: float, length: float, both_ends: bool = False) -> np.ndarray:
+    """The lengths of n elements (or cells) over ``length``, each ``grading`` times the one before
+    it from x = 0, or with ``both_ends`` from both ends to the middle (mirrored)."""
+    if both_ends:
+        half = grading ** np.arange((n + 1) // 2)
+        r = np.concatenate([half, half[::-1][n % 2:]])
+    else:
+        r = grading ** np.arange(n)
+    return length * r / r.sum()
+
+
 @dataclass(frozen=True)
 class SpatialBeam:
     spec: SpatialSpec
@@ -68,12 +79,7 @@ class SpatialBeam:
     @cached_property
     def lengths(self) -> np.ndarray:
         """The elements' lengths from x = 0 (m)."""
-        if self.both_ends:
-            half = self.grading ** np.arange((self.elements + 1) // 2)
-            r = np.concatenate([half, half[::-1][self.elements % 2:]])
-        else:
-            r = self.grading ** np.arange(self.elements)
-        return self.length * r / r.sum()
+        return graded_lengths(self.elements, self.grading, self.length, self.both_ends)
 
     @property
     def le(self) -> float:
